@@ -1,0 +1,60 @@
+// One adapter over SUNDIALS' integrators: the run loop sees steps, dense output and
+// statistics, whatever the method. No C++ exception crosses into SUNDIALS: callbacks
+// catch and return −1, and the message ends up in error_message().
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "lub/run.hpp"
+#include "lub/scene.hpp"
+
+namespace lub {
+
+/// y' = f(t, y), with optional root functions and quadratures.
+class OdeSystem {
+ public:
+  virtual ~OdeSystem() = default;
+  virtual int size() const = 0;
+  /// 0: ok; > 0: recoverable (the integrator retries with a smaller step); < 0: fatal.
+  virtual int rhs(double t, const double* y, double* ydot) = 0;
+  virtual int num_roots() const { return 0; }
+  virtual int roots(double /*t*/, const double* /*y*/, double* /*g*/) { return 0; }
+  virtual int num_quadratures() const { return 0; }
+  virtual int quadrature_rhs(double /*t*/, const double* /*y*/, double* /*qdot*/) { return 0; }
+};
+
+struct IntegratorSettings {
+  Method method = Method::cvode_bdf;
+  double rtol = 1e-6;
+  std::vector<double> atol;  ///< per component
+  double max_step = 0.0;     ///< 0: none
+  double initial_step = 0.0; ///< 0: automatic
+  int max_order = 0;         ///< 0: default
+  double t_stop = 0.0;       ///< never step past this time
+};
+
+enum class StepOutcome { step, root, failure };
+
+class Integrator {
+ public:
+  virtual ~Integrator() = default;
+  /// Takes one internal step (not past t_stop); t receives the time reached.
+  virtual StepOutcome step(double& t) = 0;
+  /// k-th derivative of the interpolated solution at t within the last step.
+  virtual bool dense(double t, int k, double* out) = 0;
+  /// Quadratures at the current time.
+  virtual void quadratures(double* out) = 0;
+  /// The solution at the current time.
+  virtual const double* y() const = 0;
+  /// Fills the integrator's counters (steps, evaluations, failures) into `s`.
+  virtual void statistics(SolverStats& s) const = 0;
+  /// SUNDIALS' message after a failure.
+  virtual std::string error_message() const = 0;
+};
+
+std::unique_ptr<Integrator> make_integrator(const IntegratorSettings& settings, OdeSystem& sys,
+                                            double t0, const std::vector<double>& y0);
+
+}  // namespace lub

@@ -1,0 +1,133 @@
+// The model: an immutable description assembled from a Scene, holding only the terms the
+// scene names (gravity only if the scene has it, a film force only for each lubricated
+// joint), and a Workspace preallocated once and reused for every evaluation.
+//
+// ## Equations of motion (absolute coordinates, paper Eq. 30)
+// q = (x, y, φ) per moving body (the ground is not in q). With the diagonal mass matrix M,
+// the constraint Jacobian Φ_q, generalised forces g (gravity, film forces and their
+// moments about the centres of mass) and γ = −(Φ_q q̇)_q q̇ − 2Φ_qt q̇ − Φ_tt,
+//     M q̈ + Φ_qᵀ λ = g,    Φ_q q̈ = γ − 2α Φ̇ − β² Φ      (Baumgarte, α, β from the scene).
+// Because M is diagonal the multipliers come from the small SPD system
+//     (Φ_q M⁻¹ Φ_qᵀ) λ = Φ_q M⁻¹ g − γ̂,    q̈ = M⁻¹ (g − Φ_qᵀ λ).
+// A lubricated revolute joint is a force element: no constraint rows, the film force F on
+// the journal at the journal centre P_j, −F on the bearing at the bearing centre P_i.
+#pragma once
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lub/force_laws.hpp"
+#include "lub/scene.hpp"
+
+namespace lub {
+
+/// One ideal constraint (a block of rows of Φ).
+struct Constraint {
+  enum class Kind { revolute, translational, ground, driver };
+  Kind kind = Kind::revolute;
+  int joint = -1;  ///< scene joint index (or driver index for Kind::driver)
+  int body_i = kGround, body_j = kGround;
+  Eigen::Vector2d s_i{0, 0}, s_j{0, 0};  ///< points in body frames
+  Eigen::Vector2d n_i{0, 1};             ///< translational: normal to the axis, body i frame
+  double phi0 = 0.0;                     ///< translational: φ_j − φ_i; driver: φ0
+  Eigen::Vector3d q0{0, 0, 0};           ///< ground: the fixed pose
+  Eigen::Vector2d offset{0, 0};          ///< revolute: P_i − P_j target (0 for a joint)
+  DriverType driver_type = DriverType::constant_speed;
+  double omega = 0.0, Omega = 0.0;       ///< driver speed, reversal frequency
+  int row = 0;                           ///< first row in Φ
+  int rows = 0;
+};
+
+/// A lubricated revolute joint as a force element.
+struct FilmElement {
+  int joint = -1;  ///< scene joint index
+  int bearing = kGround, journal = kGround;
+  Eigen::Vector2d s_bearing{0, 0}, s_journal{0, 0};
+  BearingGeometry geometry;
+  double clearance = 0.0;
+  double viscosity = 0.0;
+  ForceLaw law = ForceLaw::pinkus_sternlicht;
+};
+
+struct Model {
+  int nb = 0;    ///< moving bodies
+  int nq = 0;    ///< 3 nb
+  int nc = 0;    ///< constraint rows
+  Eigen::VectorXd mass_diag;      ///< (m, m, J) per body
+  Eigen::VectorXd inv_mass_diag;
+  std::vector<Constraint> constraints;
+  std::vector<FilmElement> films;
+  std::optional<Eigen::Vector2d> gravity;
+  double alpha = 5.0, beta = 5.0;
+  /// constraint block of each scene joint (ideal joints, and lubricated ones with law
+  /// "ideal"), or -1; film element of each scene joint, or -1
+  std::vector<int> joint_constraint, joint_film;
+};
+
+/// Bearing kinematics of one film element at one state.
+struct FilmKinematics {
+  Eigen::Vector2d e{0, 0};      ///< journal centre − bearing centre [m]
+  Eigen::Vector2d e_dot{0, 0};  ///< [m/s]
+  Eigen::Vector2d r{1, 0};      ///< unit radial direction (along e; along ė or x at e = 0)
+  double gamma = 0.0, gamma_dot = 0.0;
+  BearingState state;           ///< ε, ε̇, wedge
+  FilmForce force;              ///< on the journal, radial/tangential
+  Eigen::Vector2d F{0, 0};      ///< on the journal, global [N]
+};
+
+/// Counters of what the right-hand side evaluated (for the effect-counting tests).
+struct EvalCounters {
+  long long rhs = 0;
+  long long gravity = 0;
+  long long film = 0;
+};
+
+/// Preallocated buffers; one per thread of work, reused for every case of the same model.
+struct Workspace {
+  explicit Workspace(const Model& m);
+  Eigen::MatrixXd Phi_q;   ///< nc × nq
+  Eigen::VectorXd Phi, Phi_dot, gamma, g, rhs, lambda, qdd;
+  Eigen::MatrixXd S;       ///< nc × nc
+  Eigen::LLT<Eigen::MatrixXd> llt;
+  std::vector<FilmKinematics> films;
+  EvalCounters counters;
+};
+
+/// Builds the model. Throws InputError for an inconsistent scene (e.g. redundant
+/// constraints are detected later, at assembly).
+Model build_model(const Scene& scene);
+
+/// Evaluates accelerations q̈ (and λ, film kinematics and forces in `ws`) at (t, q, v).
+/// Returns 0, or 1 if the state is outside the model's domain (ε >= 1: a recoverable
+/// failure for the integrator), or -1 if the constraint system is singular.
+int evaluate(const Model& m, Workspace& ws, double t, const double* q, const double* v,
+             double* qdd);
+
+/// Constraint violation Φ and Φ̇ at (t, q, v) into ws.Phi, ws.Phi_dot (and ws.Phi_q).
+void constraint_residual(const Model& m, Workspace& ws, double t, const double* q, const double* v);
+
+/// Bearing kinematics (no force) of film element `k` at (q, v).
+FilmKinematics film_kinematics(const Model& m, int k, const double* q, const double* v);
+
+/// Force on body j of scene joint `joint` from body i, global [N], after evaluate():
+/// the film force on the journal for a lubricated joint, the constraint reaction otherwise.
+Eigen::Vector2d joint_force(const Model& m, const Workspace& ws, int joint);
+
+/// Kinetic energy + gravity potential [J].
+double mechanical_energy(const Model& m, const double* q, const double* v);
+/// Power of the drivers on the system [W] (after evaluate()).
+double driver_power(const Model& m, const Workspace& ws, const double* v);
+/// Power of the film forces on the system, F·ė summed over films [W] (after evaluate()).
+double film_power(const Workspace& ws);
+
+/// Kinematic analysis with all joints ideal (lubricated joints closed at their initial
+/// eccentricity): Newton–Raphson on positions from the scene's poses, then velocities.
+/// Throws InputError ("assembly: ...") if it cannot close.
+void assemble_initial_state(const Model& m, const Scene& scene, double t0,
+                            Eigen::VectorXd& q, Eigen::VectorXd& v);
+
+}  // namespace lub

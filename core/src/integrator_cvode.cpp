@@ -1,0 +1,187 @@
+// CVODES adapter: Adams–Moulton with fixed-point iteration (the paper's variable step and
+// order predictor–corrector) and BDF with Newton and a dense direct linear solver.
+#include <cvodes/cvodes.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
+
+#include <exception>
+#include <stdexcept>
+#include <string>
+
+#include "lub/integrator.hpp"
+
+namespace lub {
+
+namespace {
+
+struct CallbackData {
+  OdeSystem* sys = nullptr;
+  std::string error;  // SUNDIALS' last error text, or an exception's
+};
+
+int rhs_cb(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
+  auto* d = static_cast<CallbackData*>(user);
+  try {
+    return d->sys->rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+  } catch (const std::exception& e) {
+    d->error = std::string("right-hand side: ") + e.what();
+    return -1;
+  } catch (...) {
+    d->error = "right-hand side: unknown exception";
+    return -1;
+  }
+}
+
+int root_cb(sunrealtype t, N_Vector y, sunrealtype* g, void* user) {
+  auto* d = static_cast<CallbackData*>(user);
+  try {
+    return d->sys->roots(t, N_VGetArrayPointer(y), g);
+  } catch (const std::exception& e) {
+    d->error = std::string("root function: ") + e.what();
+    return -1;
+  }
+}
+
+int quad_cb(sunrealtype t, N_Vector y, N_Vector qdot, void* user) {
+  auto* d = static_cast<CallbackData*>(user);
+  try {
+    return d->sys->quadrature_rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(qdot));
+  } catch (const std::exception& e) {
+    d->error = std::string("quadrature: ") + e.what();
+    return -1;
+  }
+}
+
+void err_cb(int /*code*/, const char* module, const char* function, char* msg, void* user) {
+  auto* d = static_cast<CallbackData*>(user);
+  if (!d->error.empty()) return;  // keep the first (root-cause) message
+  d->error = std::string(module ? module : "") + "/" + (function ? function : "") + ": " + (msg ? msg : "");
+}
+
+class CvodeIntegrator final : public Integrator {
+ public:
+  CvodeIntegrator(const IntegratorSettings& s, OdeSystem& sys, double t0, const std::vector<double>& y0)
+      : method_(s.method) {
+    data_.sys = &sys;
+    if (SUNContext_Create(nullptr, &ctx_) != 0) throw std::runtime_error("SUNContext_Create failed");
+    const sunindextype n = sys.size();
+    y_ = N_VNew_Serial(n, ctx_);
+    for (sunindextype i = 0; i < n; ++i) NV_Ith_S(y_, i) = y0[i];
+    atol_ = N_VNew_Serial(n, ctx_);
+    for (sunindextype i = 0; i < n; ++i) NV_Ith_S(atol_, i) = s.atol[i];
+    mem_ = CVodeCreate(s.method == Method::cvode_adams ? CV_ADAMS : CV_BDF, ctx_);
+    if (!mem_) throw std::runtime_error("CVodeCreate failed");
+    check(CVodeSetErrHandlerFn(mem_, err_cb, &data_), "CVodeSetErrHandlerFn");
+    check(CVodeInit(mem_, rhs_cb, t0, y_), "CVodeInit");
+    check(CVodeSetUserData(mem_, &data_), "CVodeSetUserData");
+    check(CVodeSVtolerances(mem_, s.rtol, atol_), "CVodeSVtolerances");
+    check(CVodeSetMaxNumSteps(mem_, -1), "CVodeSetMaxNumSteps");  // the run loop budgets steps
+    if (s.max_step > 0) check(CVodeSetMaxStep(mem_, s.max_step), "CVodeSetMaxStep");
+    if (s.initial_step > 0) check(CVodeSetInitStep(mem_, s.initial_step), "CVodeSetInitStep");
+    if (s.max_order > 0) check(CVodeSetMaxOrd(mem_, s.max_order), "CVodeSetMaxOrd");
+    check(CVodeSetStopTime(mem_, s.t_stop), "CVodeSetStopTime");
+    if (s.method == Method::cvode_adams) {
+      nls_ = SUNNonlinSol_FixedPoint(y_, 0, ctx_);
+      check(CVodeSetNonlinearSolver(mem_, nls_), "CVodeSetNonlinearSolver");
+    } else {
+      A_ = SUNDenseMatrix(n, n, ctx_);
+      ls_ = SUNLinSol_Dense(y_, A_, ctx_);
+      check(CVodeSetLinearSolver(mem_, ls_, A_), "CVodeSetLinearSolver");
+    }
+    if (sys.num_roots() > 0) {
+      check(CVodeRootInit(mem_, sys.num_roots(), root_cb), "CVodeRootInit");
+      CVodeSetNoInactiveRootWarn(mem_);
+    }
+    if (sys.num_quadratures() > 0) {
+      q_ = N_VNew_Serial(sys.num_quadratures(), ctx_);
+      N_VConst(0.0, q_);
+      check(CVodeQuadInit(mem_, quad_cb, q_), "CVodeQuadInit");
+    }
+  }
+
+  ~CvodeIntegrator() override {
+    if (mem_) CVodeFree(&mem_);
+    if (ls_) SUNLinSolFree(ls_);
+    if (A_) SUNMatDestroy(A_);
+    if (nls_) SUNNonlinSolFree(nls_);
+    if (q_) N_VDestroy(q_);
+    if (atol_) N_VDestroy(atol_);
+    if (y_) N_VDestroy(y_);
+    if (ctx_) SUNContext_Free(&ctx_);
+  }
+
+  StepOutcome step(double& t) override {
+    sunrealtype tret = 0;
+    const int flag = CVode(mem_, 1e300, y_, &tret, CV_ONE_STEP);
+    t = tret;
+    if (flag == CV_ROOT_RETURN) return StepOutcome::root;
+    if (flag < 0) {
+      if (data_.error.empty()) {
+        char* name = CVodeGetReturnFlagName(flag);
+        data_.error = std::string("CVode returned ") + (name ? name : "an error");
+        free(name);
+      }
+      return StepOutcome::failure;
+    }
+    return StepOutcome::step;
+  }
+
+  bool dense(double t, int k, double* out) override {
+    N_Vector v = N_VMake_Serial(N_VGetLength(y_), out, ctx_);
+    const int flag = CVodeGetDky(mem_, t, k, v);
+    N_VDestroy(v);
+    return flag == CV_SUCCESS;
+  }
+
+  void quadratures(double* out) override {
+    if (!q_) return;
+    sunrealtype tret;
+    CVodeGetQuad(mem_, &tret, q_);
+    for (sunindextype i = 0; i < N_VGetLength(q_); ++i) out[i] = NV_Ith_S(q_, i);
+  }
+
+  const double* y() const override { return N_VGetArrayPointer(y_); }
+
+  void statistics(SolverStats& s) const override {
+    long v = 0;
+    CVodeGetNumSteps(mem_, &v); s.steps = v;
+    CVodeGetNumRhsEvals(mem_, &v); s.rhs_evals = v;
+    CVodeGetNumErrTestFails(mem_, &v); s.err_test_fails = v;
+    CVodeGetNumNonlinSolvIters(mem_, &v); s.nonlin_iters = v;
+    CVodeGetNumNonlinSolvConvFails(mem_, &v); s.nonlin_conv_fails = v;
+    CVodeGetNumGEvals(mem_, &v); s.root_evals = v;
+    if (method_ == Method::cvode_bdf) {
+      CVodeGetNumJacEvals(mem_, &v); s.jac_evals = v;
+      CVodeGetNumLinRhsEvals(mem_, &v); s.rhs_evals_jac = v;
+      CVodeGetNumLinSolvSetups(mem_, &v); s.lin_setups = v;
+    }
+  }
+
+  std::string error_message() const override { return data_.error; }
+
+ private:
+  void check(int flag, const char* what) {
+    if (flag != 0) throw std::runtime_error(std::string(what) + " failed: " + data_.error);
+  }
+
+  Method method_;
+  CallbackData data_;
+  SUNContext ctx_ = nullptr;
+  N_Vector y_ = nullptr, atol_ = nullptr, q_ = nullptr;
+  void* mem_ = nullptr;
+  SUNMatrix A_ = nullptr;
+  SUNLinearSolver ls_ = nullptr;
+  SUNNonlinearSolver nls_ = nullptr;
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> make_integrator(const IntegratorSettings& settings, OdeSystem& sys,
+                                            double t0, const std::vector<double>& y0) {
+  return std::make_unique<CvodeIntegrator>(settings, sys, t0, y0);
+}
+
+}  // namespace lub

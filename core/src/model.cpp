@@ -1,0 +1,457 @@
+#include "lub/model.hpp"
+
+#include <Eigen/QR>
+
+#include <cmath>
+#include <sstream>
+
+namespace lub {
+
+namespace {
+
+using Eigen::Vector2d;
+
+inline Vector2d rot(double phi, const Vector2d& s) {
+  const double c = std::cos(phi), sn = std::sin(phi);
+  return {c * s.x() - sn * s.y(), sn * s.x() + c * s.y()};
+}
+inline Vector2d perp(const Vector2d& v) { return {-v.y(), v.x()}; }  // R90 v
+inline double cross(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// Pose and velocity of a body (the ground is fixed at the origin).
+struct BodyState {
+  Vector2d r{0, 0}, rd{0, 0};
+  double phi = 0.0, phid = 0.0;
+};
+inline BodyState body_state(int b, const double* q, const double* v) {
+  BodyState s;
+  if (b == kGround) return s;
+  const int o = 3 * b;
+  s.r = {q[o], q[o + 1]};
+  s.phi = q[o + 2];
+  if (v) {
+    s.rd = {v[o], v[o + 1]};
+    s.phid = v[o + 2];
+  }
+  return s;
+}
+
+// Driver angle f(t) and its derivatives.
+inline void driver_motion(const Constraint& c, double t, double& f, double& fd, double& fdd) {
+  if (c.driver_type == DriverType::constant_speed) {
+    f = c.phi0 + c.omega * t;
+    fd = c.omega;
+    fdd = 0.0;
+  } else {
+    const double s = std::sin(c.Omega * t), co = std::cos(c.Omega * t);
+    f = c.phi0 + (c.omega / c.Omega) * s;
+    fd = c.omega * co;
+    fdd = -c.omega * c.Omega * s;
+  }
+}
+
+// Fills rows of Phi_q, Phi, Phi_dot, gamma for every constraint.
+void fill_constraints(const std::vector<Constraint>& cons, double t, const double* q,
+                      const double* v, Eigen::MatrixXd& J, Eigen::VectorXd& Phi,
+                      Eigen::VectorXd& Phid, Eigen::VectorXd* gamma) {
+  J.setZero();
+  for (const Constraint& c : cons) {
+    const int row = c.row;
+    switch (c.kind) {
+      case Constraint::Kind::revolute: {
+        const BodyState bi = body_state(c.body_i, q, v), bj = body_state(c.body_j, q, v);
+        const Vector2d ai = rot(bi.phi, c.s_i), aj = rot(bj.phi, c.s_j);
+        Phi.segment<2>(row) = bi.r + ai + c.offset - bj.r - aj;
+        Phid.segment<2>(row) = bi.rd + bi.phid * perp(ai) - bj.rd - bj.phid * perp(aj);
+        if (gamma) gamma->segment<2>(row) = bi.phid * bi.phid * ai - bj.phid * bj.phid * aj;
+        if (c.body_i != kGround) {
+          const int o = 3 * c.body_i;
+          J(row, o) = 1.0;
+          J(row + 1, o + 1) = 1.0;
+          J.block<2, 1>(row, o + 2) = perp(ai);
+        }
+        if (c.body_j != kGround) {
+          const int o = 3 * c.body_j;
+          J(row, o) = -1.0;
+          J(row + 1, o + 1) = -1.0;
+          J.block<2, 1>(row, o + 2) = -perp(aj);
+        }
+        break;
+      }
+      case Constraint::Kind::translational: {
+        const BodyState bi = body_state(c.body_i, q, v), bj = body_state(c.body_j, q, v);
+        const Vector2d ai = rot(bi.phi, c.s_i), aj = rot(bj.phi, c.s_j);
+        const Vector2d n = rot(bi.phi, c.n_i), pn = perp(n);
+        const Vector2d d = bj.r + aj - bi.r - ai;
+        const Vector2d dd = bj.rd + bj.phid * perp(aj) - bi.rd - bi.phid * perp(ai);
+        Phi(row) = bj.phi - bi.phi - c.phi0;
+        Phid(row) = bj.phid - bi.phid;
+        Phi(row + 1) = n.dot(d);
+        Phid(row + 1) = n.dot(dd) + bi.phid * pn.dot(d);
+        if (gamma) {
+          (*gamma)(row) = 0.0;
+          (*gamma)(row + 1) = bi.phid * bi.phid * n.dot(d) - 2.0 * bi.phid * pn.dot(dd) +
+                              bj.phid * bj.phid * n.dot(aj) - bi.phid * bi.phid * n.dot(ai);
+        }
+        if (c.body_i != kGround) {
+          const int o = 3 * c.body_i;
+          J(row, o + 2) = -1.0;
+          J(row + 1, o) = -n.x();
+          J(row + 1, o + 1) = -n.y();
+          J(row + 1, o + 2) = pn.dot(d) - n.dot(perp(ai));
+        }
+        if (c.body_j != kGround) {
+          const int o = 3 * c.body_j;
+          J(row, o + 2) = 1.0;
+          J(row + 1, o) = n.x();
+          J(row + 1, o + 1) = n.y();
+          J(row + 1, o + 2) = n.dot(perp(aj));
+        }
+        break;
+      }
+      case Constraint::Kind::ground: {
+        const int o = 3 * c.body_j;
+        for (int k = 0; k < 3; ++k) {
+          Phi(row + k) = q[o + k] - c.q0(k);
+          Phid(row + k) = v ? v[o + k] : 0.0;
+          if (gamma) (*gamma)(row + k) = 0.0;
+          J(row + k, o + k) = 1.0;
+        }
+        break;
+      }
+      case Constraint::Kind::driver: {
+        const int o = 3 * c.body_j;
+        double f, fd, fdd;
+        driver_motion(c, t, f, fd, fdd);
+        Phi(row) = q[o + 2] - f;
+        Phid(row) = (v ? v[o + 2] : 0.0) - fd;
+        if (gamma) (*gamma)(row) = fdd;
+        J(row, o + 2) = 1.0;
+        break;
+      }
+    }
+  }
+}
+
+// Φ_t of every row (only drivers depend on time explicitly).
+void fill_phi_t(const std::vector<Constraint>& cons, double t, Eigen::VectorXd& Phi_t) {
+  Phi_t.setZero();
+  for (const Constraint& c : cons) {
+    if (c.kind != Constraint::Kind::driver) continue;
+    double f, fd, fdd;
+    driver_motion(c, t, f, fd, fdd);
+    Phi_t(c.row) = -fd;
+  }
+}
+
+int count_rows(std::vector<Constraint>& cons) {
+  int row = 0;
+  for (Constraint& c : cons) {
+    c.row = row;
+    row += c.rows;
+  }
+  return row;
+}
+
+Constraint revolute_block(int joint, int bi, int bj, const Vector2d& si, const Vector2d& sj,
+                          const Vector2d& offset) {
+  Constraint c;
+  c.kind = Constraint::Kind::revolute;
+  c.joint = joint;
+  c.body_i = bi;
+  c.body_j = bj;
+  c.s_i = si;
+  c.s_j = sj;
+  c.offset = offset;
+  c.rows = 2;
+  return c;
+}
+
+}  // namespace
+
+Workspace::Workspace(const Model& m)
+    : Phi_q(Eigen::MatrixXd::Zero(m.nc, m.nq)),
+      Phi(Eigen::VectorXd::Zero(m.nc)),
+      Phi_dot(Eigen::VectorXd::Zero(m.nc)),
+      gamma(Eigen::VectorXd::Zero(m.nc)),
+      g(Eigen::VectorXd::Zero(m.nq)),
+      rhs(Eigen::VectorXd::Zero(m.nc)),
+      lambda(Eigen::VectorXd::Zero(m.nc)),
+      qdd(Eigen::VectorXd::Zero(m.nq)),
+      S(Eigen::MatrixXd::Zero(m.nc, m.nc)),
+      llt(m.nc),
+      films(m.films.size()) {}
+
+Model build_model(const Scene& scene) {
+  Model m;
+  m.nb = static_cast<int>(scene.bodies.size());
+  m.nq = 3 * m.nb;
+  m.mass_diag.resize(m.nq);
+  for (int b = 0; b < m.nb; ++b) {
+    m.mass_diag(3 * b) = m.mass_diag(3 * b + 1) = scene.bodies[b].mass_kg;
+    m.mass_diag(3 * b + 2) = scene.bodies[b].inertia_kg_m2;
+  }
+  m.inv_mass_diag = m.mass_diag.cwiseInverse();
+  m.gravity = scene.gravity_m_s2;
+  m.alpha = scene.solver.baumgarte_alpha;
+  m.beta = scene.solver.baumgarte_beta;
+  m.joint_constraint.assign(scene.joints.size(), -1);
+  m.joint_film.assign(scene.joints.size(), -1);
+
+  for (size_t k = 0; k < scene.joints.size(); ++k) {
+    const JointSpec& s = scene.joints[k];
+    const int jk = static_cast<int>(k);
+    switch (s.type) {
+      case JointType::revolute:
+        m.joint_constraint[k] = static_cast<int>(m.constraints.size());
+        m.constraints.push_back(revolute_block(jk, s.body_i, s.body_j, s.point_i_m, s.point_j_m, {0, 0}));
+        break;
+      case JointType::translational: {
+        Constraint c;
+        c.kind = Constraint::Kind::translational;
+        c.joint = jk;
+        c.body_i = s.body_i;
+        c.body_j = s.body_j;
+        c.s_i = s.point_i_m;
+        c.s_j = s.point_j_m;
+        c.n_i = perp(s.axis_i);
+        const double phi_i = s.body_i == kGround ? 0.0 : scene.bodies[s.body_i].angle_rad;
+        const double phi_j = s.body_j == kGround ? 0.0 : scene.bodies[s.body_j].angle_rad;
+        c.phi0 = phi_j - phi_i;
+        c.rows = 2;
+        m.joint_constraint[k] = static_cast<int>(m.constraints.size());
+        m.constraints.push_back(c);
+        break;
+      }
+      case JointType::ground: {
+        Constraint c;
+        c.kind = Constraint::Kind::ground;
+        c.joint = jk;
+        c.body_j = s.body_j;
+        const BodySpec& b = scene.bodies[s.body_j];
+        c.q0 = {b.position_m.x(), b.position_m.y(), b.angle_rad};
+        c.rows = 3;
+        m.joint_constraint[k] = static_cast<int>(m.constraints.size());
+        m.constraints.push_back(c);
+        break;
+      }
+      case JointType::lubricated_revolute:
+        if (s.ideal) {
+          m.joint_constraint[k] = static_cast<int>(m.constraints.size());
+          m.constraints.push_back(revolute_block(jk, s.body_i, s.body_j, s.point_i_m, s.point_j_m,
+                                                 s.initial_eccentricity_m));
+        } else {
+          FilmElement f;
+          f.joint = jk;
+          f.bearing = s.body_i;
+          f.journal = s.body_j;
+          f.s_bearing = s.point_i_m;
+          f.s_journal = s.point_j_m;
+          f.geometry = s.bearing;
+          f.clearance = s.bearing.clearance_m();
+          f.viscosity = s.viscosity_Pa_s;
+          f.law = s.law;
+          m.joint_film[k] = static_cast<int>(m.films.size());
+          m.films.push_back(f);
+        }
+        break;
+    }
+  }
+  for (size_t d = 0; d < scene.drivers.size(); ++d) {
+    const DriverSpec& s = scene.drivers[d];
+    Constraint c;
+    c.kind = Constraint::Kind::driver;
+    c.joint = static_cast<int>(d);
+    c.body_j = s.body;
+    c.driver_type = s.type;
+    c.omega = s.speed_rad_s;
+    c.Omega = s.reversal_frequency_rad_s;
+    c.phi0 = s.initial_angle_rad.value_or(scene.bodies[s.body].angle_rad);
+    c.rows = 1;
+    m.constraints.push_back(c);
+  }
+  m.nc = count_rows(m.constraints);
+  return m;
+}
+
+FilmKinematics film_kinematics(const Model& m, int k, const double* q, const double* v) {
+  const FilmElement& f = m.films[k];
+  const BodyState bi = body_state(f.bearing, q, v), bj = body_state(f.journal, q, v);
+  const Vector2d ai = rot(bi.phi, f.s_bearing), aj = rot(bj.phi, f.s_journal);
+  FilmKinematics k_out;
+  k_out.e = bj.r + aj - bi.r - ai;
+  k_out.e_dot = bj.rd + bj.phid * perp(aj) - bi.rd - bi.phid * perp(ai);
+  const double c = f.clearance;
+  const double e = k_out.e.norm();
+  if (e > 1e-12 * c) {
+    k_out.r = k_out.e / e;
+    k_out.state.eps = e / c;
+    k_out.state.eps_dot = k_out.r.dot(k_out.e_dot) / c;
+    k_out.gamma_dot = cross(k_out.e, k_out.e_dot) / (e * e);
+  } else {
+    // Centred journal: the line of centres is undefined. Take it along the journal's
+    // relative velocity (the direction it is about to move in), so ε̇ = |ė|/c and γ̇ = 0;
+    // this is the limit e → 0 along the trajectory, and the Sommerfeld laws reduce to
+    // the isotropic squeeze damping −(K/c) ė whatever the choice.
+    const double ed = k_out.e_dot.norm();
+    k_out.r = ed > 0.0 ? Vector2d(k_out.e_dot / ed) : Vector2d(1.0, 0.0);
+    k_out.state.eps = 0.0;
+    k_out.state.eps_dot = ed / c;
+    k_out.gamma_dot = 0.0;
+  }
+  k_out.gamma = std::atan2(k_out.r.y(), k_out.r.x());
+  k_out.state.wedge = bj.phid + bi.phid - 2.0 * k_out.gamma_dot;
+  return k_out;
+}
+
+namespace {
+inline void add_body_force(Eigen::VectorXd& g, int b, const Vector2d& F, double moment) {
+  if (b == kGround) return;
+  g(3 * b) += F.x();
+  g(3 * b + 1) += F.y();
+  g(3 * b + 2) += moment;
+}
+}  // namespace
+
+int evaluate(const Model& m, Workspace& ws, double t, const double* q, const double* v,
+             double* qdd) {
+  ++ws.counters.rhs;
+  ws.g.setZero();
+  if (m.gravity) {
+    ++ws.counters.gravity;
+    for (int b = 0; b < m.nb; ++b) {
+      ws.g(3 * b) += m.mass_diag(3 * b) * m.gravity->x();
+      ws.g(3 * b + 1) += m.mass_diag(3 * b) * m.gravity->y();
+    }
+  }
+  for (size_t k = 0; k < m.films.size(); ++k) {
+    const FilmElement& f = m.films[k];
+    FilmKinematics& fk = ws.films[k];
+    fk = film_kinematics(m, static_cast<int>(k), q, v);
+    if (!(fk.state.eps < 1.0)) return 1;  // journal through the wall: outside the model
+    ++ws.counters.film;
+    fk.force = film_force(f.law, f.geometry, f.viscosity, fk.state);
+    const Vector2d t_dir = perp(fk.r);
+    fk.F = fk.force.radial_N * fk.r + fk.force.tangential_N * t_dir;
+    if (!std::isfinite(fk.F.x()) || !std::isfinite(fk.F.y())) return 1;
+    const BodyState bi = body_state(f.bearing, q, nullptr), bj = body_state(f.journal, q, nullptr);
+    const Vector2d ai = rot(bi.phi, f.s_bearing), aj = rot(bj.phi, f.s_journal);
+    add_body_force(ws.g, f.journal, fk.F, cross(aj, fk.F));
+    add_body_force(ws.g, f.bearing, -fk.F, -cross(ai, fk.F));
+  }
+  Eigen::Map<Eigen::VectorXd> a(qdd, m.nq);
+  if (m.nc == 0) {
+    a = m.inv_mass_diag.cwiseProduct(ws.g);
+    return 0;
+  }
+  fill_constraints(m.constraints, t, q, v, ws.Phi_q, ws.Phi, ws.Phi_dot, &ws.gamma);
+  // γ̂ = γ − 2α Φ̇ − β² Φ
+  ws.rhs.noalias() = ws.Phi_q * m.inv_mass_diag.cwiseProduct(ws.g);
+  ws.rhs -= ws.gamma - 2.0 * m.alpha * ws.Phi_dot - (m.beta * m.beta) * ws.Phi;
+  ws.S.noalias() = ws.Phi_q * m.inv_mass_diag.asDiagonal() * ws.Phi_q.transpose();
+  ws.llt.compute(ws.S);
+  if (ws.llt.info() != Eigen::Success) return -1;
+  ws.lambda = ws.llt.solve(ws.rhs);
+  ws.qdd.noalias() = ws.g - ws.Phi_q.transpose() * ws.lambda;
+  a = m.inv_mass_diag.cwiseProduct(ws.qdd);
+  return 0;
+}
+
+void constraint_residual(const Model& m, Workspace& ws, double t, const double* q, const double* v) {
+  fill_constraints(m.constraints, t, q, v, ws.Phi_q, ws.Phi, ws.Phi_dot, nullptr);
+}
+
+Eigen::Vector2d joint_force(const Model& m, const Workspace& ws, int joint) {
+  if (const int f = m.joint_film[joint]; f >= 0) return ws.films[f].F;
+  const int ci = m.joint_constraint[joint];
+  if (ci < 0) return {0, 0};
+  const Constraint& c = m.constraints[ci];
+  // Generalised constraint force on a body: −Φ_qᵀ λ restricted to its (x, y) columns.
+  const bool on_j = c.body_j != kGround;
+  const int b = on_j ? c.body_j : c.body_i;
+  Vector2d F = -ws.Phi_q.block(c.row, 3 * b, c.rows, 2).transpose() * ws.lambda.segment(c.row, c.rows);
+  return on_j ? F : Vector2d(-F);
+}
+
+double mechanical_energy(const Model& m, const double* q, const double* v) {
+  double E = 0.0;
+  for (int i = 0; i < m.nq; ++i) E += 0.5 * m.mass_diag(i) * v[i] * v[i];
+  if (m.gravity)
+    for (int b = 0; b < m.nb; ++b)
+      E -= m.mass_diag(3 * b) * (m.gravity->x() * q[3 * b] + m.gravity->y() * q[3 * b + 1]);
+  return E;
+}
+
+double driver_power(const Model& m, const Workspace& ws, const double* v) {
+  double P = 0.0;
+  for (const Constraint& c : m.constraints)
+    if (c.kind == Constraint::Kind::driver) P += -ws.lambda(c.row) * v[3 * c.body_j + 2];
+  return P;
+}
+
+double film_power(const Workspace& ws) {
+  double P = 0.0;
+  for (const FilmKinematics& fk : ws.films) P += fk.F.dot(fk.e_dot);
+  return P;
+}
+
+void assemble_initial_state(const Model& m, const Scene& scene, double t0, Eigen::VectorXd& q,
+                            Eigen::VectorXd& v) {
+  // All joints ideal: each film element closes as a revolute at its initial eccentricity.
+  std::vector<Constraint> cons = m.constraints;
+  for (const FilmElement& f : m.films)
+    cons.push_back(revolute_block(f.joint, f.bearing, f.journal, f.s_bearing, f.s_journal,
+                                  scene.joints[f.joint].initial_eccentricity_m));
+  const int nc = count_rows(cons);
+  q.resize(m.nq);
+  v = Eigen::VectorXd::Zero(m.nq);
+  double length_scale = 0.0;
+  for (int b = 0; b < m.nb; ++b) {
+    q.segment<2>(3 * b) = scene.bodies[b].position_m;
+    q(3 * b + 2) = scene.bodies[b].angle_rad;
+    length_scale = std::max(length_scale, scene.bodies[b].position_m.norm());
+  }
+  for (const auto& jt : scene.joints)
+    length_scale = std::max({length_scale, jt.point_i_m.norm(), jt.point_j_m.norm()});
+  length_scale = std::max(length_scale, 1e-3);
+  if (nc == 0) return;
+
+  Eigen::MatrixXd J(nc, m.nq);
+  Eigen::VectorXd Phi(nc), Phid(nc);
+  const double tol = 1e-13 * length_scale;
+  double res = 0.0;
+  for (int it = 0; it < 100; ++it) {
+    fill_constraints(cons, t0, q.data(), nullptr, J, Phi, Phid, nullptr);
+    res = Phi.lpNorm<Eigen::Infinity>();
+    if (res <= tol) break;
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(J);
+    Eigen::VectorXd dq = cod.solve(Phi);
+    // Damped step: never move a coordinate by more than the mechanism's size at once.
+    const double n = dq.lpNorm<Eigen::Infinity>();
+    if (n > length_scale) dq *= length_scale / n;
+    q -= dq;
+  }
+  if (!(res <= tol)) {
+    std::ostringstream msg;
+    msg << "assembly: the kinematic analysis with all joints ideal cannot close the mechanism "
+           "(constraint residual "
+        << res << " m after 100 Newton-Raphson iterations): check the joint points, the "
+                  "bodies' initial poses and the lengths";
+    throw InputError(msg.str());
+  }
+  fill_constraints(cons, t0, q.data(), nullptr, J, Phi, Phid, nullptr);
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(J);
+  cod.setThreshold(1e-10);
+  if (cod.rank() < nc) {
+    std::ostringstream msg;
+    msg << "assembly: the " << nc << " constraint equations have rank " << cod.rank()
+        << " at the initial configuration: some joints are redundant or the mechanism "
+           "starts in a singular position";
+    throw InputError(msg.str());
+  }
+  Eigen::VectorXd Phi_t(nc);
+  fill_phi_t(cons, t0, Phi_t);
+  v = cod.solve(-Phi_t);
+}
+
+}  // namespace lub

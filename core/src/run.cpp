@@ -1,0 +1,437 @@
+#include "lub/run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "lub/integrator.hpp"
+#include "lub/model.hpp"
+
+namespace lub {
+
+std::string to_string(RunStatus s) {
+  switch (s) {
+    case RunStatus::ok: return "ok";
+    case RunStatus::film_collapse: return "film_collapse";
+    case RunStatus::solver_failure: return "solver_failure";
+    case RunStatus::budget_exceeded: return "budget_exceeded";
+  }
+  return "?";
+}
+
+namespace {
+
+constexpr double kTwoPi = 6.28318530717958647692;
+constexpr int kPhasePoints = 360;  // orbit samples per cycle for the periodicity measure
+
+// The multibody equations as a first-order ODE, y = (q, v).
+class MultibodySystem final : public OdeSystem {
+ public:
+  MultibodySystem(const Model& m, Workspace& ws, double eps_limit, bool energy)
+      : m_(m), ws_(ws), eps_limit_(eps_limit), energy_(energy) {}
+  int size() const override { return 2 * m_.nq; }
+  int rhs(double t, const double* y, double* ydot) override {
+    std::copy(y + m_.nq, y + 2 * m_.nq, ydot);
+    const int rc = evaluate(m_, ws_, t, y, y + m_.nq, ydot + m_.nq);
+    if (rc < 0) throw std::runtime_error("the constraint matrix Phi_q M^-1 Phi_q^T is singular");
+    return rc;
+  }
+  int num_roots() const override { return static_cast<int>(m_.films.size()); }
+  int roots(double /*t*/, const double* y, double* g) override {
+    for (size_t k = 0; k < m_.films.size(); ++k)
+      g[k] = eps_limit_ - film_kinematics(m_, static_cast<int>(k), y, y + m_.nq).state.eps;
+    return 0;
+  }
+  int num_quadratures() const override { return energy_ ? 2 : 0; }
+  int quadrature_rhs(double t, const double* y, double* qdot) override {
+    std::vector<double>& a = scratch_;
+    a.resize(m_.nq);
+    const int rc = evaluate(m_, ws_, t, y, y + m_.nq, a.data());
+    if (rc != 0) return rc;
+    qdot[0] = driver_power(m_, ws_, y + m_.nq);
+    qdot[1] = film_power(ws_);
+    return 0;
+  }
+
+ private:
+  const Model& m_;
+  Workspace& ws_;
+  double eps_limit_;
+  bool energy_;
+  std::vector<double> scratch_;
+};
+
+// Everything measured at one instant.
+struct Probe {
+  double t = 0.0;
+  const double* q = nullptr;
+  const double* v = nullptr;
+  const double* a = nullptr;
+};
+
+double channel_value(const Scene& scene, const Model& m, const Workspace& ws, const ChannelSpec& c,
+                     const Probe& p) {
+  if (c.source == ChannelSource::time) return p.t;
+  if (c.source == ChannelSource::body) {
+    const int o = 3 * c.index;
+    const std::string& qn = c.quantity;
+    if (qn == "x") return p.q[o];
+    if (qn == "y") return p.q[o + 1];
+    if (qn == "angle") return p.q[o + 2];
+    if (qn == "vx") return p.v[o];
+    if (qn == "vy") return p.v[o + 1];
+    if (qn == "omega") return p.v[o + 2];
+    if (qn == "ax") return p.a[o];
+    if (qn == "ay") return p.a[o + 1];
+    if (qn == "alpha") return p.a[o + 2];
+    return 0.0;
+  }
+  const std::string& qn = c.quantity;
+  if (qn == "reaction") return joint_force(m, ws, c.index).norm();
+  if (qn == "reaction_x") return joint_force(m, ws, c.index).x();
+  if (qn == "reaction_y") return joint_force(m, ws, c.index).y();
+  const int f = m.joint_film[c.index];
+  const double clearance = scene.joints[c.index].bearing.clearance_m();
+  if (f < 0) {  // a lubricated joint run as ideal: centred
+    if (qn == "h_min") return clearance;
+    return 0.0;
+  }
+  const FilmKinematics& k = ws.films[f];
+  if (qn == "e_x") return k.e.x();
+  if (qn == "e_y") return k.e.y();
+  if (qn == "eps") return k.state.eps;
+  if (qn == "eps_dot") return k.state.eps_dot;
+  if (qn == "gamma") return k.gamma;
+  if (qn == "gamma_dot") return k.gamma_dot;
+  if (qn == "wedge") return k.state.wedge;
+  if (qn == "h_min") return clearance * (1.0 - k.state.eps);
+  if (qn == "film_radial") return k.force.radial_N;
+  if (qn == "film_tangential") return k.force.tangential_N;
+  return 0.0;
+}
+
+class Runner {
+ public:
+  explicit Runner(const Scene& scene)
+      : scene_(scene), m_(build_model(scene)), ws_(m_), period_(scene.cycle_period_s()) {}
+
+  RunResult run();
+
+ private:
+  // Evaluates the model at (t, y) once: constraint drift and the cycle's extremes, and
+  // with `record` the series channels.
+  void observe(double t, const double* y, bool record);
+  void observe_phase(double t, const double* y);
+  void close_cycle(double t_end);
+  double phase_angle(double t) const {
+    if (!period_) return 0.0;
+    const double x = (t - t0_) / *period_;
+    return kTwoPi * (x - std::floor(x));
+  }
+  bool steady_now() const;
+
+  const Scene& scene_;
+  Model m_;
+  Workspace ws_;
+  std::optional<double> period_;
+  double t0_ = 0.0;
+  RunResult res_;
+  std::vector<double> qdd_, ytmp_;
+  CycleMetrics cur_;
+  bool cur_empty_ = true;
+  // orbit of every film at the phase points: current and previous cycle
+  std::vector<double> orbit_cur_, orbit_prev_;
+  int phase_index_ = 0;
+};
+
+void Runner::observe(double t, const double* y, bool record) {
+  const double* q = y;
+  const double* v = y + m_.nq;
+  if (evaluate(m_, ws_, t, q, v, qdd_.data()) != 0) return;
+  ++res_.stats.observer_evals;
+  if (record) {
+    const Probe p{t, q, v, qdd_.data()};
+    auto& data = res_.series.data;
+    data[0].push_back(t);
+    for (size_t c = 0; c < scene_.output.channels.size(); ++c)
+      data[c + 1].push_back(channel_value(scene_, m_, ws_, scene_.output.channels[c], p));
+  }
+  res_.stats.max_position_drift =
+      std::max(res_.stats.max_position_drift, m_.nc ? ws_.Phi.lpNorm<Eigen::Infinity>() : 0.0);
+  res_.stats.max_velocity_drift =
+      std::max(res_.stats.max_velocity_drift, m_.nc ? ws_.Phi_dot.lpNorm<Eigen::Infinity>() : 0.0);
+  const double angle = phase_angle(t);
+  const int mj = scene_.metrics.joint;
+  if (cur_empty_) {
+    cur_.min_film_m = std::numeric_limits<double>::infinity();
+    cur_empty_ = false;
+  }
+  if (mj >= 0) {
+    const double R = joint_force(m_, ws_, mj).norm();
+    if (R > cur_.peak_reaction_N) {
+      cur_.peak_reaction_N = R;
+      cur_.angle_at_peak_reaction_rad = angle;
+    }
+    if (scene_.joints[mj].type == JointType::lubricated_revolute) {
+      const int f = m_.joint_film[mj];
+      const double eps = f >= 0 ? ws_.films[f].state.eps : 0.0;
+      const double h = scene_.joints[mj].bearing.clearance_m() * (1.0 - eps);
+      cur_.max_eps = std::max(cur_.max_eps, eps);
+      if (h < cur_.min_film_m) {
+        cur_.min_film_m = h;
+        cur_.angle_at_min_film_rad = angle;
+      }
+    }
+  }
+  if (const int b = scene_.metrics.body; b >= 0) {
+    const double a = std::hypot(qdd_[3 * b], qdd_[3 * b + 1]);
+    cur_.peak_acceleration_m_s2 = std::max(cur_.peak_acceleration_m_s2, a);
+  }
+}
+
+void Runner::observe_phase(double /*t*/, const double* y) {
+  const double* q = y;
+  const double* v = y + m_.nq;
+  double* out = orbit_cur_.data() + static_cast<size_t>(phase_index_) * 2 * std::max<size_t>(1, m_.films.size());
+  if (m_.films.empty()) {
+    // No film: the periodicity of the mechanism itself, from the first body's position.
+    out[0] = q[0];
+    out[1] = q[1];
+  } else {
+    for (size_t k = 0; k < m_.films.size(); ++k) {
+      const FilmKinematics fk = film_kinematics(m_, static_cast<int>(k), q, v);
+      out[2 * k] = fk.e.x() / m_.films[k].clearance;
+      out[2 * k + 1] = fk.e.y() / m_.films[k].clearance;
+    }
+  }
+  ++phase_index_;
+}
+
+void Runner::close_cycle(double t_end) {
+  cur_.t_end_s = t_end;
+  if (cur_empty_) cur_.min_film_m = 0.0;
+  if (!res_.cycles.empty() && phase_index_ == kPhasePoints) {
+    double d = 0.0;
+    const size_t nf = std::max<size_t>(1, m_.films.size());
+    for (int i = 0; i < kPhasePoints; ++i)
+      for (size_t k = 0; k < nf; ++k) {
+        const size_t o = (static_cast<size_t>(i) * nf + k) * 2;
+        d = std::max(d, std::hypot(orbit_cur_[o] - orbit_prev_[o], orbit_cur_[o + 1] - orbit_prev_[o + 1]));
+      }
+    cur_.periodicity = d;
+  }
+  res_.cycles.push_back(cur_);
+  std::swap(orbit_cur_, orbit_prev_);
+  phase_index_ = 0;
+  cur_ = CycleMetrics{};
+  cur_.t_start_s = t_end;
+  cur_empty_ = true;
+}
+
+bool Runner::steady_now() const {
+  const int M = scene_.simulation.metric_cycles;
+  if (static_cast<int>(res_.cycles.size()) < M + 1) return false;
+  for (int i = 0; i < M; ++i) {
+    const CycleMetrics& c = res_.cycles[res_.cycles.size() - 1 - i];
+    if (c.periodicity < 0 || c.periodicity >= scene_.simulation.steady_tolerance) return false;
+  }
+  return true;
+}
+
+RunResult Runner::run() {
+  const auto wall0 = std::chrono::steady_clock::now();
+  const SimulationSpec& sim = scene_.simulation;
+  const SolverSpec& sol = scene_.solver;
+  qdd_.assign(m_.nq, 0.0);
+  ytmp_.assign(2 * m_.nq, 0.0);
+  const size_t nf = std::max<size_t>(1, m_.films.size());
+  orbit_cur_.assign(static_cast<size_t>(kPhasePoints) * nf * 2, 0.0);
+  orbit_prev_ = orbit_cur_;
+
+  // Series only if channels were asked for.
+  if (!scene_.output.channels.empty()) {
+    res_.series.names.push_back("t");
+    res_.series.units.push_back("s");
+    for (const auto& c : scene_.output.channels) {
+      res_.series.names.push_back(c.name);
+      res_.series.units.push_back(channel_unit(c.source, c.quantity));
+    }
+    res_.series.data.resize(res_.series.names.size());
+  }
+
+  Eigen::VectorXd q0, v0;
+  assemble_initial_state(m_, scene_, t0_, q0, v0);
+  std::vector<double> y0(2 * m_.nq);
+  std::copy(q0.data(), q0.data() + m_.nq, y0.begin());
+  std::copy(v0.data(), v0.data() + m_.nq, y0.begin() + m_.nq);
+
+  const double t_end = sim.duration_s ? *sim.duration_s : sim.max_cycles * *period_;
+  IntegratorSettings is;
+  is.method = sol.method;
+  is.rtol = sol.rtol;
+  const double atol = sol.atol ? *sol.atol : sol.rtol * scene_.min_clearance_m().value_or(1e-3);
+  is.atol.assign(2 * m_.nq, atol);
+  is.max_step = sol.max_step_s;
+  is.initial_step = sol.initial_step_s;
+  is.max_order = sol.max_order;
+  is.t_stop = t_end;
+  res_.stats.rtol = sol.rtol;
+  res_.stats.atol = atol;
+  res_.stats.method = to_string(sol.method);
+
+  const bool energy = scene_.output.energy_balance;
+  MultibodySystem sys(m_, ws_, sim.eps_limit, energy);
+  std::unique_ptr<Integrator> integ;
+  try {
+    integ = make_integrator(is, sys, t0_, y0);
+  } catch (const std::exception& e) {
+    res_.status = RunStatus::solver_failure;
+    res_.message = e.what();
+    return res_;
+  }
+  const double E0 = energy ? mechanical_energy(m_, q0.data(), v0.data()) : 0.0;
+
+  const double dt_sample = scene_.output.sample_interval_s;
+  long long sample_k = 0;
+  const double dt_phase = period_ ? *period_ / kPhasePoints : 0.0;
+  long long phase_k = 0;
+  int cycles_done = 0;
+  observe(t0_, y0.data(), !res_.series.names.empty());
+  if (!res_.series.names.empty()) sample_k = 1;
+  if (period_) observe_phase(t0_, y0.data()), phase_k = 1;
+
+  double t = t0_;
+  bool stop = false;
+  const double inf = std::numeric_limits<double>::infinity();
+  while (!stop) {
+    const double t_prev = t;
+    const StepOutcome out = integ->step(t);
+    if (out == StepOutcome::failure) {
+      res_.status = RunStatus::solver_failure;
+      res_.message = "the integrator failed at t = " + std::to_string(t) + " s: " + integ->error_message();
+      break;
+    }
+    // Dense output inside (t_prev, t], in time order: series samples, orbit phase points
+    // and cycle ends.
+    const bool sampling = !res_.series.names.empty();
+    const double t_reach = t * (1 + 1e-15);
+    while (!stop) {
+      const double ts = sampling ? t0_ + sample_k * dt_sample : inf;
+      const double tp = period_ ? t0_ + phase_k * dt_phase : inf;
+      const bool sample_due = ts <= t_reach && ts <= t_end;
+      const bool phase_due = tp <= t_reach && tp <= t_end + 0.5 * dt_phase;
+      if (!sample_due && !phase_due) break;
+      if (phase_due && (!sample_due || tp <= ts)) {
+        ++phase_k;
+        if ((phase_k - 1) % kPhasePoints == 0) {
+          // A cycle ends at tp: close it before the first phase point of the next.
+          close_cycle(tp);
+          ++cycles_done;
+          if (sim.stop_when_steady && steady_now()) stop = true;
+        }
+        if (!stop && integ->dense(tp, 0, ytmp_.data())) {
+          observe_phase(tp, ytmp_.data());
+          observe(tp, ytmp_.data(), sample_due && ts == tp);
+          if (sample_due && ts == tp) ++sample_k;
+        }
+      } else {
+        ++sample_k;
+        if (ts > t_prev && integ->dense(ts, 0, ytmp_.data())) observe(ts, ytmp_.data(), true);
+      }
+    }
+    observe(t, integ->y(), false);
+    if (out == StepOutcome::root) {
+      res_.status = RunStatus::film_collapse;
+      std::ostringstream msg;
+      msg << "the eccentricity ratio reached simulation.eps_limit = " << sim.eps_limit << " at t = " << t
+          << " s: the film cannot carry the load (no contact law in the scene)";
+      res_.message = msg.str();
+      break;
+    }
+    integ->statistics(res_.stats);
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    if (res_.stats.steps >= sol.max_steps) {
+      res_.status = RunStatus::budget_exceeded;
+      res_.message = "solver.max_steps = " + std::to_string(sol.max_steps) + " steps reached at t = " +
+                     std::to_string(t) + " s";
+      break;
+    }
+    if (wall >= sol.max_wall_time_s) {
+      res_.status = RunStatus::budget_exceeded;
+      res_.message = "solver.max_wall_time_s = " + std::to_string(sol.max_wall_time_s) +
+                     " s reached at t = " + std::to_string(t) + " s";
+      break;
+    }
+    if (t >= t_end * (1 - 1e-15)) stop = true;
+  }
+  // A run without a period (or one ending mid-cycle without any complete cycle) keeps its
+  // partial cycle as the only one.
+  if (!period_ || (res_.cycles.empty() && !cur_empty_)) close_cycle(t);
+
+  integ->statistics(res_.stats);
+  res_.stats.final_time_s = t;
+
+  // Steady-cycle metrics over the last metric_cycles cycles.
+  Metrics& mt = res_.metrics;
+  mt.cycles_run = cycles_done;
+  const int M = std::min<int>(sim.metric_cycles, static_cast<int>(res_.cycles.size()));
+  mt.min_film_thickness_m = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < M; ++i) {
+    const CycleMetrics& c = res_.cycles[res_.cycles.size() - 1 - i];
+    if (c.min_film_m < mt.min_film_thickness_m) {
+      mt.min_film_thickness_m = c.min_film_m;
+      mt.angle_at_min_film_rad = c.angle_at_min_film_rad;
+    }
+    mt.max_eps = std::max(mt.max_eps, c.max_eps);
+    if (c.peak_reaction_N > mt.peak_reaction_N) {
+      mt.peak_reaction_N = c.peak_reaction_N;
+      mt.angle_at_peak_reaction_rad = c.angle_at_peak_reaction_rad;
+    }
+    mt.peak_acceleration_m_s2 = std::max(mt.peak_acceleration_m_s2, c.peak_acceleration_m_s2);
+    mt.periodicity = std::max(mt.periodicity, c.periodicity);
+  }
+  const int mj = scene_.metrics.joint;
+  mt.has_film = mj >= 0 && scene_.joints[mj].type == JointType::lubricated_revolute;
+  if (!mt.has_film || !std::isfinite(mt.min_film_thickness_m)) mt.min_film_thickness_m = 0.0;
+  if (mt.has_film) {
+    mt.safe_film_m = scene_.metrics.safe_film_per_diameter * 2.0 * scene_.joints[mj].bearing.bearing_radius_m;
+    mt.below_safe_film = mt.min_film_thickness_m < mt.safe_film_m;
+  }
+  for (size_t k = 0; k < res_.cycles.size(); ++k) {
+    // cycles_to_steady: the first time the last metric_cycles cycles all repeated
+    const int n = static_cast<int>(k) + 1;
+    if (n < sim.metric_cycles + 1) continue;
+    bool ok = true;
+    for (int i = 0; i < sim.metric_cycles; ++i) {
+      const double p = res_.cycles[k - i].periodicity;
+      ok = ok && p >= 0 && p < sim.steady_tolerance;
+    }
+    if (ok) {
+      mt.steady = true;
+      mt.cycles_to_steady = n;
+      break;
+    }
+  }
+  if (energy) {
+    double Q[2] = {0, 0};
+    integ->quadratures(Q);
+    const double* y = integ->y();
+    mt.driver_work_J = Q[0];
+    mt.film_dissipation_J = -Q[1];
+    mt.energy_change_J = mechanical_energy(m_, y, y + m_.nq) - E0;
+    mt.energy_residual_J = mt.driver_work_J - mt.energy_change_J - mt.film_dissipation_J;
+  }
+  res_.stats.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return res_;
+}
+
+}  // namespace
+
+RunResult run_scene(const Scene& scene) {
+  Runner r(scene);
+  return r.run();
+}
+
+}  // namespace lub

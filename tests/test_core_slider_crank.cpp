@@ -1,0 +1,183 @@
+// The paper's slider-crank through the whole engine (scene → model → CVODE → observers):
+// the ideal mechanism against closed-form kinematics and inverse dynamics, constraint
+// drift, the energy balance of the lubricated mechanism including the film's dissipation,
+// and the reference case from ε = 0.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "lub/model.hpp"
+#include "lub/run.hpp"
+
+namespace {
+
+using lub::RunResult;
+using lub::RunStatus;
+using nlohmann::json;
+
+constexpr double kPi = 3.14159265358979323846;
+
+json load(const std::string& name) {
+  return lub::read_json_file(std::string(LUB_SOURCE_DIR) + "/configs/scenes/" + name);
+}
+
+const std::vector<double>& channel(const RunResult& r, const std::string& name) {
+  for (size_t i = 0; i < r.series.names.size(); ++i)
+    if (r.series.names[i] == name) return r.series.data[i];
+  throw std::runtime_error("no channel " + name);
+}
+
+// Closed-form slider-crank (crank a, rod l, slider on the x axis through the crank
+// pivot), crank at constant ω from θ = 0 (crank and rod aligned), centres of mass at
+// mid-length. Derivatives with respect to θ are written out by hand.
+struct ClosedForm {
+  double a = 0.05, l = 0.12, ms = 0.14, mr = 0.21, Jr = 2.5e-4, g = 9.81, omega;
+  explicit ClosedForm(double rpm) : omega(rpm * 2 * kPi / 60) {}
+  struct State {
+    double x, xd, xdd;  // slider
+    double R;           // |force| at the rod–slider pin
+  };
+  State at(double t) const {
+    const double th = omega * t, s = std::sin(th), c = std::cos(th);
+    const double D = std::sqrt(l * l - a * a * s * s);
+    const double Dp = -a * a * s * c / D;
+    const double Dpp = -a * a * (c * c - s * s) / D - std::pow(a, 4) * s * s * c * c / std::pow(D, 3);
+    State st;
+    st.x = a * c + D;
+    st.xd = (-a * s + Dp) * omega;
+    st.xdd = (-a * c + Dpp) * omega * omega;
+    // Rod angle β: sin β = −a s / l; β'' with respect to θ.
+    const double bpp = a * s / D - std::pow(a, 3) * s * c * c / std::pow(D, 3);
+    const double bdd = bpp * omega * omega;
+    // Rod centre of mass G = (A + B)/2 = (a c + D/2, a s/2).
+    const double aGx = (-a * c + Dpp / 2) * omega * omega, aGy = -(a * s / 2) * omega * omega;
+    // Slider: m_s ẍ = R_x (R: force of the rod on the slider; guide frictionless).
+    const double Rx = ms * st.xdd;
+    // Rod, moments about its centre: J β̈ = −(l/2) u × m(a_G − g) − l u × R.
+    const double ux = D / l, uy = -a * s / l;
+    const double mx = mr * aGx, my = mr * (aGy + g);
+    const double cr = ux * my - uy * mx;
+    const double Ry = (-Jr * bdd - 0.5 * l * cr) / (l * ux) + uy * Rx / ux;
+    st.R = std::hypot(Rx, Ry);
+    return st;
+  }
+};
+
+RunResult run_ideal(double rtol) {
+  json doc = load("slider_crank_ideal.json");
+  doc["solver"]["rtol"] = rtol;
+  return lub::run_scene(lub::parse_scene(doc));
+}
+
+TEST(SliderCrankIdeal, KinematicsAndReactionMatchClosedForm) {
+  // rtol 1e-10: the integrated answer should then agree with the closed form to ~1e-8
+  // relative; Baumgarte drift adds a similar amount. Tolerances below are 10x that.
+  const RunResult r = run_ideal(1e-10);
+  ASSERT_EQ(r.status, RunStatus::ok) << r.message;
+  const ClosedForm cf(5000);
+  const auto& t = channel(r, "t");
+  const auto& x = channel(r, "slider_x");
+  const auto& v = channel(r, "slider_v");
+  const auto& a = channel(r, "slider_a");
+  const auto& R = channel(r, "reaction_force");
+  ASSERT_GT(t.size(), 2000u);
+  double ex = 0, ev = 0, ea = 0, eR = 0;
+  for (size_t i = 0; i < t.size(); ++i) {
+    const auto s = cf.at(t[i]);
+    ex = std::max(ex, std::fabs(x[i] - s.x));
+    ev = std::max(ev, std::fabs(v[i] - s.xd));
+    ea = std::max(ea, std::fabs(a[i] - s.xdd));
+    eR = std::max(eR, std::fabs(R[i] - s.R));
+  }
+  // Scales: x ~ 0.17 m, v ~ aω = 26 m/s, a ~ aω² = 1.9e4 m/s², R ~ 2.7e3 N.
+  EXPECT_LT(ex, 1e-8);
+  EXPECT_LT(ev / 26.0, 1e-6);
+  EXPECT_LT(ea / 1.9e4, 1e-6);
+  EXPECT_LT(eR / 2.7e3, 1e-6);
+}
+
+TEST(SliderCrankIdeal, PeaksAt5000RpmWithinTenthOfAPercentAtDefaultTolerance) {
+  // The acceptance check, at the scene's own (default) tolerance.
+  json doc = load("slider_crank_ideal.json");
+  const RunResult r = lub::run_scene(lub::parse_scene(doc));
+  ASSERT_EQ(r.status, RunStatus::ok) << r.message;
+  const ClosedForm cf(5000);
+  double peakR = 0, peakA = 0;
+  const double T = 2 * kPi / cf.omega;
+  for (int i = 0; i < 200000; ++i) {
+    const auto s = cf.at(T * i / 200000.0);
+    peakR = std::max(peakR, s.R);
+    peakA = std::max(peakA, std::fabs(s.xdd));
+  }
+  EXPECT_NEAR(r.metrics.peak_reaction_N / peakR, 1.0, 1e-3);
+  EXPECT_NEAR(r.metrics.peak_acceleration_m_s2 / peakA, 1.0, 1e-3);
+  // The same peaks from the recorded series.
+  double sR = 0, sA = 0;
+  for (double v : channel(r, "reaction_force")) sR = std::max(sR, v);
+  for (double v : channel(r, "slider_a")) sA = std::max(sA, std::fabs(v));
+  EXPECT_NEAR(sR / peakR, 1.0, 1e-3);
+  EXPECT_NEAR(sA / peakA, 1.0, 1e-3);
+}
+
+TEST(SliderCrankIdeal, ConstraintDriftBoundedAndShrinksWithTolerance) {
+  // Baumgarte (α = β = 5) only damps the drift the integrator's error feeds it, so the
+  // drift must fall with the tolerance, and stay far below the smallest length (the
+  // 0.5 mm clearance of the lubricated variant).
+  const RunResult loose = run_ideal(1e-6), tight = run_ideal(1e-9);
+  ASSERT_EQ(loose.status, RunStatus::ok);
+  ASSERT_EQ(tight.status, RunStatus::ok);
+  EXPECT_LT(loose.stats.max_position_drift, 2e-5);
+  EXPECT_LT(tight.stats.max_position_drift, loose.stats.max_position_drift / 100);
+  EXPECT_LT(tight.stats.max_velocity_drift, loose.stats.max_velocity_drift / 100);
+}
+
+json lubricated(const std::string& law, double rtol, int cycles) {
+  json doc = load("slider_crank.json");
+  doc["joints"][3]["force_law"] = law;
+  doc["solver"]["rtol"] = rtol;
+  doc["simulation"]["max_cycles"] = cycles;
+  doc["simulation"]["metric_cycles"] = 1;
+  doc["outputs"]["channels"] = json::array();
+  return doc;
+}
+
+TEST(SliderCrankLubricated, EnergyBalanceIncludingFilmDissipation) {
+  // W_driver = ΔE + D_film + W_drift, where W_drift is the work of the ideal joints'
+  // reactions on the constraint drift (zero on the exact manifold). At rtol 1e-9 the
+  // drift is ~1e-9 m and its work negligible, so the residual measures the quadratures
+  // and the integration: require 1e-5 of the driver work (10x what we observe).
+  for (const std::string law : {"frene_long", "frene_short"}) {
+    json doc = lubricated(law, 1e-9, 3);
+    doc["outputs"]["energy_balance"] = true;
+    doc["effects"]["gravity_m_s2"] = json::array({0.0, -9.81});
+    const RunResult r = lub::run_scene(lub::parse_scene(doc));
+    ASSERT_EQ(r.status, RunStatus::ok) << law << ": " << r.message;
+    const auto& m = r.metrics;
+    EXPECT_GT(m.film_dissipation_J, 0.0) << law;  // the film dissipates
+    const double scale = std::fabs(m.driver_work_J) + std::fabs(m.film_dissipation_J);
+    EXPECT_LT(std::fabs(m.energy_residual_J), 1e-5 * scale)
+        << law << ": W=" << m.driver_work_J << " dE=" << m.energy_change_J << " D=" << m.film_dissipation_J;
+  }
+}
+
+TEST(SliderCrankLubricated, ReferenceCaseFromCentredJournalRunsWithoutNaN) {
+  // The paper's initial state: ε = 0 exactly, ė = 0. Five cycles of every law.
+  for (const std::string law : {"pinkus_sternlicht", "frene_long", "frene_short"}) {
+    json doc = load("slider_crank.json");
+    doc["joints"][3]["force_law"] = law;
+    doc["simulation"]["max_cycles"] = 5;
+    const RunResult r = lub::run_scene(lub::parse_scene(doc));
+    ASSERT_EQ(r.status, RunStatus::ok) << law << ": " << r.message;
+    EXPECT_EQ(r.metrics.cycles_run, 5);
+    const auto& eps = channel(r, "eps");
+    EXPECT_EQ(eps.front(), 0.0);
+    for (size_t c = 0; c < r.series.data.size(); ++c)
+      for (double v : r.series.data[c]) ASSERT_TRUE(std::isfinite(v)) << law << " " << r.series.names[c];
+    for (double e : eps) ASSERT_LT(e, 1.0);
+    EXPECT_GT(r.metrics.max_eps, 0.5) << law;  // the journal does move off-centre
+    EXPECT_NEAR(r.metrics.min_film_thickness_m, 0.5e-3 * (1 - r.metrics.max_eps), 1e-12);
+  }
+}
+
+}  // namespace
