@@ -181,3 +181,40 @@ TEST(SliderCrankLubricated, ReferenceCaseFromCentredJournalRunsWithoutNaN) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Series, LastCyclesKeepsOnlyTheLastCompleteCycles) {
+  json doc = load("slider_crank_ideal.json");
+  doc["simulation"]["max_cycles"] = 3;
+  doc["outputs"]["last_cycles"] = 1;
+  const RunResult r = lub::run_scene(lub::parse_scene(doc));
+  ASSERT_EQ(r.status, RunStatus::ok);
+  const double T = 60.0 / 5000.0;
+  const auto& t = channel(r, "t");
+  EXPECT_NEAR(t.front(), 2 * T, 1e-12);
+  EXPECT_NEAR(t.back(), 3 * T, 1e-12);
+  for (const auto& ch : r.series.data) EXPECT_EQ(ch.size(), t.size());
+}
+
+TEST(Effects, AbsentEffectsAreNeverEvaluated) {
+  // No gravity in the scene: the gravity term is never evaluated. All joints ideal: no
+  // force law is ever called.
+  json doc = load("slider_crank_ideal.json");
+  doc.erase("effects");
+  RunResult r = lub::run_scene(lub::parse_scene(doc));
+  ASSERT_EQ(r.status, RunStatus::ok);
+  EXPECT_GT(r.stats.model_evals, 100);
+  EXPECT_EQ(r.stats.gravity_evals, 0);
+  EXPECT_EQ(r.stats.film_law_evals, 0);
+  // With gravity and a film: every evaluation adds both.
+  json lub_doc = load("slider_crank.json");
+  lub_doc["simulation"]["max_cycles"] = 1;
+  lub_doc["simulation"]["metric_cycles"] = 1;
+  r = lub::run_scene(lub::parse_scene(lub_doc));
+  ASSERT_EQ(r.status, RunStatus::ok);
+  EXPECT_EQ(r.stats.gravity_evals, r.stats.model_evals);
+  EXPECT_EQ(r.stats.film_law_evals, r.stats.model_evals);
+}
+
+}  // namespace

@@ -144,6 +144,8 @@ class Runner {
   // orbit of every film at the phase points: current and previous cycle
   std::vector<double> orbit_cur_, orbit_prev_;
   int phase_index_ = 0;
+  std::vector<size_t> cycle_first_sample_;  // samples recorded (ever) before each cycle end
+  size_t dropped_samples_ = 0;
 };
 
 void Runner::observe(double t, const double* y, bool record) {
@@ -223,6 +225,16 @@ void Runner::close_cycle(double t_end) {
     cur_.periodicity = d;
   }
   res_.cycles.push_back(cur_);
+  // outputs.last_cycles: drop the samples of cycles older than the last N.
+  if (!res_.series.data.empty()) {
+    cycle_first_sample_.push_back(res_.series.data[0].size() + dropped_samples_);
+    const int keep = scene_.output.last_cycles;
+    if (keep > 0 && static_cast<int>(cycle_first_sample_.size()) > keep) {
+      const size_t drop = cycle_first_sample_[cycle_first_sample_.size() - 1 - keep] - dropped_samples_;
+      for (auto& ch : res_.series.data) ch.erase(ch.begin(), ch.begin() + static_cast<std::ptrdiff_t>(drop));
+      dropped_samples_ += drop;
+    }
+  }
   std::swap(orbit_cur_, orbit_prev_);
   phase_index_ = 0;
   cur_ = CycleMetrics{};
@@ -372,6 +384,9 @@ RunResult Runner::run() {
 
   integ->statistics(res_.stats);
   res_.stats.final_time_s = t;
+  res_.stats.model_evals = ws_.counters.rhs;
+  res_.stats.gravity_evals = ws_.counters.gravity;
+  res_.stats.film_law_evals = ws_.counters.film;
 
   // Steady-cycle metrics over the last metric_cycles cycles.
   Metrics& mt = res_.metrics;

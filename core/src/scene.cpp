@@ -1,5 +1,6 @@
 #include "lub/scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -253,10 +254,12 @@ Scene parse_scene(const json& doc) {
     s.cycle_period_s = r.number_optional("cycle_period_s", positive, "must be > 0 s");
     s.stop_when_steady = r.boolean_or("stop_when_steady", s.stop_when_steady);
     s.steady_tolerance = r.number_or("steady_tolerance", s.steady_tolerance, positive, "must be > 0");
+    const bool metric_cycles_given = r.has("metric_cycles");
     s.metric_cycles = static_cast<int>(r.integer_or("metric_cycles", s.metric_cycles, 1, 1'000'000));
     s.eps_limit = r.number_or("eps_limit", s.eps_limit,
                               [](double v) { return v > 0.0 && v < 1.0; }, "must be in (0, 1)");
     r.finish();
+    if (!metric_cycles_given) s.metric_cycles = std::min(s.metric_cycles, s.max_cycles);
     if (s.metric_cycles > s.max_cycles)
       fail("simulation.metric_cycles", json(s.metric_cycles),
            "must be <= simulation.max_cycles = " + std::to_string(s.max_cycles));
@@ -267,6 +270,7 @@ Scene parse_scene(const json& doc) {
     OutputSpec& o = scene.output;
     o.sample_interval_s = r.number_or("sample_interval_s", o.sample_interval_s, positive, "must be > 0 s");
     o.energy_balance = r.boolean_or("energy_balance", false);
+    o.last_cycles = static_cast<int>(r.integer_or("last_cycles", 0, 0, 1'000'000));
     if (const json* chans = r.raw_optional("channels")) {
       require_array(*chans, "outputs.channels");
       for (size_t i = 0; i < chans->size(); ++i) {

@@ -30,6 +30,11 @@ struct SolverStats {
   long long nonlin_conv_fails = 0;
   long long root_evals = 0;
   long long observer_evals = 0;     ///< extra evaluations for metrics and series
+  // What the model evaluated (integrator and observers together): an effect the scene
+  // does not name is never evaluated.
+  long long model_evals = 0;        ///< evaluations of the equations of motion
+  long long gravity_evals = 0;      ///< of which added gravity
+  long long film_law_evals = 0;     ///< force-law calls (all lubricated joints)
   double wall_time_s = 0.0;
   double final_time_s = 0.0;
   double max_position_drift = 0.0;  ///< max |Φ| over the run (m or rad)

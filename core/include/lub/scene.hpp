@@ -96,6 +96,7 @@ struct OutputSpec {
   double sample_interval_s = 1e-5;
   std::vector<ChannelSpec> channels;  ///< empty: no series
   bool energy_balance = false;        ///< integrate driver and film work (quadratures)
+  int last_cycles = 0;                ///< keep only the last N complete cycles (0: all)
 };
 
 struct MetricSpec {
