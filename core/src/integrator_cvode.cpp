@@ -10,6 +10,7 @@
 #include <exception>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "lub/integrator.hpp"
 
@@ -82,6 +83,7 @@ class CvodeIntegrator final : public Integrator {
     if (s.max_step > 0) check(CVodeSetMaxStep(mem_, s.max_step), "CVodeSetMaxStep");
     if (s.initial_step > 0) check(CVodeSetInitStep(mem_, s.initial_step), "CVodeSetInitStep");
     if (s.max_order > 0) check(CVodeSetMaxOrd(mem_, s.max_order), "CVodeSetMaxOrd");
+    t_stop_ = s.t_stop;
     check(CVodeSetStopTime(mem_, s.t_stop), "CVodeSetStopTime");
     if (s.method == Method::cvode_adams) {
       nls_ = SUNNonlinSol_FixedPoint(y_, 0, ctx_);
@@ -146,6 +148,20 @@ class CvodeIntegrator final : public Integrator {
   const double* y() const override { return N_VGetArrayPointer(y_); }
 
   void statistics(SolverStats& s) const override {
+    current(s);
+    s.steps += base_.steps;
+    s.rhs_evals += base_.rhs_evals;
+    s.err_test_fails += base_.err_test_fails;
+    s.nonlin_iters += base_.nonlin_iters;
+    s.nonlin_conv_fails += base_.nonlin_conv_fails;
+    s.root_evals += base_.root_evals;
+    s.jac_evals += base_.jac_evals;
+    s.rhs_evals_jac += base_.rhs_evals_jac;
+    s.lin_setups += base_.lin_setups;
+  }
+
+  // Counters since the last (re)initialisation: CVodeReInit resets them.
+  void current(SolverStats& s) const {
     long v = 0;
     CVodeGetNumSteps(mem_, &v); s.steps = v;
     CVodeGetNumRhsEvals(mem_, &v); s.rhs_evals = v;
@@ -162,12 +178,39 @@ class CvodeIntegrator final : public Integrator {
 
   std::string error_message() const override { return data_.error; }
 
+  void root_flags(std::vector<int>& flags) override {
+    flags.assign(static_cast<size_t>(data_.sys->num_roots()), 0);
+    if (!flags.empty()) CVodeGetRootInfo(mem_, flags.data());
+  }
+
+  void set_root_directions(const std::vector<int>& dirs) override {
+    if (dirs.empty()) return;
+    std::vector<int> d(dirs);
+    check(CVodeSetRootDirection(mem_, d.data()), "CVodeSetRootDirection");
+  }
+
+  void reinit(double t, const double* y) override {
+    SolverStats total;
+    statistics(total);
+    base_ = total;
+    for (sunindextype i = 0; i < N_VGetLength(y_); ++i) NV_Ith_S(y_, i) = y[i];
+    check(CVodeReInit(mem_, t, y_), "CVodeReInit");
+    if (q_) {
+      sunrealtype tret;
+      CVodeGetQuad(mem_, &tret, q_);
+      check(CVodeQuadReInit(mem_, q_), "CVodeQuadReInit");
+    }
+    check(CVodeSetStopTime(mem_, t_stop_), "CVodeSetStopTime");
+  }
+
  private:
   void check(int flag, const char* what) {
     if (flag != 0) throw std::runtime_error(std::string(what) + " failed: " + data_.error);
   }
 
   Method method_;
+  double t_stop_ = 0.0;
+  SolverStats base_;  // counters accumulated before the last reinit
   CallbackData data_;
   SUNContext ctx_ = nullptr;
   N_Vector y_ = nullptr, atol_ = nullptr, q_ = nullptr;

@@ -2,7 +2,9 @@
 
 #include <Eigen/QR>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace lub {
@@ -170,17 +172,24 @@ Constraint revolute_block(int joint, int bi, int bj, const Vector2d& si, const V
 }  // namespace
 
 Workspace::Workspace(const Model& m)
-    : Phi_q(Eigen::MatrixXd::Zero(m.nc, m.nq)),
-      Phi(Eigen::VectorXd::Zero(m.nc)),
-      Phi_dot(Eigen::VectorXd::Zero(m.nc)),
-      gamma(Eigen::VectorXd::Zero(m.nc)),
+    : Phi_q(Eigen::MatrixXd::Zero(m.nc + m.n_switching, m.nq)),
+      Phi(Eigen::VectorXd::Zero(m.nc + m.n_switching)),
+      Phi_dot(Eigen::VectorXd::Zero(m.nc + m.n_switching)),
+      gamma(Eigen::VectorXd::Zero(m.nc + m.n_switching)),
       g(Eigen::VectorXd::Zero(m.nq)),
-      rhs(Eigen::VectorXd::Zero(m.nc)),
-      lambda(Eigen::VectorXd::Zero(m.nc)),
+      rhs(Eigen::VectorXd::Zero(m.nc + m.n_switching)),
+      lambda(Eigen::VectorXd::Zero(m.nc + m.n_switching)),
       qdd(Eigen::VectorXd::Zero(m.nq)),
-      S(Eigen::MatrixXd::Zero(m.nc, m.nc)),
+      S(Eigen::MatrixXd::Zero(m.nc + m.n_switching, m.nc + m.n_switching)),
       llt(m.nc),
-      films(m.films.size()) {}
+      films(m.films.size()),
+      film_mode(m.films.size(), FilmMode::natural),
+      slide_radius(m.films.size(), 0.0),
+      slide_row(m.films.size(), -1),
+      nc_active(m.nc) {
+  for (size_t k = 0; k < m.films.size(); ++k)
+    if (m.films[k].switching) film_mode[k] = FilmMode::outward;  // ε̇ >= 0 at a centred start
+}
 
 Model build_model(const Scene& scene) {
   Model m;
@@ -251,6 +260,8 @@ Model build_model(const Scene& scene) {
           f.clearance = s.bearing.clearance_m();
           f.viscosity = s.viscosity_Pa_s;
           f.law = s.law;
+          f.switching = s.law == ForceLaw::pinkus_sternlicht && scene.solver.switching_events;
+          if (f.switching) ++m.n_switching;
           m.joint_film[k] = static_cast<int>(m.films.size());
           m.films.push_back(f);
         }
@@ -313,6 +324,39 @@ inline void add_body_force(Eigen::VectorXd& g, int b, const Vector2d& F, double 
 }
 }  // namespace
 
+namespace {
+// Sliding on ε̇ = 0: the row Φ = |e| − e_s (e_s the |e| held since the switch), with
+// Φ̇ = r·ė and γ = r·(φ̇_j² a_j − φ̇_i² a_i) − |ė⊥|²/|e|.
+void fill_sliding_rows(const Model& m, Workspace& ws, const double* q, const double* v) {
+  for (size_t k = 0; k < m.films.size(); ++k) {
+    const FilmKinematics& fk = ws.films[k];
+    if (!fk.sliding) continue;
+    const FilmElement& f = m.films[k];
+    const int row = ws.slide_row[k];
+    const BodyState bi = body_state(f.bearing, q, v), bj = body_state(f.journal, q, v);
+    const Vector2d ai = rot(bi.phi, f.s_bearing), aj = rot(bj.phi, f.s_journal);
+    const double e = fk.e.norm();
+    const double erd = fk.r.dot(fk.e_dot);
+    const Vector2d ed_perp = fk.e_dot - erd * fk.r;
+    ws.Phi(row) = e - ws.slide_radius[k];
+    ws.Phi_dot(row) = erd;
+    ws.gamma(row) = fk.r.dot(bj.phid * bj.phid * aj - bi.phid * bi.phid * ai) - ed_perp.squaredNorm() / e;
+    if (f.journal != kGround) {
+      const int o = 3 * f.journal;
+      ws.Phi_q(row, o) = fk.r.x();
+      ws.Phi_q(row, o + 1) = fk.r.y();
+      ws.Phi_q(row, o + 2) = fk.r.dot(perp(aj));
+    }
+    if (f.bearing != kGround) {
+      const int o = 3 * f.bearing;
+      ws.Phi_q(row, o) = -fk.r.x();
+      ws.Phi_q(row, o + 1) = -fk.r.y();
+      ws.Phi_q(row, o + 2) = -fk.r.dot(perp(ai));
+    }
+  }
+}
+}  // namespace
+
 int evaluate(const Model& m, Workspace& ws, double t, const double* q, const double* v,
              double* qdd) {
   ++ws.counters.rhs;
@@ -324,13 +368,26 @@ int evaluate(const Model& m, Workspace& ws, double t, const double* q, const dou
       ws.g(3 * b + 1) += m.mass_diag(3 * b) * m.gravity->y();
     }
   }
+  int n_sliding = 0;
   for (size_t k = 0; k < m.films.size(); ++k) {
     const FilmElement& f = m.films[k];
     FilmKinematics& fk = ws.films[k];
     fk = film_kinematics(m, static_cast<int>(k), q, v);
     if (!(fk.state.eps < 1.0)) return 1;  // journal through the wall: outside the model
     ++ws.counters.film;
-    fk.force = film_force(f.law, f.geometry, f.viscosity, fk.state);
+    BearingState st = fk.state;
+    switch (ws.film_mode[k]) {
+      case FilmMode::natural: break;
+      case FilmMode::outward: st.eps_dot = std::max(st.eps_dot, 0.0); break;
+      case FilmMode::inward: st.eps_dot = std::min(st.eps_dot, -std::numeric_limits<double>::min()); break;
+      case FilmMode::sliding: st.eps_dot = 0.0; break;
+    }
+    fk.force = film_force(f.law, f.geometry, f.viscosity, st);
+    fk.sliding = ws.film_mode[k] == FilmMode::sliding;
+    if (fk.sliding) {
+      fk.force.radial_N = 0.0;  // the sliding constraint's multiplier, after the solve
+      ws.slide_row[k] = m.nc + n_sliding++;
+    }
     const Vector2d t_dir = perp(fk.r);
     fk.F = fk.force.radial_N * fk.r + fk.force.tangential_N * t_dir;
     if (!std::isfinite(fk.F.x()) || !std::isfinite(fk.F.y())) return 1;
@@ -340,20 +397,36 @@ int evaluate(const Model& m, Workspace& ws, double t, const double* q, const dou
     add_body_force(ws.g, f.bearing, -fk.F, -cross(ai, fk.F));
   }
   Eigen::Map<Eigen::VectorXd> a(qdd, m.nq);
-  if (m.nc == 0) {
+  const int nc = m.nc + n_sliding;
+  ws.nc_active = nc;
+  if (nc == 0) {
     a = m.inv_mass_diag.cwiseProduct(ws.g);
     return 0;
   }
   fill_constraints(m.constraints, t, q, v, ws.Phi_q, ws.Phi, ws.Phi_dot, &ws.gamma);
+  if (n_sliding > 0) fill_sliding_rows(m, ws, q, v);
+  const auto J = ws.Phi_q.topRows(nc);
+  auto rhs = ws.rhs.head(nc);
+  auto lambda = ws.lambda.head(nc);
   // γ̂ = γ − 2α Φ̇ − β² Φ
-  ws.rhs.noalias() = ws.Phi_q * m.inv_mass_diag.cwiseProduct(ws.g);
-  ws.rhs -= ws.gamma - 2.0 * m.alpha * ws.Phi_dot - (m.beta * m.beta) * ws.Phi;
-  ws.S.noalias() = ws.Phi_q * m.inv_mass_diag.asDiagonal() * ws.Phi_q.transpose();
-  ws.llt.compute(ws.S);
+  rhs.noalias() = J * m.inv_mass_diag.cwiseProduct(ws.g);
+  rhs -= ws.gamma.head(nc) - 2.0 * m.alpha * ws.Phi_dot.head(nc) - (m.beta * m.beta) * ws.Phi.head(nc);
+  auto S = ws.S.topLeftCorner(nc, nc);
+  S.noalias() = J * m.inv_mass_diag.asDiagonal() * J.transpose();
+  ws.llt.compute(S);
   if (ws.llt.info() != Eigen::Success) return -1;
-  ws.lambda = ws.llt.solve(ws.rhs);
-  ws.qdd.noalias() = ws.g - ws.Phi_q.transpose() * ws.lambda;
+  lambda = ws.llt.solve(rhs);
+  ws.qdd.noalias() = ws.g - J.transpose() * lambda;
   a = m.inv_mass_diag.cwiseProduct(ws.qdd);
+  if (n_sliding > 0) {
+    for (size_t k = 0; k < m.films.size(); ++k) {
+      FilmKinematics& fk = ws.films[k];
+      if (!fk.sliding) continue;
+      // The constraint's force on the journal is −λ r: that is the radial film force.
+      fk.force.radial_N = -ws.lambda(ws.slide_row[k]);
+      fk.F = fk.force.radial_N * fk.r + fk.force.tangential_N * perp(fk.r);
+    }
+  }
   return 0;
 }
 

@@ -38,11 +38,58 @@ class MultibodySystem final : public OdeSystem {
     if (rc < 0) throw std::runtime_error("the constraint matrix Phi_q M^-1 Phi_q^T is singular");
     return rc;
   }
-  int num_roots() const override { return static_cast<int>(m_.films.size()); }
-  int roots(double /*t*/, const double* y, double* g) override {
-    for (size_t k = 0; k < m_.films.size(); ++k)
-      g[k] = eps_limit_ - film_kinematics(m_, static_cast<int>(k), y, y + m_.nq).state.eps;
+  // Root functions: per film, eps_limit − ε; then per switching film two more (see
+  // switch_roots): in a free mode ε̇; sliding, the distances of the radial film force
+  // (the sliding multiplier) to the two one-sided limits of the law.
+  int num_roots() const override { return static_cast<int>(m_.films.size()) + 2 * m_.n_switching; }
+  int roots(double t, const double* y, double* g) override {
+    const int nf = static_cast<int>(m_.films.size());
+    bool evaluated = false;
+    int j = nf;
+    for (int k = 0; k < nf; ++k) {
+      const FilmKinematics fk = film_kinematics(m_, k, y, y + m_.nq);
+      g[k] = eps_limit_ - fk.state.eps;
+      if (!m_.films[k].switching) continue;
+      if (ws_.film_mode[k] != FilmMode::sliding) {
+        g[j] = fk.state.eps_dot;
+        g[j + 1] = 1.0;
+      } else {
+        if (!evaluated) {
+          scratch_.resize(m_.nq);
+          if (evaluate(m_, ws_, t, y, y + m_.nq, scratch_.data()) != 0) return 1;
+          evaluated = true;
+        }
+        const double bound = sliding_bound(k, ws_.films[k].state);
+        const double F = ws_.films[k].force.radial_N;
+        g[j] = F + bound;      // < 0: the load pulls the journal outwards off ε̇ = 0
+        g[j + 1] = bound - F;  // < 0: the load pushes it inwards
+      }
+      j += 2;
+    }
     return 0;
+  }
+  /// Half the jump of the radial force across ε̇ = 0: the law gives −bound at 0⁺ and
+  /// +bound at 0⁻ (bound >= 0); a sliding motion holds while |F_r| <= bound.
+  double sliding_bound(int k, BearingState st) const {
+    const FilmElement& f = m_.films[k];
+    st.eps_dot = 0.0;
+    return -film_force(f.law, f.geometry, f.viscosity, st).radial_N;
+  }
+  std::vector<int> root_directions() const {
+    std::vector<int> d(static_cast<size_t>(num_roots()), 0);
+    const int nf = static_cast<int>(m_.films.size());
+    for (int k = 0; k < nf; ++k) d[k] = -1;
+    int j = nf;
+    for (int k = 0; k < nf; ++k) {
+      if (!m_.films[k].switching) continue;
+      switch (ws_.film_mode[k]) {
+        case FilmMode::outward: d[j] = -1; break;
+        case FilmMode::inward: d[j] = +1; break;
+        default: d[j] = -1; d[j + 1] = -1; break;
+      }
+      j += 2;
+    }
+    return d;
   }
   int num_quadratures() const override { return energy_ ? 2 : 0; }
   int quadrature_rhs(double t, const double* y, double* qdot) override {
@@ -131,6 +178,7 @@ class Runner {
     return kTwoPi * (x - std::floor(x));
   }
   bool steady_now() const;
+  void switch_modes(MultibodySystem& sys, const std::vector<int>& flags, double t, const double* y);
 
   const Scene& scene_;
   Model m_;
@@ -161,9 +209,9 @@ void Runner::observe(double t, const double* y, bool record) {
       data[c + 1].push_back(channel_value(scene_, m_, ws_, scene_.output.channels[c], p));
   }
   res_.stats.max_position_drift =
-      std::max(res_.stats.max_position_drift, m_.nc ? ws_.Phi.lpNorm<Eigen::Infinity>() : 0.0);
+      std::max(res_.stats.max_position_drift, m_.nc ? ws_.Phi.head(m_.nc).lpNorm<Eigen::Infinity>() : 0.0);
   res_.stats.max_velocity_drift =
-      std::max(res_.stats.max_velocity_drift, m_.nc ? ws_.Phi_dot.lpNorm<Eigen::Infinity>() : 0.0);
+      std::max(res_.stats.max_velocity_drift, m_.nc ? ws_.Phi_dot.head(m_.nc).lpNorm<Eigen::Infinity>() : 0.0);
   const double angle = phase_angle(t);
   const int mj = scene_.metrics.joint;
   if (cur_empty_) {
@@ -252,6 +300,46 @@ bool Runner::steady_now() const {
   return true;
 }
 
+void Runner::switch_modes(MultibodySystem& sys, const std::vector<int>& flags, double t, const double* y) {
+  const int nf = static_cast<int>(m_.films.size());
+  int j = nf;
+  for (int k = 0; k < nf; ++k) {
+    if (!m_.films[k].switching) continue;
+    const bool fired_a = flags[j] != 0, fired_b = flags[j + 1] != 0;
+    j += 2;
+    if (!fired_a && !fired_b) continue;
+    const FilmMode from = ws_.film_mode[k];
+    FilmMode to = from;
+    if (from == FilmMode::sliding) {
+      to = fired_a ? FilmMode::outward : FilmMode::inward;
+    } else {
+      // ε̇ reached 0. Would a sliding motion hold? Evaluate with |e| held: its multiplier
+      // is the radial film force that keeps ε̇ = 0; it must lie within the jump.
+      const FilmKinematics fk = film_kinematics(m_, k, y, y + m_.nq);
+      const bool can_slide = fk.state.eps > 1e-9;
+      if (can_slide) {
+        ws_.film_mode[k] = FilmMode::sliding;
+        ws_.slide_radius[k] = fk.e.norm();
+        if (evaluate(m_, ws_, t, y, y + m_.nq, qdd_.data()) != 0) {
+          ws_.film_mode[k] = from;
+          continue;
+        }
+        const double F = ws_.films[k].force.radial_N;
+        const double bound = sys.sliding_bound(k, fk.state);
+        if (from == FilmMode::outward)
+          to = F <= bound ? FilmMode::sliding : FilmMode::inward;
+        else
+          to = F >= -bound ? FilmMode::sliding : FilmMode::outward;
+      } else {
+        to = from == FilmMode::outward ? FilmMode::inward : FilmMode::outward;
+      }
+    }
+    ws_.film_mode[k] = to;
+    if (to == FilmMode::sliding) ws_.slide_radius[k] = film_kinematics(m_, k, y, y + m_.nq).e.norm();
+    ++res_.stats.mode_switches;
+  }
+}
+
 RunResult Runner::run() {
   const auto wall0 = std::chrono::steady_clock::now();
   const SimulationSpec& sim = scene_.simulation;
@@ -314,6 +402,8 @@ RunResult Runner::run() {
   if (!res_.series.names.empty()) sample_k = 1;
   if (period_) observe_phase(t0_, y0.data()), phase_k = 1;
 
+  integ->set_root_directions(sys.root_directions());
+  std::vector<int> flags;
   double t = t0_;
   bool stop = false;
   const double inf = std::numeric_limits<double>::infinity();
@@ -355,12 +445,20 @@ RunResult Runner::run() {
     }
     observe(t, integ->y(), false);
     if (out == StepOutcome::root) {
-      res_.status = RunStatus::film_collapse;
-      std::ostringstream msg;
-      msg << "the eccentricity ratio reached simulation.eps_limit = " << sim.eps_limit << " at t = " << t
-          << " s: the film cannot carry the load (no contact law in the scene)";
-      res_.message = msg.str();
-      break;
+      integ->root_flags(flags);
+      bool collapse = false;
+      for (size_t k = 0; k < m_.films.size(); ++k) collapse = collapse || flags[k] != 0;
+      if (collapse) {
+        res_.status = RunStatus::film_collapse;
+        std::ostringstream msg;
+        msg << "the eccentricity ratio reached simulation.eps_limit = " << sim.eps_limit << " at t = " << t
+            << " s: the film cannot carry the load (no contact law in the scene)";
+        res_.message = msg.str();
+        break;
+      }
+      switch_modes(sys, flags, t, integ->y());
+      integ->reinit(t, integ->y());
+      integ->set_root_directions(sys.root_directions());
     }
     integ->statistics(res_.stats);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();

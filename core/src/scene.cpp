@@ -240,6 +240,7 @@ Scene parse_scene(const json& doc) {
     s.baumgarte_alpha = r.number_or("baumgarte_alpha", 5.0, non_negative, "must be >= 0 1/s");
     s.baumgarte_beta = r.number_or("baumgarte_beta", 5.0, non_negative, "must be >= 0 1/s");
     s.max_steps = r.integer_or("max_steps", s.max_steps, 1, 1'000'000'000'000LL);
+    s.switching_events = r.choice("switching", {"events", "none"}, std::string("events")) == "events";
     s.max_wall_time_s = r.number_or("max_wall_time_s", s.max_wall_time_s, positive, "must be > 0 s");
     r.finish();
   }

@@ -52,6 +52,13 @@ class Integrator {
   virtual void statistics(SolverStats& s) const = 0;
   /// SUNDIALS' message after a failure.
   virtual std::string error_message() const = 0;
+  /// Which root functions fired at the last StepOutcome::root (±1 by direction, or 0).
+  virtual void root_flags(std::vector<int>& flags) = 0;
+  /// Only report roots crossing in this direction (−1 decreasing, +1 increasing, 0 both).
+  virtual void set_root_directions(const std::vector<int>& dirs) = 0;
+  /// Restart from (t, y) after a change of the right-hand side (a mode switch): the
+  /// history is discarded, the quadratures keep their values.
+  virtual void reinit(double t, const double* y) = 0;
 };
 
 std::unique_ptr<Integrator> make_integrator(const IntegratorSettings& settings, OdeSystem& sys,

@@ -51,6 +51,18 @@ struct FilmElement {
   double clearance = 0.0;
   double viscosity = 0.0;
   ForceLaw law = ForceLaw::pinkus_sternlicht;
+  /// The law jumps across ε̇ = 0 (the printed Pinkus–Sternlicht law) and the scene asks
+  /// for event-driven switching: the run tracks a FilmMode for this film.
+  bool switching = false;
+};
+
+/// How a switching film's law is evaluated (see README "Discontinuous force laws").
+enum class FilmMode : int {
+  natural = 0,   ///< the law at the actual ε̇ (continuous laws, or switching off)
+  outward = 1,   ///< the ε̇ > 0 branch, continued at ε̇ = 0⁺ for ε̇ < 0
+  inward = -1,   ///< the ε̇ < 0 branch, continued at ε̇ = 0⁻ for ε̇ > 0
+  sliding = 2,   ///< Filippov sliding on ε̇ = 0: |e| held by a constraint whose
+                 ///< multiplier is the radial film force; F_t at ε̇ = 0
 };
 
 struct Model {
@@ -61,6 +73,7 @@ struct Model {
   Eigen::VectorXd inv_mass_diag;
   std::vector<Constraint> constraints;
   std::vector<FilmElement> films;
+  int n_switching = 0;  ///< films with switching (each may add one sliding row)
   std::optional<Eigen::Vector2d> gravity;
   double alpha = 5.0, beta = 5.0;
   /// constraint block of each scene joint (ideal joints, and lubricated ones with law
@@ -70,6 +83,7 @@ struct Model {
 
 /// Bearing kinematics of one film element at one state.
 struct FilmKinematics {
+  bool sliding = false;         ///< the radial force is the sliding constraint's multiplier
   Eigen::Vector2d e{0, 0};      ///< journal centre − bearing centre [m]
   Eigen::Vector2d e_dot{0, 0};  ///< [m/s]
   Eigen::Vector2d r{1, 0};      ///< unit radial direction (along e; along ė or x at e = 0)
@@ -95,6 +109,11 @@ struct Workspace {
   Eigen::LLT<Eigen::MatrixXd> llt;
   std::vector<FilmKinematics> films;
   EvalCounters counters;
+  // Switching films: mode, and in sliding mode the held |e| [m] and the constraint row.
+  std::vector<FilmMode> film_mode;
+  std::vector<double> slide_radius;
+  std::vector<int> slide_row;
+  int nc_active = 0;  ///< constraint rows in use: nc + films sliding
 };
 
 /// Builds the model. Throws InputError for an inconsistent scene (e.g. redundant

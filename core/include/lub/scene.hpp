@@ -69,6 +69,11 @@ struct SolverSpec {
   int max_order = 0;           ///< 0: the method's default (Adams 12, BDF 5)
   double baumgarte_alpha = 5.0;
   double baumgarte_beta = 5.0;
+  /// Discontinuous force laws (the printed Pinkus–Sternlicht law): `events` locates each
+  /// crossing of ε̇ = 0 by root finding, restarts the integrator on the branch that
+  /// applies and integrates Filippov sliding motion on ε̇ = 0; `none` lets the
+  /// integrator step across the jump (it chatters: kept to show the difference).
+  bool switching_events = true;
   long long max_steps = 20'000'000;  ///< budget: internal steps for the whole run
   double max_wall_time_s = 600.0;    ///< budget: wall time for the whole run
 };
