@@ -629,7 +629,9 @@ TEST(ForceLaws, DispatchMatchesIndividualFunctions) {
 // --- Names ----------------------------------------------------------------------------
 
 TEST(ForceLawNames, RoundTripAndRejectUnknown) {
-  const ForceLaw all[] = {ForceLaw::pinkus_sternlicht, ForceLaw::frene_long, ForceLaw::frene_short};
+  const ForceLaw all[] = {ForceLaw::pinkus_sternlicht, ForceLaw::frene_long, ForceLaw::frene_short,
+                          ForceLaw::gumbel_long, ForceLaw::gumbel_short,
+                          ForceLaw::pinkus_sternlicht_continuous, ForceLaw::finite_reynolds};
   const std::string names = lub::force_law_names();
   for (ForceLaw law : all) {
     ForceLaw parsed = law == ForceLaw::frene_long ? ForceLaw::frene_short : ForceLaw::frene_long;
@@ -640,13 +642,31 @@ TEST(ForceLawNames, RoundTripAndRejectUnknown) {
   EXPECT_EQ(lub::to_string(ForceLaw::pinkus_sternlicht), "pinkus_sternlicht");
   EXPECT_EQ(lub::to_string(ForceLaw::frene_long), "frene_long");
   EXPECT_EQ(lub::to_string(ForceLaw::frene_short), "frene_short");
-  EXPECT_EQ(names, "pinkus_sternlicht, frene_long, frene_short");
-  for (const char* bad : {"", "frene", "Frene_long", "frene_long ", "pinkus", "gumbel_long",
-                          "pinkus_sternlicht,frene_long"}) {
+  EXPECT_EQ(lub::to_string(ForceLaw::gumbel_long), "gumbel_long");
+  EXPECT_EQ(lub::to_string(ForceLaw::gumbel_short), "gumbel_short");
+  EXPECT_EQ(lub::to_string(ForceLaw::pinkus_sternlicht_continuous), "pinkus_sternlicht_continuous");
+  EXPECT_EQ(lub::to_string(ForceLaw::finite_reynolds), "finite_reynolds");
+  EXPECT_EQ(names,
+            "pinkus_sternlicht, frene_long, frene_short, gumbel_long, gumbel_short, "
+            "pinkus_sternlicht_continuous, finite_reynolds");
+  for (const char* bad : {"", "frene", "Frene_long", "frene_long ", "pinkus", "gumbel",
+                          "pinkus_sternlicht,frene_long", "finite", "reynolds"}) {
     ForceLaw law = ForceLaw::frene_short;
     EXPECT_FALSE(lub::parse_force_law(bad, law)) << '"' << bad << '"';
     EXPECT_EQ(law, ForceLaw::frene_short) << "unchanged on failure";
   }
+}
+
+TEST(CavitationNames, RoundTripAndRejectUnknown) {
+  for (lub::Cavitation c : {lub::Cavitation::gumbel, lub::Cavitation::reynolds, lub::Cavitation::sommerfeld}) {
+    lub::Cavitation parsed = c == lub::Cavitation::gumbel ? lub::Cavitation::reynolds : lub::Cavitation::gumbel;
+    ASSERT_TRUE(lub::parse_cavitation(lub::to_string(c), parsed));
+    EXPECT_EQ(parsed, c);
+  }
+  EXPECT_EQ(lub::cavitation_names(), "gumbel, reynolds, sommerfeld");
+  lub::Cavitation c = lub::Cavitation::gumbel;
+  EXPECT_FALSE(lub::parse_cavitation("Reynolds", c));
+  EXPECT_EQ(c, lub::Cavitation::gumbel);
 }
 
 }  // namespace

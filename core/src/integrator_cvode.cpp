@@ -1,6 +1,7 @@
 // CVODES adapter: Adams–Moulton with fixed-point iteration (the paper's variable step and
 // order predictor–corrector) and BDF with Newton and a dense direct linear solver.
 #include <cvodes/cvodes.h>
+#include <cvodes/cvodes_proj.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_dense.h>
@@ -12,61 +13,25 @@
 #include <string>
 #include <vector>
 
+#include "integrator_common.hpp"
 #include "lub/integrator.hpp"
 
 namespace lub {
 
 namespace {
 
-struct CallbackData {
-  OdeSystem* sys = nullptr;
-  std::string error;  // SUNDIALS' last error text, or an exception's
-};
-
-int rhs_cb(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
-  auto* d = static_cast<CallbackData*>(user);
-  try {
-    return d->sys->rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
-  } catch (const std::exception& e) {
-    d->error = std::string("right-hand side: ") + e.what();
-    return -1;
-  } catch (...) {
-    d->error = "right-hand side: unknown exception";
-    return -1;
-  }
-}
-
-int root_cb(sunrealtype t, N_Vector y, sunrealtype* g, void* user) {
-  auto* d = static_cast<CallbackData*>(user);
-  try {
-    return d->sys->roots(t, N_VGetArrayPointer(y), g);
-  } catch (const std::exception& e) {
-    d->error = std::string("root function: ") + e.what();
-    return -1;
-  }
-}
-
-int quad_cb(sunrealtype t, N_Vector y, N_Vector qdot, void* user) {
-  auto* d = static_cast<CallbackData*>(user);
-  try {
-    return d->sys->quadrature_rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(qdot));
-  } catch (const std::exception& e) {
-    d->error = std::string("quadrature: ") + e.what();
-    return -1;
-  }
-}
-
-void err_cb(int /*code*/, const char* module, const char* function, char* msg, void* user) {
-  auto* d = static_cast<CallbackData*>(user);
-  if (!d->error.empty()) return;  // keep the first (root-cause) message
-  d->error = std::string(module ? module : "") + "/" + (function ? function : "") + ": " + (msg ? msg : "");
-}
+using detail::CallbackData;
+using detail::err_cb;
+using detail::quad_cb;
+using detail::rhs_cb;
+using detail::root_cb;
 
 class CvodeIntegrator final : public Integrator {
  public:
   CvodeIntegrator(const IntegratorSettings& s, OdeSystem& sys, double t0, const std::vector<double>& y0)
       : method_(s.method) {
     data_.sys = &sys;
+    data_.n = sys.size();
     if (SUNContext_Create(nullptr, &ctx_) != 0) throw std::runtime_error("SUNContext_Create failed");
     const sunindextype n = sys.size();
     y_ = N_VNew_Serial(n, ctx_);
@@ -92,6 +57,7 @@ class CvodeIntegrator final : public Integrator {
       A_ = SUNDenseMatrix(n, n, ctx_);
       ls_ = SUNLinSol_Dense(y_, A_, ctx_);
       check(CVodeSetLinearSolver(mem_, ls_, A_), "CVodeSetLinearSolver");
+      if (s.projection) check(CVodeSetProjFn(mem_, detail::proj_cb), "CVodeSetProjFn");
     }
     if (sys.num_roots() > 0) {
       check(CVodeRootInit(mem_, sys.num_roots(), root_cb), "CVodeRootInit");
@@ -193,13 +159,12 @@ class CvodeIntegrator final : public Integrator {
     SolverStats total;
     statistics(total);
     base_ = total;
+    // The quadratures at t (a root inside the last step): before CVodeReInit forgets
+    // the step's history.
+    if (q_) check(CVodeGetQuadDky(mem_, t, 0, q_), "CVodeGetQuadDky");
     for (sunindextype i = 0; i < N_VGetLength(y_); ++i) NV_Ith_S(y_, i) = y[i];
     check(CVodeReInit(mem_, t, y_), "CVodeReInit");
-    if (q_) {
-      sunrealtype tret;
-      CVodeGetQuad(mem_, &tret, q_);
-      check(CVodeQuadReInit(mem_, q_), "CVodeQuadReInit");
-    }
+    if (q_) check(CVodeQuadReInit(mem_, q_), "CVodeQuadReInit");
     check(CVodeSetStopTime(mem_, t_stop_), "CVodeSetStopTime");
   }
 
@@ -222,8 +187,8 @@ class CvodeIntegrator final : public Integrator {
 
 }  // namespace
 
-std::unique_ptr<Integrator> make_integrator(const IntegratorSettings& settings, OdeSystem& sys,
-                                            double t0, const std::vector<double>& y0) {
+std::unique_ptr<Integrator> make_cvode_integrator(const IntegratorSettings& settings, OdeSystem& sys,
+                                                  double t0, const std::vector<double>& y0) {
   return std::make_unique<CvodeIntegrator>(settings, sys, t0, y0);
 }
 

@@ -7,9 +7,43 @@ namespace lub {
 
 using nlohmann::json;
 
+namespace {
+
+constexpr size_t kBriefChars = 80;
+
+std::string quoted(const std::string& s) {
+  return json(s.size() > kBriefChars ? s.substr(0, kBriefChars) : s)
+      .dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+// Appends a compact rendering of `v`, stopping once `out` is longer than kBriefChars: a
+// huge or deeply nested value costs O(kBriefChars) time and stack, never a full dump.
+void render(const json& v, std::string& out) {
+  if (out.size() > kBriefChars) return;
+  if (v.is_object() || v.is_array()) {
+    const bool obj = v.is_object();
+    out += obj ? '{' : '[';
+    bool first = true;
+    for (auto it = v.begin(); it != v.end() && out.size() <= kBriefChars; ++it) {
+      if (!first) out += ',';
+      first = false;
+      if (obj) out += quoted(it.key()) + ':';
+      render(*it, out);
+    }
+    out += obj ? '}' : ']';
+  } else if (v.is_string()) {
+    out += quoted(v.get_ref<const std::string&>());
+  } else {
+    out += v.dump();
+  }
+}
+
+}  // namespace
+
 std::string brief(const json& value) {
-  std::string s = value.dump(-1, ' ', false, json::error_handler_t::replace);
-  if (s.size() > 80) s = s.substr(0, 77) + "...";
+  std::string s;
+  render(value, s);
+  if (s.size() > kBriefChars) s = s.substr(0, kBriefChars - 3) + "...";
   return s;
 }
 
@@ -104,14 +138,22 @@ std::optional<double> ObjectReader::number_optional(const std::string& key,
 
 long long ObjectReader::integer(const std::string& key, long long min, long long max) {
   const json& v = raw(key);
-  bool ok = v.is_number_integer();
-  if (!ok && v.is_number_float()) {
+  // An integer, or a float with an integral value ("5.0", "1e6"); unsigned values beyond
+  // long long and floats beyond 2^53 are out of every range we accept.
+  bool ok = false;
+  long long x = 0;
+  if (v.is_number_unsigned()) {
+    ok = max >= 0 && v.get<unsigned long long>() <= static_cast<unsigned long long>(max);
+    if (ok) x = static_cast<long long>(v.get<unsigned long long>());
+  } else if (v.is_number_integer()) {
+    ok = true;
+    x = v.get<long long>();
+  } else if (v.is_number_float()) {
     const double d = v.get<double>();
     ok = std::isfinite(d) && std::floor(d) == d && std::fabs(d) < 9e15;
+    if (ok) x = static_cast<long long>(d);
   }
-  if (!ok) fail(child(key), v, "must be an integer");
-  const long long x = v.is_number_integer() ? v.get<long long>() : static_cast<long long>(v.get<double>());
-  if (x < min || x > max) {
+  if (!ok || x < min || x > max) {
     std::ostringstream rule;
     rule << "must be an integer in [" << min << ", " << max << "]";
     fail(child(key), v, rule.str());

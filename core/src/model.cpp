@@ -186,9 +186,13 @@ Workspace::Workspace(const Model& m)
       film_mode(m.films.size(), FilmMode::natural),
       slide_radius(m.films.size(), 0.0),
       slide_row(m.films.size(), -1),
-      nc_active(m.nc) {
-  for (size_t k = 0; k < m.films.size(); ++k)
+      nc_active(m.nc),
+      film_solvers(m.films.size()),
+      contact_N(m.films.size(), 0.0) {
+  for (size_t k = 0; k < m.films.size(); ++k) {
     if (m.films[k].switching) film_mode[k] = FilmMode::outward;  // ε̇ >= 0 at a centred start
+    if (m.films[k].law == ForceLaw::finite_reynolds) film_solvers[k].emplace(m.films[k].finite);
+  }
 }
 
 Model build_model(const Scene& scene) {
@@ -260,6 +264,11 @@ Model build_model(const Scene& scene) {
           f.clearance = s.bearing.clearance_m();
           f.viscosity = s.viscosity_Pa_s;
           f.law = s.law;
+          f.finite = s.finite;
+          if (scene.contact && (scene.contact->joints.empty() ||
+                                std::find(scene.contact->joints.begin(), scene.contact->joints.end(),
+                                          jk) != scene.contact->joints.end()))
+            f.contact = resolve_contact(*scene.contact, s.bearing);
           f.switching = s.law == ForceLaw::pinkus_sternlicht && scene.solver.switching_events;
           if (f.switching) ++m.n_switching;
           m.joint_film[k] = static_cast<int>(m.films.size());
@@ -357,6 +366,26 @@ void fill_sliding_rows(const Model& m, Workspace& ws, const double* q, const dou
 }
 }  // namespace
 
+FilmForce film_element_force(const Model& m, Workspace& ws, int k, const BearingState& state, FilmMode mode,
+                             long long* law_calls) {
+  const FilmElement& f = m.films[k];
+  BearingState st = state;
+  switch (mode) {
+    case FilmMode::natural: break;
+    case FilmMode::outward: st.eps_dot = std::max(st.eps_dot, 0.0); break;
+    case FilmMode::inward: st.eps_dot = std::min(st.eps_dot, -std::numeric_limits<double>::min()); break;
+    case FilmMode::sliding: st.eps_dot = 0.0; break;
+  }
+  FiniteBearingSolver* solver = ws.film_solvers[k] ? &*ws.film_solvers[k] : nullptr;
+  const auto film = [&](const BearingState&) {
+    if (law_calls) ++*law_calls;
+    return film_force(f.law, f.geometry, f.viscosity, st, solver);
+  };
+  // With contact: film weighted over the hand-over band (not evaluated above it) plus the
+  // dry-contact force, whose damping sees the true ε̇.
+  return f.contact ? force_with_contact(*f.contact, f.clearance, state, film, &ws.contact_N[k]) : film(st);
+}
+
 int evaluate(const Model& m, Workspace& ws, double t, const double* q, const double* v,
              double* qdd) {
   ++ws.counters.rhs;
@@ -373,16 +402,9 @@ int evaluate(const Model& m, Workspace& ws, double t, const double* q, const dou
     const FilmElement& f = m.films[k];
     FilmKinematics& fk = ws.films[k];
     fk = film_kinematics(m, static_cast<int>(k), q, v);
-    if (!(fk.state.eps < 1.0)) return 1;  // journal through the wall: outside the model
-    ++ws.counters.film;
-    BearingState st = fk.state;
-    switch (ws.film_mode[k]) {
-      case FilmMode::natural: break;
-      case FilmMode::outward: st.eps_dot = std::max(st.eps_dot, 0.0); break;
-      case FilmMode::inward: st.eps_dot = std::min(st.eps_dot, -std::numeric_limits<double>::min()); break;
-      case FilmMode::sliding: st.eps_dot = 0.0; break;
-    }
-    fk.force = film_force(f.law, f.geometry, f.viscosity, st);
+    // Journal through the wall: outside the model, unless the contact effect takes over.
+    if (!f.contact && !(fk.state.eps < 1.0)) return 1;
+    fk.force = film_element_force(m, ws, static_cast<int>(k), fk.state, ws.film_mode[k], &ws.counters.film);
     fk.sliding = ws.film_mode[k] == FilmMode::sliding;
     if (fk.sliding) {
       fk.force.radial_N = 0.0;  // the sliding constraint's multiplier, after the solve
@@ -412,7 +434,8 @@ int evaluate(const Model& m, Workspace& ws, double t, const double* q, const dou
   rhs.noalias() = J * m.inv_mass_diag.cwiseProduct(ws.g);
   rhs -= ws.gamma.head(nc) - 2.0 * m.alpha * ws.Phi_dot.head(nc) - (m.beta * m.beta) * ws.Phi.head(nc);
   auto S = ws.S.topLeftCorner(nc, nc);
-  S.noalias() = J * m.inv_mass_diag.asDiagonal() * J.transpose();
+  // Small matrices: coefficient-based products beat the blocked GEMM path here.
+  S.noalias() = (J * m.inv_mass_diag.asDiagonal()).lazyProduct(J.transpose());
   ws.llt.compute(S);
   if (ws.llt.info() != Eigen::Success) return -1;
   lambda = ws.llt.solve(rhs);
@@ -432,6 +455,59 @@ int evaluate(const Model& m, Workspace& ws, double t, const double* q, const dou
 
 void constraint_residual(const Model& m, Workspace& ws, double t, const double* q, const double* v) {
   fill_constraints(m.constraints, t, q, v, ws.Phi_q, ws.Phi, ws.Phi_dot, nullptr);
+  int n_sliding = 0;
+  for (size_t k = 0; k < m.films.size(); ++k) {
+    FilmKinematics& fk = ws.films[k];
+    fk.sliding = ws.film_mode[k] == FilmMode::sliding;
+    if (!fk.sliding) continue;
+    const FilmKinematics kin = film_kinematics(m, static_cast<int>(k), q, v);
+    fk.e = kin.e;
+    fk.e_dot = kin.e_dot;
+    fk.r = kin.r;
+    ws.slide_row[k] = m.nc + n_sliding++;
+  }
+  if (n_sliding > 0) fill_sliding_rows(m, ws, q, v);
+  ws.nc_active = m.nc + n_sliding;
+}
+
+int project_state(const Model& m, Workspace& ws, double t, double* q, double* v, double* dq, double* dv,
+                  double tol, double* err) {
+  // M-weighted least corrections: Δ = −M⁻¹ Jᵀ (J M⁻¹ Jᵀ)⁻¹ r, for r = Φ (Newton on the
+  // positions) and then r = Φ̇ (one linear step on the velocities).
+  Eigen::Map<Eigen::VectorXd> Q(q, m.nq), V(v, m.nq), DQ(dq, m.nq), DV(dv, m.nq);
+  DQ.setZero();
+  DV.setZero();
+  auto solve = [&](int nc, const Eigen::VectorXd& r) -> Eigen::VectorXd {
+    const auto J = ws.Phi_q.topRows(nc);
+    auto S = ws.S.topLeftCorner(nc, nc);
+    S.noalias() = J * m.inv_mass_diag.asDiagonal() * J.transpose();
+    ws.llt.compute(S);
+    return -m.inv_mass_diag.cwiseProduct(J.transpose() * ws.llt.solve(r));
+  };
+  for (int it = 0; it < 8; ++it) {
+    constraint_residual(m, ws, t, q, v);
+    const int nc = ws.nc_active;
+    if (nc == 0) return 0;
+    if (ws.Phi.head(nc).lpNorm<Eigen::Infinity>() <= tol) break;
+    const Eigen::VectorXd d = solve(nc, ws.Phi.head(nc));
+    if (ws.llt.info() != Eigen::Success) return -1;
+    Q += d;
+    DQ += d;
+    if (it == 7) return 1;  // did not converge: let the integrator retry smaller
+  }
+  constraint_residual(m, ws, t, q, v);
+  const int nc = ws.nc_active;
+  const Eigen::VectorXd d = solve(nc, ws.Phi_dot.head(nc));
+  V += d;
+  DV = d;
+  if (err) {
+    // The error estimate loses its components normal to the constraint manifold.
+    Eigen::Map<Eigen::VectorXd> EQ(err, m.nq), EV(err + m.nq, m.nq);
+    const auto J = ws.Phi_q.topRows(nc);
+    EQ += solve(nc, J * EQ);
+    EV += solve(nc, J * EV);
+  }
+  return 0;
 }
 
 Eigen::Vector2d joint_force(const Model& m, const Workspace& ws, int joint) {

@@ -8,6 +8,7 @@
 
 #include "lub/integrator.hpp"
 #include "lub/model.hpp"
+#include "multibody_system.hpp"
 
 namespace lub {
 
@@ -24,91 +25,7 @@ std::string to_string(RunStatus s) {
 namespace {
 
 constexpr double kTwoPi = 6.28318530717958647692;
-constexpr int kPhasePoints = 360;  // orbit samples per cycle for the periodicity measure
-
-// The multibody equations as a first-order ODE, y = (q, v).
-class MultibodySystem final : public OdeSystem {
- public:
-  MultibodySystem(const Model& m, Workspace& ws, double eps_limit, bool energy)
-      : m_(m), ws_(ws), eps_limit_(eps_limit), energy_(energy) {}
-  int size() const override { return 2 * m_.nq; }
-  int rhs(double t, const double* y, double* ydot) override {
-    std::copy(y + m_.nq, y + 2 * m_.nq, ydot);
-    const int rc = evaluate(m_, ws_, t, y, y + m_.nq, ydot + m_.nq);
-    if (rc < 0) throw std::runtime_error("the constraint matrix Phi_q M^-1 Phi_q^T is singular");
-    return rc;
-  }
-  // Root functions: per film, eps_limit − ε; then per switching film two more (see
-  // switch_roots): in a free mode ε̇; sliding, the distances of the radial film force
-  // (the sliding multiplier) to the two one-sided limits of the law.
-  int num_roots() const override { return static_cast<int>(m_.films.size()) + 2 * m_.n_switching; }
-  int roots(double t, const double* y, double* g) override {
-    const int nf = static_cast<int>(m_.films.size());
-    bool evaluated = false;
-    int j = nf;
-    for (int k = 0; k < nf; ++k) {
-      const FilmKinematics fk = film_kinematics(m_, k, y, y + m_.nq);
-      g[k] = eps_limit_ - fk.state.eps;
-      if (!m_.films[k].switching) continue;
-      if (ws_.film_mode[k] != FilmMode::sliding) {
-        g[j] = fk.state.eps_dot;
-        g[j + 1] = 1.0;
-      } else {
-        if (!evaluated) {
-          scratch_.resize(m_.nq);
-          if (evaluate(m_, ws_, t, y, y + m_.nq, scratch_.data()) != 0) return 1;
-          evaluated = true;
-        }
-        const double bound = sliding_bound(k, ws_.films[k].state);
-        const double F = ws_.films[k].force.radial_N;
-        g[j] = F + bound;      // < 0: the load pulls the journal outwards off ε̇ = 0
-        g[j + 1] = bound - F;  // < 0: the load pushes it inwards
-      }
-      j += 2;
-    }
-    return 0;
-  }
-  /// Half the jump of the radial force across ε̇ = 0: the law gives −bound at 0⁺ and
-  /// +bound at 0⁻ (bound >= 0); a sliding motion holds while |F_r| <= bound.
-  double sliding_bound(int k, BearingState st) const {
-    const FilmElement& f = m_.films[k];
-    st.eps_dot = 0.0;
-    return -film_force(f.law, f.geometry, f.viscosity, st).radial_N;
-  }
-  std::vector<int> root_directions() const {
-    std::vector<int> d(static_cast<size_t>(num_roots()), 0);
-    const int nf = static_cast<int>(m_.films.size());
-    for (int k = 0; k < nf; ++k) d[k] = -1;
-    int j = nf;
-    for (int k = 0; k < nf; ++k) {
-      if (!m_.films[k].switching) continue;
-      switch (ws_.film_mode[k]) {
-        case FilmMode::outward: d[j] = -1; break;
-        case FilmMode::inward: d[j] = +1; break;
-        default: d[j] = -1; d[j + 1] = -1; break;
-      }
-      j += 2;
-    }
-    return d;
-  }
-  int num_quadratures() const override { return energy_ ? 2 : 0; }
-  int quadrature_rhs(double t, const double* y, double* qdot) override {
-    std::vector<double>& a = scratch_;
-    a.resize(m_.nq);
-    const int rc = evaluate(m_, ws_, t, y, y + m_.nq, a.data());
-    if (rc != 0) return rc;
-    qdot[0] = driver_power(m_, ws_, y + m_.nq);
-    qdot[1] = film_power(ws_);
-    return 0;
-  }
-
- private:
-  const Model& m_;
-  Workspace& ws_;
-  double eps_limit_;
-  bool energy_;
-  std::vector<double> scratch_;
-};
+constexpr int kPhasePoints = 120;  // orbit samples per cycle (every 3°) for the periodicity measure
 
 // Everything measured at one instant.
 struct Probe {
@@ -186,7 +103,7 @@ class Runner {
   std::optional<double> period_;
   double t0_ = 0.0;
   RunResult res_;
-  std::vector<double> qdd_, ytmp_;
+  std::vector<double> qdd_, ytmp_, yfull_, yint_;
   CycleMetrics cur_;
   bool cur_empty_ = true;
   // orbit of every film at the phase points: current and previous cycle
@@ -227,7 +144,8 @@ void Runner::observe(double t, const double* y, bool record) {
     if (scene_.joints[mj].type == JointType::lubricated_revolute) {
       const int f = m_.joint_film[mj];
       const double eps = f >= 0 ? ws_.films[f].state.eps : 0.0;
-      const double h = scene_.joints[mj].bearing.clearance_m() * (1.0 - eps);
+      // In contact (ε >= 1) the film thickness is zero: the penetration is not a film.
+      const double h = std::max(0.0, scene_.joints[mj].bearing.clearance_m() * (1.0 - eps));
       cur_.max_eps = std::max(cur_.max_eps, eps);
       if (h < cur_.min_film_m) {
         cur_.min_film_m = h;
@@ -325,11 +243,11 @@ void Runner::switch_modes(MultibodySystem& sys, const std::vector<int>& flags, d
           continue;
         }
         const double F = ws_.films[k].force.radial_N;
-        const double bound = sys.sliding_bound(k, fk.state);
+        const auto [F_out, F_in] = sys.sliding_limits(k, fk.state);
         if (from == FilmMode::outward)
-          to = F <= bound ? FilmMode::sliding : FilmMode::inward;
+          to = F <= F_in ? FilmMode::sliding : FilmMode::inward;
         else
-          to = F >= -bound ? FilmMode::sliding : FilmMode::outward;
+          to = F >= F_out ? FilmMode::sliding : FilmMode::outward;
       } else {
         to = from == FilmMode::outward ? FilmMode::inward : FilmMode::outward;
       }
@@ -346,6 +264,7 @@ RunResult Runner::run() {
   const SolverSpec& sol = scene_.solver;
   qdd_.assign(m_.nq, 0.0);
   ytmp_.assign(2 * m_.nq, 0.0);
+  yfull_.assign(2 * m_.nq, 0.0);
   const size_t nf = std::max<size_t>(1, m_.films.size());
   orbit_cur_.assign(static_cast<size_t>(kPhasePoints) * nf * 2, 0.0);
   orbit_prev_ = orbit_cur_;
@@ -363,26 +282,39 @@ RunResult Runner::run() {
 
   Eigen::VectorXd q0, v0;
   assemble_initial_state(m_, scene_, t0_, q0, v0);
-  std::vector<double> y0(2 * m_.nq);
-  std::copy(q0.data(), q0.data() + m_.nq, y0.begin());
-  std::copy(v0.data(), v0.data() + m_.nq, y0.begin() + m_.nq);
+  std::vector<double> qv0(2 * m_.nq);
+  std::copy(q0.data(), q0.data() + m_.nq, qv0.begin());
+  std::copy(v0.data(), v0.data() + m_.nq, qv0.begin() + m_.nq);
 
   const double t_end = sim.duration_s ? *sim.duration_s : sim.max_cycles * *period_;
   IntegratorSettings is;
   is.method = sol.method;
   is.rtol = sol.rtol;
   const double atol = sol.atol ? *sol.atol : sol.rtol * scene_.min_clearance_m().value_or(1e-3);
-  is.atol.assign(2 * m_.nq, atol);
   is.max_step = sol.max_step_s;
   is.initial_step = sol.initial_step_s;
   is.max_order = sol.max_order;
   is.t_stop = t_end;
+  is.projection = sol.projection;
   res_.stats.rtol = sol.rtol;
   res_.stats.atol = atol;
   res_.stats.method = to_string(sol.method);
 
   const bool energy = scene_.output.energy_balance;
-  MultibodySystem sys(m_, ws_, sim.eps_limit, energy);
+  MultibodySystem sys(m_, ws_, sim.eps_limit, energy,
+                      sol.partitioned ? Formulation::partitioned : Formulation::baumgarte);
+  sys.set_projection_tolerance(0.01 * atol);  // Newton on Φ = 0 well inside the error test
+  try {
+    sys.partition(t0_, qv0.data());
+  } catch (const std::exception& e) {
+    res_.status = RunStatus::solver_failure;
+    res_.message = e.what();
+    return res_;
+  }
+  std::vector<double> y0(static_cast<size_t>(sys.size()));
+  sys.reduce(qv0.data(), y0.data());
+  is.atol.assign(y0.size(), atol);
+  yint_.assign(y0.size(), 0.0);
   std::unique_ptr<Integrator> integ;
   try {
     integ = make_integrator(is, sys, t0_, y0);
@@ -398,12 +330,18 @@ RunResult Runner::run() {
   const double dt_phase = period_ ? *period_ / kPhasePoints : 0.0;
   long long phase_k = 0;
   int cycles_done = 0;
-  observe(t0_, y0.data(), !res_.series.names.empty());
+  observe(t0_, qv0.data(), !res_.series.names.empty());
   if (!res_.series.names.empty()) sample_k = 1;
-  if (period_) observe_phase(t0_, y0.data()), phase_k = 1;
+  if (period_) observe_phase(t0_, qv0.data()), phase_k = 1;
+  // The state at t within the last step, as (q, v): false if it cannot be had.
+  auto state_at = [&](double tt) {
+    return integ->dense(tt, 0, yint_.data()) && sys.expand(tt, yint_.data(), ytmp_.data()) == 0;
+  };
 
   integ->set_root_directions(sys.root_directions());
   std::vector<int> flags;
+  std::optional<double> drift_limit = sim.drift_limit_m;
+  if (!drift_limit && scene_.min_clearance_m()) drift_limit = 0.1 * *scene_.min_clearance_m();
   double t = t0_;
   bool stop = false;
   const double inf = std::numeric_limits<double>::infinity();
@@ -433,17 +371,18 @@ RunResult Runner::run() {
           ++cycles_done;
           if (sim.stop_when_steady && steady_now()) stop = true;
         }
-        if (!stop && integ->dense(tp, 0, ytmp_.data())) {
+        if (!stop && state_at(tp)) {
           observe_phase(tp, ytmp_.data());
           observe(tp, ytmp_.data(), sample_due && ts == tp);
           if (sample_due && ts == tp) ++sample_k;
         }
       } else {
         ++sample_k;
-        if (ts > t_prev && integ->dense(ts, 0, ytmp_.data())) observe(ts, ytmp_.data(), true);
+        if (ts > t_prev && state_at(ts)) observe(ts, ytmp_.data(), true);
       }
     }
-    observe(t, integ->y(), false);
+    const bool have_state = sys.expand(t, integ->y(), yfull_.data()) == 0;
+    if (have_state) observe(t, yfull_.data(), false);
     if (out == StepOutcome::root) {
       integ->root_flags(flags);
       bool collapse = false;
@@ -456,9 +395,31 @@ RunResult Runner::run() {
         res_.message = msg.str();
         break;
       }
-      switch_modes(sys, flags, t, integ->y());
+      if (!have_state) {
+        res_.status = RunStatus::solver_failure;
+        res_.message = "coordinate partitioning: the dependent coordinates cannot be recovered at t = " +
+                       std::to_string(t) + " s";
+        break;
+      }
+      switch_modes(sys, flags, t, yfull_.data());
       integ->reinit(t, integ->y());
       integ->set_root_directions(sys.root_directions());
+    } else if (have_state && sys.partition_degraded()) {
+      // The dependent block is near-singular: choose the independent coordinates anew.
+      sys.partition(t, yfull_.data());
+      sys.reduce(yfull_.data(), yint_.data());
+      integ->reinit(t, yint_.data());
+      integ->set_root_directions(sys.root_directions());
+      ++res_.stats.repartitions;
+    }
+    if (drift_limit && res_.stats.max_position_drift > *drift_limit) {
+      res_.status = RunStatus::solver_failure;
+      std::ostringstream msg;
+      msg << "constraint drift " << res_.stats.max_position_drift << " m exceeds simulation.drift_limit_m = "
+          << *drift_limit << " m at t = " << t
+          << " s: tighten solver.rtol, or use solver.projection = true or solver.formulation = partitioned";
+      res_.message = msg.str();
+      break;
     }
     integ->statistics(res_.stats);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
@@ -476,9 +437,9 @@ RunResult Runner::run() {
     }
     if (t >= t_end * (1 - 1e-15)) stop = true;
   }
-  // A run without a period (or one ending mid-cycle without any complete cycle) keeps its
-  // partial cycle as the only one.
-  if (!period_ || (res_.cycles.empty() && !cur_empty_)) close_cycle(t);
+  // A run without a period keeps the whole run as its one cycle; a run that ended early
+  // (collapse, failure, budget) keeps its partial cycle, so the metrics see how it ended.
+  if (!period_ || (!cur_empty_ && (res_.cycles.empty() || res_.status != RunStatus::ok))) close_cycle(t);
 
   integ->statistics(res_.stats);
   res_.stats.final_time_s = t;
@@ -530,7 +491,8 @@ RunResult Runner::run() {
   if (energy) {
     double Q[2] = {0, 0};
     integ->quadratures(Q);
-    const double* y = integ->y();
+    sys.expand(t, integ->y(), yfull_.data());
+    const double* y = yfull_.data();
     mt.driver_work_J = Q[0];
     mt.film_dissipation_J = -Q[1];
     mt.energy_change_J = mechanical_energy(m_, y, y + m_.nq) - E0;

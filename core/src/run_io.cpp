@@ -43,6 +43,7 @@ const std::vector<ResultField>& solver_fields() {
       {"root_evals", "", true, [](const RunResult& r) { return double(r.stats.root_evals); }},
       {"observer_evals", "", true, [](const RunResult& r) { return double(r.stats.observer_evals); }},
       {"mode_switches", "", true, [](const RunResult& r) { return double(r.stats.mode_switches); }},
+      {"repartitions", "", true, [](const RunResult& r) { return double(r.stats.repartitions); }},
       {"wall_time_s", "s", false, [](const RunResult& r) { return r.stats.wall_time_s; }},
       {"final_time_s", "s", false, [](const RunResult& r) { return r.stats.final_time_s; }},
       {"max_position_drift", "m", false, [](const RunResult& r) { return r.stats.max_position_drift; }},

@@ -23,6 +23,9 @@ class OdeSystem {
   virtual int roots(double /*t*/, const double* /*y*/, double* /*g*/) { return 0; }
   virtual int num_quadratures() const { return 0; }
   virtual int quadrature_rhs(double /*t*/, const double* /*y*/, double* /*qdot*/) { return 0; }
+  /// Projection onto the constraint manifold after each step (CVODE BDF): writes the
+  /// correction to `corr` and projects the error estimate `err` (may be null).
+  virtual int project(double /*t*/, const double* /*y*/, double* /*corr*/, double* /*err*/) { return -1; }
 };
 
 struct IntegratorSettings {
@@ -33,6 +36,7 @@ struct IntegratorSettings {
   double initial_step = 0.0; ///< 0: automatic
   int max_order = 0;         ///< 0: default
   double t_stop = 0.0;       ///< never step past this time
+  bool projection = false;   ///< project onto the constraints after each step (cvode_bdf)
 };
 
 enum class StepOutcome { step, root, failure };

@@ -20,7 +20,9 @@
 #include <string>
 #include <vector>
 
+#include "lub/contact.hpp"
 #include "lub/force_laws.hpp"
+#include "lub/reynolds.hpp"
 #include "lub/scene.hpp"
 
 namespace lub {
@@ -51,6 +53,10 @@ struct FilmElement {
   double clearance = 0.0;
   double viscosity = 0.0;
   ForceLaw law = ForceLaw::pinkus_sternlicht;
+  FiniteBearingOptions finite;        ///< finite_reynolds: cavitation, grid
+  /// The scene's contact effect covers this joint: the film hands over to dry contact in
+  /// [ε_a, ε_b] and is never evaluated above ε_b (lub/contact.hpp). Absent: no contact code.
+  std::optional<ContactLaw> contact;
   /// The law jumps across ε̇ = 0 (the printed Pinkus–Sternlicht law) and the scene asks
   /// for event-driven switching: the run tracks a FilmMode for this film.
   bool switching = false;
@@ -114,7 +120,18 @@ struct Workspace {
   std::vector<double> slide_radius;
   std::vector<int> slide_row;
   int nc_active = 0;  ///< constraint rows in use: nc + films sliding
+  /// finite_reynolds films: the solver with its preallocated scratch (empty for other laws).
+  std::vector<std::optional<FiniteBearingSolver>> film_solvers;
+  /// Films with the contact effect: normal contact force of the last evaluation [N].
+  std::vector<double> contact_N;
 };
+
+/// Force of film element k on the journal (radial, tangential) at bearing state `state`
+/// with the law evaluated on the branch `mode` selects (FilmMode::sliding: at ε̇ = 0),
+/// including the contact hand-over if the scene has it. Pure but for ws's solver scratch;
+/// each call of the law increments *law_calls (if given).
+FilmForce film_element_force(const Model& m, Workspace& ws, int k, const BearingState& state, FilmMode mode,
+                             long long* law_calls = nullptr);
 
 /// Builds the model. Throws InputError for an inconsistent scene (e.g. redundant
 /// constraints are detected later, at assembly).
@@ -127,7 +144,14 @@ int evaluate(const Model& m, Workspace& ws, double t, const double* q, const dou
              double* qdd);
 
 /// Constraint violation Φ and Φ̇ at (t, q, v) into ws.Phi, ws.Phi_dot (and ws.Phi_q).
+/// Also the sliding rows of sliding films (ws.nc_active rows in all).
 void constraint_residual(const Model& m, Workspace& ws, double t, const double* q, const double* v);
+
+/// Projects (q, v) onto Φ = 0 (Newton, to `tol`) and Φ̇ = 0 with M-weighted least
+/// corrections, in place; the corrections go to dq, dv; `err` (2 nq, or nullptr) is
+/// projected onto the manifold's tangent space. Returns 0, 1 (no convergence), −1.
+int project_state(const Model& m, Workspace& ws, double t, double* q, double* v, double* dq, double* dv,
+                  double tol, double* err);
 
 /// Bearing kinematics (no force) of film element `k` at (q, v).
 FilmKinematics film_kinematics(const Model& m, int k, const double* q, const double* v);

@@ -30,6 +30,7 @@ struct SolverStats {
   long long nonlin_conv_fails = 0;
   long long root_evals = 0;
   long long observer_evals = 0;     ///< extra evaluations for metrics and series
+  long long repartitions = 0;       ///< new choices of independent coordinates (partitioned)
   long long mode_switches = 0;      ///< switches of a discontinuous law (ε̇ = 0 crossings, sliding)
   // What the model evaluated (integrator and observers together): an effect the scene
   // does not name is never evaluated.

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "lub/contact.hpp"
 #include "lub/force_laws.hpp"
 #include "lub/json_reader.hpp"
 
@@ -41,6 +42,7 @@ struct JointSpec {
   double viscosity_Pa_s = 0.0;
   bool ideal = false;  ///< force_law "ideal": the joint is an ideal revolute
   ForceLaw law = ForceLaw::pinkus_sternlicht;
+  FiniteBearingOptions finite;  ///< finite_reynolds: cavitation, reynolds_n_theta/_n_z, groove
   Eigen::Vector2d initial_eccentricity_m{0, 0};  ///< journal centre − bearing centre at t0
 };
 
@@ -57,7 +59,13 @@ struct DriverSpec {
   std::optional<double> initial_angle_rad;  ///< φ0; default: the body's initial angle
 };
 
-enum class Method { cvode_adams, cvode_bdf };
+/// Integration methods: CVODE Adams–Moulton (fixed-point corrector: the paper's variable
+/// step and order predictor–corrector), CVODE BDF (Newton, dense), ARKODE explicit
+/// Dormand–Prince 5(4), ARKODE implicit L-stable SDIRK 4 (Newton, dense).
+enum class Method { cvode_adams, cvode_bdf, arkode_erk, arkode_dirk };
+/// Scene names of all methods, comma separated.
+const std::vector<std::string>& method_names();
+bool parse_method(const std::string& name, Method& m);
 std::string to_string(Method m);
 
 struct SolverSpec {
@@ -74,6 +82,13 @@ struct SolverSpec {
   /// applies and integrates Filippov sliding motion on ε̇ = 0; `none` lets the
   /// integrator step across the jump (it chatters: kept to show the difference).
   bool switching_events = true;
+  /// Project positions and velocities onto Φ = 0, Φ̇ = 0 after every step (CVODE's
+  /// projection, cvode_bdf only), on top of Baumgarte: constraint drift at round-off.
+  bool projection = false;
+  /// solver.formulation: "baumgarte" (all coordinates, Baumgarte's terms: the paper) or
+  /// "partitioned" (generalised coordinate partitioning: only the mechanism's degrees of
+  /// freedom are integrated; dependent coordinates solved from Φ = 0; no drift).
+  bool partitioned = false;
   long long max_steps = 20'000'000;  ///< budget: internal steps for the whole run
   double max_wall_time_s = 600.0;    ///< budget: wall time for the whole run
 };
@@ -86,6 +101,10 @@ struct SimulationSpec {
   double steady_tolerance = 1e-3;    ///< periodicity (orbit distance / c) below which a cycle repeats
   int metric_cycles = 2;             ///< metrics over this many last cycles
   double eps_limit = 0.999;          ///< ε reaching it ends the run: film_collapse
+  /// Constraint drift max |Φ| [m or rad] beyond which the run ends as solver_failure
+  /// (the answer is no longer the mechanism's). Default: 10 % of the smallest clearance
+  /// when the scene has lubricated joints, none otherwise.
+  std::optional<double> drift_limit_m;
 };
 
 enum class ChannelSource { time, body, joint };
@@ -116,6 +135,7 @@ struct Scene {
   std::vector<JointSpec> joints;
   std::vector<DriverSpec> drivers;
   std::optional<Eigen::Vector2d> gravity_m_s2;
+  std::optional<ContactSpec> contact;  ///< effects.contact: dry contact when the film collapses
   SolverSpec solver;
   SimulationSpec simulation;
   OutputSpec output;
@@ -132,8 +152,11 @@ struct Scene {
 /// Parses and validates a scene. Throws InputError naming the JSON path, value and rule.
 Scene parse_scene(const nlohmann::json& doc);
 
-/// Reads a JSON file; errors (missing file, syntax) throw InputError naming the file.
+/// Reads a JSON file; errors (missing file, syntax, a key twice in one object, a number
+/// too large for a double) throw InputError naming the file.
 nlohmann::json read_json_file(const std::string& path);
+/// The same for JSON text; `origin` (a file name) prefixes the messages.
+nlohmann::json parse_json_text(const std::string& text, const std::string& origin);
 
 /// Applies `--set POINTER=VALUE`: VALUE parsed as JSON, or taken as a string if it is not
 /// JSON. The pointer must name an existing value or a new key of an existing object.
@@ -142,6 +165,8 @@ void apply_override(nlohmann::json& doc, const std::string& assignment);
 /// Names of the body and joint channel quantities (for docs and errors).
 const std::vector<std::string>& body_quantities();
 const std::vector<std::string>& joint_quantities();
+/// True for the joint quantities only a lubricated joint has (e_x, eps, h_min, ...).
+bool is_film_quantity(const std::string& quantity);
 /// SI unit of a channel quantity ("m", "rad", "N", "1", ...).
 std::string channel_unit(ChannelSource source, const std::string& quantity);
 

@@ -1,0 +1,218 @@
+#include "multibody_system.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace lub {
+
+MultibodySystem::MultibodySystem(const Model& m, Workspace& ws, double eps_limit, bool energy, Formulation f)
+    : m_(m), ws_(ws), eps_limit_(eps_limit), energy_(energy), form_(f),
+      nz_(f == Formulation::partitioned ? m.nq - m.nc : m.nq) {
+  qv_.assign(2 * m.nq, 0.0);
+  acc_.assign(m.nq, 0.0);
+  scratch_.assign(2 * m.nq, 0.0);
+  if (f == Formulation::partitioned) {
+    A_.resize(m.nc, m.nc);
+    r_.resize(m.nc);
+    dz_.resize(m.nc);
+    lu_ = Eigen::PartialPivLU<Eigen::MatrixXd>(m.nc);
+  }
+}
+
+void MultibodySystem::partition(double t, const double* qv) {
+  std::copy(qv, qv + 2 * m_.nq, qv_.begin());
+  have_last_ = false;
+  if (form_ != Formulation::partitioned) return;
+  ind_.clear();
+  dep_.clear();
+  if (m_.nc == 0) {
+    for (int i = 0; i < m_.nq; ++i) ind_.push_back(i);
+    return;
+  }
+  constraint_residual(m_, ws_, t, qv, nullptr);
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(ws_.Phi_q.topRows(m_.nc));
+  if (lu.rank() < m_.nc)
+    throw std::runtime_error("coordinate partitioning: the constraint Jacobian is rank deficient");
+  const auto& perm = lu.permutationQ().indices();
+  for (int i = 0; i < m_.nq; ++i) (i < m_.nc ? dep_ : ind_).push_back(perm(i));
+  std::sort(dep_.begin(), dep_.end());
+  std::sort(ind_.begin(), ind_.end());
+  degraded_ = false;
+  lu_valid_ = false;
+}
+
+int MultibodySystem::expand(double t, const double* y, double* qv) {
+  const int nq = m_.nq;
+  if (form_ == Formulation::baumgarte) {
+    std::copy(y, y + 2 * nq, qv);
+    return 0;
+  }
+  const int nd = static_cast<int>(ind_.size());
+  // The integrator often asks again for the state it just had (roots, quadratures,
+  // observers at a step end): reuse it.
+  if (have_last_ && t == last_t_ && std::equal(y, y + 2 * nd, last_y_.begin())) {
+    std::copy(qv_.begin(), qv_.end(), qv);
+    return 0;
+  }
+  have_last_ = false;
+  // Warm start from the last recovered state; the independent coordinates from y.
+  double* q = qv_.data();
+  double* v = qv_.data() + nq;
+  for (int i = 0; i < nd; ++i) q[ind_[i]] = y[i];
+  if (m_.nc > 0) {
+    const double tol = 1e-13;  // m or rad: far below any clearance and DQ perturbation
+    // Chord Newton: the LU of the dependent block from the last evaluation serves as
+    // long as it converges fast (the configuration moved little); it is refreshed at
+    // the solution for the velocities, and whenever the iteration stalls.
+    bool converged = false;
+    double last = std::numeric_limits<double>::infinity();
+    for (int it = 0; it < 30; ++it) {
+      constraint_residual(m_, ws_, t, q, nullptr);
+      r_ = ws_.Phi.head(m_.nc);
+      const double res = r_.lpNorm<Eigen::Infinity>();
+      if (!std::isfinite(res)) return 1;
+      if (res <= tol) {
+        converged = true;
+        break;
+      }
+      if (!lu_valid_ || res > 0.25 * last) {
+        A_ = ws_.Phi_q(Eigen::seqN(0, m_.nc), dep_);
+        lu_.compute(A_);
+        lu_valid_ = true;
+      }
+      last = res;
+      dz_ = lu_.solve(r_);
+      for (int i = 0; i < m_.nc; ++i) q[dep_[i]] -= dz_(i);
+    }
+    if (!converged) {
+      lu_valid_ = false;
+      return 1;
+    }
+    A_ = ws_.Phi_q(Eigen::seqN(0, m_.nc), dep_);
+    lu_.compute(A_);
+    // Velocities: Φ_q,dep v_dep = −(Φ_q,ind ż + Φ_t), with Φ_t = Φ̇ at v = 0.
+    const auto d = lu_.matrixLU().diagonal().cwiseAbs();
+    degraded_ = d.minCoeff() < 1e-4 * d.maxCoeff();
+    r_ = ws_.Phi_dot.head(m_.nc);
+    for (int i = 0; i < nd; ++i) {
+      v[ind_[i]] = y[nd + i];
+      r_ += ws_.Phi_q.block(0, ind_[i], m_.nc, 1) * y[nd + i];
+    }
+    dz_ = lu_.solve(r_);
+    for (int i = 0; i < m_.nc; ++i) v[dep_[i]] = -dz_(i);
+  } else {
+    for (int i = 0; i < nd; ++i) v[ind_[i]] = y[nd + i];
+  }
+  std::copy(qv_.begin(), qv_.end(), qv);
+  last_t_ = t;
+  last_y_.assign(y, y + 2 * nd);
+  have_last_ = true;
+  return 0;
+}
+
+void MultibodySystem::reduce(const double* qv, double* y) const {
+  if (form_ == Formulation::baumgarte) {
+    std::copy(qv, qv + 2 * m_.nq, y);
+    return;
+  }
+  const int nd = static_cast<int>(ind_.size());
+  for (int i = 0; i < nd; ++i) {
+    y[i] = qv[ind_[i]];
+    y[nd + i] = qv[m_.nq + ind_[i]];
+  }
+}
+
+int MultibodySystem::rhs(double t, const double* y, double* ydot) {
+  const int nq = m_.nq;
+  if (form_ == Formulation::baumgarte) {
+    std::copy(y + nq, y + 2 * nq, ydot);
+    const int rc = evaluate(m_, ws_, t, y, y + nq, ydot + nq);
+    if (rc < 0) throw std::runtime_error("the constraint matrix Phi_q M^-1 Phi_q^T is singular");
+    return rc;
+  }
+  if (expand(t, y, scratch_.data()) != 0) return 1;
+  const int rc = evaluate(m_, ws_, t, scratch_.data(), scratch_.data() + nq, acc_.data());
+  if (rc < 0) throw std::runtime_error("the constraint matrix Phi_q M^-1 Phi_q^T is singular");
+  if (rc != 0) return rc;
+  const int nd = static_cast<int>(ind_.size());
+  for (int i = 0; i < nd; ++i) {
+    ydot[i] = y[nd + i];
+    ydot[nd + i] = acc_[ind_[i]];
+  }
+  return 0;
+}
+
+int MultibodySystem::roots(double t, const double* y, double* g) {
+  const int nq = m_.nq;
+  if (expand(t, y, scratch_.data()) != 0) return 1;
+  const double* q = scratch_.data();
+  const double* v = q + nq;
+  const int nf = static_cast<int>(m_.films.size());
+  bool evaluated = false;
+  int j = nf;
+  for (int k = 0; k < nf; ++k) {
+    const FilmKinematics fk = film_kinematics(m_, k, q, v);
+    // With the contact effect the journal may reach the wall: no film collapse.
+    g[k] = m_.films[k].contact ? 1.0 : eps_limit_ - fk.state.eps;
+    if (!m_.films[k].switching) continue;
+    if (ws_.film_mode[k] != FilmMode::sliding) {
+      g[j] = fk.state.eps_dot;
+      g[j + 1] = 1.0;
+    } else {
+      if (!evaluated) {
+        if (evaluate(m_, ws_, t, q, v, acc_.data()) != 0) return 1;
+        evaluated = true;
+      }
+      const auto [F_out, F_in] = sliding_limits(k, ws_.films[k].state);
+      const double F = ws_.films[k].force.radial_N;
+      g[j] = F - F_out;      // < 0: the load pulls the journal outwards off ε̇ = 0
+      g[j + 1] = F_in - F;   // < 0: the load pushes it inwards
+    }
+    j += 2;
+  }
+  return 0;
+}
+
+std::pair<double, double> MultibodySystem::sliding_limits(int k, BearingState st) {
+  st.eps_dot = 0.0;
+  return {film_element_force(m_, ws_, k, st, FilmMode::outward).radial_N,
+          film_element_force(m_, ws_, k, st, FilmMode::inward).radial_N};
+}
+
+std::vector<int> MultibodySystem::root_directions() const {
+  std::vector<int> d(static_cast<size_t>(num_roots()), 0);
+  const int nf = static_cast<int>(m_.films.size());
+  for (int k = 0; k < nf; ++k) d[k] = -1;
+  int j = nf;
+  for (int k = 0; k < nf; ++k) {
+    if (!m_.films[k].switching) continue;
+    switch (ws_.film_mode[k]) {
+      case FilmMode::outward: d[j] = -1; break;
+      case FilmMode::inward: d[j] = +1; break;
+      default: d[j] = -1; d[j + 1] = -1; break;
+    }
+    j += 2;
+  }
+  return d;
+}
+
+int MultibodySystem::quadrature_rhs(double t, const double* y, double* qdot) {
+  const int nq = m_.nq;
+  if (expand(t, y, scratch_.data()) != 0) return 1;
+  const int rc = evaluate(m_, ws_, t, scratch_.data(), scratch_.data() + nq, acc_.data());
+  if (rc != 0) return rc;
+  qdot[0] = driver_power(m_, ws_, scratch_.data() + nq);
+  qdot[1] = film_power(ws_);
+  return 0;
+}
+
+int MultibodySystem::project(double t, const double* y, double* corr, double* err) {
+  if (form_ != Formulation::baumgarte) return -1;
+  std::copy(y, y + 2 * m_.nq, scratch_.begin());
+  return project_state(m_, ws_, t, scratch_.data(), scratch_.data() + m_.nq, corr, corr + m_.nq,
+                       projection_tol_, err);
+}
+
+}  // namespace lub

@@ -1,0 +1,174 @@
+// Tests of the steadily loaded bearing (core/src/steady_bearing.cpp): for each law, the
+// equilibrium eccentricity and attitude angle under a static load against the classical
+// results, and the finite bearing against Raimondi & Boyd's table through the same solver.
+//
+// Route: pick ε₀, compute the load W(ε₀) from the classical closed form (written here, not
+// taken from the library), hand W to the solver and expect ε₀ back; compare φ with its
+// classical formula. Tolerances: the solver stops at |Δε| <= 1e-14 ε, so ε agrees to ~1e-12
+// (the closed forms' rounding in log|F| mapped through dε/dlog W ~ 1); φ to 1e-10 rad.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "lub/force_laws.hpp"
+#include "lub/steady_bearing.hpp"
+
+namespace {
+
+using lub::BearingGeometry;
+using lub::ForceLaw;
+using lub::SteadyBearingInput;
+using lub::SteadyBearingResult;
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kMu = 0.05;
+constexpr double kOmega = 2.0 * kPi * 3000.0 / 60.0;  // 3000 rpm
+
+BearingGeometry geometry(double length_m) {
+  BearingGeometry g;
+  g.journal_radius_m = 0.025;
+  g.bearing_radius_m = 0.025 + 50e-6;
+  g.length_m = length_m;
+  return g;
+}
+
+SteadyBearingResult solve(ForceLaw law, const BearingGeometry& g, double load) {
+  SteadyBearingInput in;
+  in.law = law;
+  in.geometry = g;
+  in.viscosity_Pa_s = kMu;
+  in.load_N = load;
+  in.speed_rad_s = kOmega;
+  return lub::solve_steady_bearing(in);
+}
+
+struct Classical {
+  double load_N;
+  double attitude_rad;
+};
+
+// Classical steady bearings, U = R ω, C = μLR³/c², C_s = μL³R/c².
+Classical ocvirk(const BearingGeometry& g, double e) {  // short, π film
+  const double c = g.clearance_m();
+  const double Cs = kMu * std::pow(g.length_m, 3) * g.journal_radius_m / (c * c);
+  const double om = 1.0 - e * e;
+  return {Cs * kOmega * e / (4.0 * om * om) * std::sqrt(16.0 * e * e + kPi * kPi * om),
+          std::atan(kPi * std::sqrt(om) / (4.0 * e))};
+}
+Classical sommerfeld_full(const BearingGeometry& g, double e) {  // long, full film: φ = 90°
+  const double c = g.clearance_m();
+  const double C = kMu * g.length_m * std::pow(g.journal_radius_m, 3) / (c * c);
+  return {12.0 * kPi * C * kOmega * e / ((2.0 + e * e) * std::sqrt(1.0 - e * e)), 0.5 * kPi};
+}
+Classical half_sommerfeld(const BearingGeometry& g, double e) {  // long, π film
+  const double c = g.clearance_m();
+  const double C = kMu * g.length_m * std::pow(g.journal_radius_m, 3) / (c * c);
+  const double om = 1.0 - e * e;
+  return {6.0 * C * kOmega * e * std::sqrt(kPi * kPi * om + 4.0 * e * e) / ((2.0 + e * e) * om),
+          std::atan(kPi * std::sqrt(om) / (2.0 * e))};
+}
+Classical short_full(const BearingGeometry& g, double e) {  // short, full film: φ = 90°
+  const double c = g.clearance_m();
+  const double Cs = kMu * std::pow(g.length_m, 3) * g.journal_radius_m / (c * c);
+  return {kPi * Cs * kOmega * e / (2.0 * std::pow(1.0 - e * e, 1.5)), 0.5 * kPi};
+}
+
+void expect_equilibrium(ForceLaw law, const BearingGeometry& g, double e0, const Classical& cl) {
+  const SteadyBearingResult r = solve(law, g, cl.load_N);
+  ASSERT_TRUE(r.converged) << lub::to_string(law) << ": " << r.message;
+  EXPECT_NEAR(r.eps, e0, 1e-11 * e0) << lub::to_string(law) << " eps0=" << e0;
+  EXPECT_NEAR(r.attitude_rad, cl.attitude_rad, 1e-10) << lub::to_string(law) << " eps0=" << e0;
+  EXPECT_NEAR(r.min_film_m, g.clearance_m() * (1.0 - e0), 1e-11 * g.clearance_m());
+  EXPECT_NEAR(std::hypot(r.force.radial_N, r.force.tangential_N), cl.load_N, 1e-12 * cl.load_N);
+}
+
+const double kEps[] = {0.05, 0.2, 0.5, 0.8, 0.95};
+
+TEST(SteadyBearing, OcvirkShortBearing) {
+  const auto g = geometry(0.010);  // L/D = 0.2
+  for (double e : kEps) expect_equilibrium(ForceLaw::gumbel_short, g, e, ocvirk(g, e));
+}
+
+TEST(SteadyBearing, SommerfeldLongBearingFullFilm) {
+  const auto g = geometry(0.150);  // L/D = 3
+  for (double e : kEps) expect_equilibrium(ForceLaw::frene_long, g, e, sommerfeld_full(g, e));
+}
+
+TEST(SteadyBearing, HalfSommerfeldLongBearing) {
+  // gumbel_long and the exact π film (identical at ε̇ = 0) both reproduce it.
+  const auto g = geometry(0.150);
+  for (double e : kEps) {
+    expect_equilibrium(ForceLaw::gumbel_long, g, e, half_sommerfeld(g, e));
+    expect_equilibrium(ForceLaw::pinkus_sternlicht_continuous, g, e, half_sommerfeld(g, e));
+  }
+}
+
+TEST(SteadyBearing, ShortBearingFullFilm) {
+  const auto g = geometry(0.010);
+  for (double e : kEps) expect_equilibrium(ForceLaw::frene_short, g, e, short_full(g, e));
+}
+
+TEST(SteadyBearing, PrintedPinkusSternlichtCarriesTheLoadAtASmallerEccentricity) {
+  // Its F_t is 1/(1−ε²) too large, so under the half-Sommerfeld load W(ε₀) it settles at a
+  // smaller ε with a larger attitude angle: tan φ = π/(2ε(1−ε²)^(1/2)) at its own ε.
+  const auto g = geometry(0.150);
+  for (double e : {0.5, 0.8}) {
+    const SteadyBearingResult r = solve(ForceLaw::pinkus_sternlicht, g, half_sommerfeld(g, e).load_N);
+    ASSERT_TRUE(r.converged);
+    EXPECT_LT(r.eps, e);
+    EXPECT_NEAR(std::tan(r.attitude_rad), kPi / (2.0 * r.eps * std::sqrt(1.0 - r.eps * r.eps)), 1e-9);
+  }
+}
+
+TEST(SteadyBearing, FiniteBearingAgainstRaimondiBoydThroughTheSolver) {
+  // Raimondi & Boyd (1958) Table 1, L/D = 1 (see test_core_reynolds.cpp for the citation):
+  // load from the tabulated S, equilibrium ε within 0.01 of the tabulated ε, φ within 0.6°.
+  // Grid 96 × 12 with R&B's supply condition.
+  const struct {
+    double eps, S, phi_deg;
+  } rows[] = {{0.2, 0.631, 74.02}, {0.6, 0.121, 50.58}, {0.9, 0.0188, 26.45}};
+  const auto g = geometry(0.050);  // L/D = 1
+  for (const auto& row : rows) {
+    const double rc = g.journal_radius_m / g.clearance_m();
+    const double n_rev = kOmega / (2.0 * kPi);
+    const double P = rc * rc * kMu * n_rev / row.S;
+    SteadyBearingInput in;
+    in.law = ForceLaw::finite_reynolds;
+    in.finite.n_theta = 96;
+    in.finite.n_z = 12;
+    in.finite.groove_at_max_film = true;
+    in.geometry = g;
+    in.viscosity_Pa_s = kMu;
+    in.load_N = P * 2.0 * g.journal_radius_m * g.length_m;
+    in.speed_rad_s = kOmega;
+    const SteadyBearingResult r = lub::solve_steady_bearing(in);
+    ASSERT_TRUE(r.converged) << r.message;
+    EXPECT_NEAR(r.eps, row.eps, 0.01) << row.eps;
+    EXPECT_NEAR(r.attitude_rad * 180.0 / kPi, row.phi_deg, 0.6) << row.eps;
+    EXPECT_NEAR(r.sommerfeld, row.S, 1e-12 * row.S);
+    std::printf("[ measured ] steady finite_reynolds L/D=1 S=%g: eps %.4f (table %.2f), phi %.2f deg (table %.2f)\n",
+                row.S, r.eps, row.eps, r.attitude_rad * 180.0 / kPi, row.phi_deg);
+  }
+}
+
+TEST(SteadyBearing, ReportsLoadsOutsideTheFilmsRange) {
+  const auto g = geometry(0.050);
+  const SteadyBearingResult tiny = solve(ForceLaw::gumbel_short, g, 1e-12);
+  EXPECT_FALSE(tiny.converged);
+  EXPECT_NE(tiny.message.find("centred"), std::string::npos) << tiny.message;
+  const SteadyBearingResult huge = solve(ForceLaw::gumbel_short, g, 1e30);
+  EXPECT_FALSE(huge.converged);
+  EXPECT_NE(huge.message.find("cannot carry"), std::string::npos) << huge.message;
+}
+
+TEST(SteadyBearing, SommerfeldNumberDefinition) {
+  // S = (R/c)² μ N/P with N in rev/s and P = W/(L D).
+  const auto g = geometry(0.050);
+  const double S = lub::sommerfeld_number(g, kMu, 1000.0, kOmega);
+  const double expect = std::pow(0.025 / g.clearance_m(), 2) * kMu * 50.0 / (1000.0 / (0.050 * 0.050));
+  EXPECT_NEAR(S, expect, 1e-14 * expect);
+}
+
+}  // namespace
