@@ -1,0 +1,39 @@
+// Running one case, and its outcome as a value that travels between ranks.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "lub/run.hpp"
+#include "lub/run_io.hpp"
+
+namespace lub::sweep {
+
+/// The result columns of /cases: lub::metric_fields() then lub::solver_fields(), so that
+/// lubsim and lubsweep report the same quantities under the same names and units.
+std::vector<ResultField> result_fields();
+
+/// One case's outcome. `values` follow result_fields(); NaN where a case that could not
+/// run has no value.
+struct CaseResult {
+  int case_id = -1;
+  int rank = 0;                 ///< MPI rank that computed it
+  std::string status;           ///< RunStatus ("ok", "film_collapse", ...), or "invalid_scene", "error"
+  std::string message;
+  std::vector<double> values;
+  std::string revision;         ///< build revision of the program that computed it
+  Series series;                ///< the scene's channels ("t" first); empty if none
+
+  bool ok() const { return status == "ok"; }
+};
+
+/// Parses the case's scene (canonical JSON) and runs it. Never throws: a scene the core
+/// refuses at run time ("invalid_scene") or any exception ("error") becomes the status.
+CaseResult run_case(int case_id, const std::string& scene_json, int rank);
+
+/// Byte encoding for MPI messages (same program on every rank: native byte order).
+std::string encode(const CaseResult& r);
+/// Throws std::runtime_error on a truncated or malformed buffer.
+CaseResult decode(const std::string& bytes);
+
+}  // namespace lub::sweep

@@ -1,0 +1,91 @@
+// A grid: which scenes a study runs. Read from JSON (README, "Writing a grid"), strictly
+// validated, and expanded into cases before any work starts, so bad input never costs a
+// simulation and never touches an output file.
+//
+//   {
+//     "description": "...",
+//     "scene": "../scenes/slider_crank.json",     // base scene: path (relative to the grid) or object
+//     "joint": "rod_slider",                       // joint of the named axes (default: metrics.joint)
+//     "driver": "crank_speed",                     // driver of speed_rpm (default: the first)
+//     "set": {"/solver/rtol": 1e-7},               // fixed overrides of the base scene
+//     "study": {"max_cycles": 40, "stop_when_steady": true, "channels": [], "on_failure": "continue"},
+//     "axes":  [{"name": "clearance_m", "values": [5e-4, 1e-4]},
+//               {"pointer": "/solver/method", "name": "method", "values": ["cvode_bdf", "cvode_adams"]}],
+//     "cases": [{"clearance_m": 5e-5, "/solver/rtol": 1e-8}],
+//     "grids": [{"name": "clearance", "axes": [...]}, {"name": "speed", "axes": [...]}]
+//   }
+//
+// `axes` is a full factorial (the first axis varies slowest), `cases` an explicit list,
+// `grids` a union of named sub-grids (each with `axes` or `cases`). Cases with the same
+// effective scene are run once (the paper's reference case belongs to every one-axis study).
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace lub::sweep {
+
+enum class FailurePolicy { continue_on_failure, abort_on_failure };
+
+/// The four axes a grid may name without a pointer (the paper's study axes).
+const std::vector<std::string>& named_axes();
+
+/// One varied quantity: a column of /cases.
+struct Axis {
+  std::string name;     ///< column name; the named axes carry their unit in the name
+  std::string kind;     ///< "clearance_m", "viscosity_Pa_s", "speed_rpm", "force_law" or "pointer"
+  std::string pointer;  ///< the scene value it sets (clearance_m: the journal radius)
+  std::string units;    ///< SI unit ("m", "Pa s", "rpm", "" ...)
+  bool numeric = true;  ///< every value a number: a float64 column (else strings)
+};
+
+/// One sub-grid: a full factorial over some axes, or an explicit list of cases.
+struct Block {
+  std::string name;
+  bool factorial = true;
+  std::vector<int> axes;                            ///< factorial: indices into Grid::axes
+  std::vector<std::vector<nlohmann::json>> values;  ///< factorial: each axis's values, as listed
+  std::vector<std::size_t> shape;                   ///< factorial: extents; explicit: {cases}
+  std::vector<int> case_ids;                        ///< row-major over `shape`
+};
+
+/// One simulation of the study.
+struct Case {
+  int id = 0;                                ///< row of /cases in the finished file
+  std::string name;                          ///< "case_0007": its /series group
+  std::string scene;                         ///< canonical JSON of the effective scene: what runs
+  std::string hash;                          ///< SHA-256 of `scene`: identity for resume
+  std::vector<nlohmann::json> axis_values;   ///< per Grid::axes, read back from the scene (null: unset)
+  std::string label;                         ///< "clearance_m=0.0001" (the values its grid varies)
+};
+
+struct Grid {
+  std::string file;             ///< grid file ("" if parsed from text)
+  std::string text;             ///< the grid as given
+  std::string description;
+  std::string base_scene_file;  ///< "" if inline
+  std::string base_scene_text;  ///< the base scene as given (its file's text, or the inline object)
+  FailurePolicy on_failure = FailurePolicy::continue_on_failure;
+  std::vector<Axis> axes;
+  std::vector<Block> blocks;
+  std::vector<Case> cases;
+};
+
+/// Reads, validates and expands a grid file. Throws lub::InputError naming the field, the
+/// value and the rule ("grid.axes[0].values[2] = -1: must be > 0 m").
+Grid load_grid(const std::string& path);
+
+/// The same from the grid's text; relative scene paths are resolved against `base_dir`,
+/// `file` is recorded as the grid's file name.
+Grid parse_grid(const std::string& text, const std::string& base_dir, const std::string& file = "");
+
+/// "case_0007": zero-padded to at least four digits and to the width of the largest id.
+std::string case_name(int id, std::size_t total);
+
+/// A JSON value for a message or a label: strings without quotes, numbers in %g.
+std::string value_text(const nlohmann::json& v);
+
+}  // namespace lub::sweep

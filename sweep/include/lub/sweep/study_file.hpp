@@ -1,0 +1,93 @@
+// The study file (HDF5), written by one rank. Layout (README, "The study file"):
+//
+//   /                 attributes: program, format, version, revision, description, grid,
+//                     grid_file, base_scene, base_scene_file, on_failure, cases_total, complete
+//   /cases            one row per case: case_id, case, hash, <axes>, status, message,
+//                     <metric fields>, <solver fields>, rank, revision (units attribute)
+//   /scenes           [cases] the effective scene of each case (canonical JSON), by case id
+//   /grids/<name>/case_id   case ids over the sub-grid's axes, one dimension per axis, each
+//                     with a dimension scale /grids/<name>/<axis> (its values as listed)
+//   /series/<case>/<channel>  the channels the grid stores (t first), with units
+//
+// While a sweep runs, rows are appended (and flushed) as results arrive, so a killed sweep
+// leaves a file that opens and resumes. At the end the file is rewritten canonically (rows
+// in case-id order, so case_id is also the row number) into PATH.partial and renamed.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lub/h5.hpp"
+#include "lub/sweep/case_result.hpp"
+#include "lub/sweep/grid.hpp"
+
+namespace lub::sweep {
+
+/// Version of the layout above, in the root attribute `format`.
+inline constexpr const char* kStudyFormat = "lubsweep-study-1";
+
+/// Columns of /cases for a grid.
+std::vector<h5::Column> case_columns(const Grid& grid);
+/// The /cases row of one result.
+h5::Row case_row(const Grid& grid, const CaseResult& result);
+
+/// What an existing output file holds for this grid.
+struct ResumeState {
+  std::map<int, CaseResult> done;  ///< results of this grid's cases, by case id (series not loaded)
+  std::size_t other_rows = 0;      ///< rows that are not cases of this grid (dropped)
+  std::size_t incompatible_rows = 0;  ///< rows of a file without this build's result columns
+  std::size_t retried = 0;         ///< failed rows left out to be run again (retry_failed)
+  std::size_t other_revision = 0;  ///< rows computed by another build revision (run again)
+};
+
+/// Reads the results an existing study file holds for `grid`'s cases, matched by hash.
+/// Only rows computed by build `revision` are reused (a file never mixes results of two
+/// builds), and only if the file has every result column of this build.
+/// Throws lub::InputError if `path` is not a lubsweep study file.
+ResumeState read_existing(const std::string& path, const Grid& grid, bool retry_failed,
+                          const std::string& revision);
+
+/// Writes the study file.
+class StudyWriter {
+ public:
+  /// Starts the file at `path`: the header plus the `reused` results, whose series are
+  /// copied from `reuse_from` (the previous file at `path`; "" if none). Written to
+  /// PATH.partial, then renamed: the previous file stays intact until then.
+  StudyWriter(std::string path, const Grid& grid, const std::map<int, CaseResult>& reused,
+              const std::string& reuse_from);
+  StudyWriter(const StudyWriter&) = delete;
+  StudyWriter& operator=(const StudyWriter&) = delete;
+
+  /// Writes one result (its series first, then its row) and flushes the file.
+  void append(const CaseResult& result);
+  /// Rewrites the file canonically (rows in case-id order) and closes it. `complete`:
+  /// every case of the grid has a row.
+  void finalize();
+
+  std::size_t rows() const { return results_.size(); }
+  bool complete() const { return results_.size() == grid_.cases.size(); }
+
+ private:
+  std::string path_;
+  const Grid& grid_;
+  h5::File file_;
+  h5::Table table_;
+  std::map<int, CaseResult> results_;  ///< every row, series dropped
+};
+
+/// Copies /series/<case> of `from` into `to` if present.
+void copy_series(const h5::File& from, h5::File& to, const std::string& case_name);
+
+/// Prints a table of the study (one line per case: axes, status, key metrics) to `out`.
+void print_summary(const std::string& path, std::FILE* out);
+
+/// 1-D variable-length UTF-8 string dataset (h5py: `.asstr()[:]`), and its reader.
+void write_strings(h5::Group& group, const std::string& name, const std::vector<std::string>& values);
+std::vector<std::string> read_strings(const h5::Group& group, const std::string& name);
+/// N-D int64 dataset, row-major.
+void write_int64s(h5::Group& group, const std::string& name, const std::vector<std::int64_t>& values,
+                  const std::vector<std::size_t>& shape);
+
+}  // namespace lub::sweep

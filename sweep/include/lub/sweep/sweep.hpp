@@ -1,0 +1,46 @@
+// lubsweep's driver: options, and the MPI sweep (dynamic scheduling, one writer).
+//
+// Rank 0 validates the grid and the output before any work, then hands out cases one at
+// a time to whichever rank asks (a rank asks again when it returns a result), computes
+// cases itself on a worker thread while its main thread serves the other ranks (polling
+// with MPI_Iprobe and short sleeps, so it does not steal the core its own worker uses),
+// and alone writes the study file. Every case is computed from its own scene, so the
+// metrics do not depend on the number of ranks or on which rank ran a case.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lub::sweep {
+
+struct Options {
+  std::string grid;
+  std::string output;
+  bool restart = false;       ///< ignore (and overwrite) an existing output file
+  bool retry_failed = false;  ///< run again the cases the file records as failed
+  bool quiet = false;         ///< no progress lines
+  bool summary = true;        ///< print the study's table at the end
+  std::string summary_of;     ///< --summary FILE: only print FILE's table
+  bool check = false;         ///< validate the grid, list its cases, run nothing
+  long kill_after = -1;       ///< tests: rank 0 kills itself (SIGKILL) after this many new rows
+};
+
+/// Exit statuses.
+inline constexpr int kExitOk = 0;           ///< complete: every case has a row (ok or not)
+inline constexpr int kExitIoError = 1;      ///< the study file could not be written
+inline constexpr int kExitBadInput = 2;     ///< bad grid, options or output: nothing written
+inline constexpr int kExitCaseFailed = 3;   ///< stopped early by on_failure = abort
+
+extern const char* const kUsage;
+
+/// Parses the command line (argv[1..]). Returns an error message, or nullopt on success;
+/// `help` is set for -h/--help and --version prints into `help_text`.
+std::optional<std::string> parse_options(const std::vector<std::string>& args, Options& out, bool& help,
+                                         std::string& help_text);
+
+/// Runs the sweep on MPI_COMM_WORLD (MPI initialised with at least MPI_THREAD_FUNNELED).
+/// Returns the exit status on every rank (rank 0's decides; others return 0 or 2).
+int run_sweep(const Options& options);
+
+}  // namespace lub::sweep

@@ -1,0 +1,113 @@
+#!/usr/bin/env bash
+# MPI tests of lubsweep, run by ctest (label mpi). Usage:
+#   sweep_mpi_test.sh CASE MPIEXEC LUBSWEEP STUDY_COMPARE WORKDIR
+# CASE: ranks     -np 1 and -np 2 give bit-identical results, in the same order
+#       resume    a sweep killed after 3 cases (SIGKILL on rank 0) resumes to the same
+#                 results as an uninterrupted run, running only the missing cases
+#       bad_input a bad grid exits 2 under mpirun and creates no file; an existing
+#                 non-study output is refused and left untouched
+#       abort     on_failure = abort stops the sweep (exit 3, incomplete file); a re-run
+#                 completes it, the failure kept
+#       tools     the Python tools on a small study (compare_study.py finds a regression,
+#                 plot_paper.py and sweep_map.py draw); exit 77 (skipped) without h5py
+set -euo pipefail
+what="$1" mpiexec="$2" lubsweep="$3" compare="$4" work="$5"
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+grid="$here/tiny_grid.json"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+rm -rf "$work" && mkdir -p "$work" && cd "$work"
+run() {  # run NP OUT [args...]
+  local np="$1" out="$2"; shift 2
+  "$mpiexec" -np "$np" "$lubsweep" "$grid" -o "$out" --no-summary "$@"
+}
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+case "$what" in
+ranks)
+  run 1 np1.h5
+  run 2 np2.h5
+  "$compare" np1.h5 np2.h5
+  ;;
+resume)
+  run 2 full.h5
+  set +e
+  LUBSWEEP_TEST_KILL_AFTER=3 run 2 killed.h5 2> killed.log
+  rc=$?
+  set -e
+  [ "$rc" -ne 0 ] || fail "the killed sweep exited 0"
+  rows=$(h5ls killed.h5/cases | sed -E 's/.*\{([0-9]+)\/.*/\1/')
+  [ "$rows" = "3" ] || fail "the killed file holds $rows rows, expected 3"
+  run 2 killed.h5 2> resumed.log
+  grep -q "holds 3 of them (7 to run)" resumed.log || { cat resumed.log >&2; fail "the resumed sweep did not skip the 3 cases done"; }
+  "$compare" full.h5 killed.h5
+  # Once complete, a re-run runs nothing and changes no result.
+  run 1 killed.h5 2> again.log
+  grep -q "holds 10 of them (0 to run)" again.log || { cat again.log >&2; fail "the complete study was run again"; }
+  "$compare" full.h5 killed.h5
+  ;;
+bad_input)
+  set +e
+  "$mpiexec" -np 2 "$lubsweep" "$here/bad_grid.json" -o bad.h5 2> bad.log
+  rc=$?
+  set -e
+  [ "$rc" -eq 2 ] || { cat bad.log >&2; fail "a bad grid exited $rc, expected 2"; }
+  grep -q "grid.axes\[0\].values\[1\] = -0.0001: must be > 0 m" bad.log || { cat bad.log >&2; fail "message"; }
+  [ ! -e bad.h5 ] || fail "a bad grid created its output file"
+  echo "not a study" > other.h5
+  set +e
+  "$mpiexec" -np 2 "$lubsweep" "$grid" -o other.h5 2> other.log
+  rc=$?
+  set -e
+  [ "$rc" -eq 2 ] || { cat other.log >&2; fail "a foreign output file: exit $rc, expected 2"; }
+  [ "$(cat other.h5)" = "not a study" ] || fail "a foreign output file was overwritten"
+  ;;
+abort)
+  # on_failure = abort: the sweep stops after the failed case (exit 3) with a resumable,
+  # incomplete file; a re-run keeps the recorded failure and completes the rest.
+  set +e
+  "$mpiexec" -np 2 "$lubsweep" "$here/abort_grid.json" -o a.h5 --no-summary 2> abort.log
+  rc=$?
+  set -e
+  [ "$rc" -eq 3 ] || { cat abort.log >&2; fail "an aborted sweep exited $rc, expected 3"; }
+  grep -q "on_failure = abort: stopping" abort.log || { cat abort.log >&2; fail "no abort message"; }
+  rows=$(h5ls a.h5/cases | sed -E 's/.*\{([0-9]+)\/.*/\1/')
+  [ "$rows" -lt 8 ] || fail "the aborted sweep ran every case"
+  [ "$(h5dump -A -a /complete a.h5 | grep -Eo '\(0\): [0-9]+')" = "(0): 0" ] || fail "the aborted file is marked complete"
+  "$mpiexec" -np 2 "$lubsweep" "$here/abort_grid.json" -o a.h5 --no-summary 2> again.log \
+    || { cat again.log >&2; fail "the resumed sweep failed (complete with one recorded failure: exit 0)"; }
+  grep -q "holds 1 of them" again.log || grep -q "holds 2 of them" again.log || { cat again.log >&2; fail "resume"; }
+  [ "$(h5dump -A -a /complete a.h5 | grep -Eo '\(0\): [0-9]+')" = "(0): 1" ] || fail "the resumed file is not complete"
+  ;;
+tools)
+  # The Python post-processing on a small study (skipped without Debian's h5py/matplotlib).
+  py=/usr/bin/python3
+  tools="$here/../../tools"
+  "$py" -c "import h5py, matplotlib, numpy" 2>/dev/null || { echo "no h5py/matplotlib: skipped"; exit 77; }
+  run 2 s.h5
+  "$py" "$tools/compare_study.py" s.h5 s.h5 -q
+  "$py" - <<'PY'
+import h5py
+with h5py.File("s.h5", "r") as f, h5py.File("worse.h5", "w") as g:
+    for k, v in f.attrs.items():
+        g.attrs[k] = v
+    f.copy("cases", g)
+    rows = g["cases"][:]
+    rows["max_eps"][4] *= 1.01
+    g["cases"][:] = rows
+PY
+  set +e
+  "$py" "$tools/compare_study.py" worse.h5 s.h5 -q > compare.log
+  rc=$?
+  set -e
+  [ "$rc" -eq 1 ] || { cat compare.log >&2; fail "compare_study.py missed a 1 % change of max_eps (exit $rc)"; }
+  grep -q "REGRESSION case_0004: max_eps" compare.log || { cat compare.log >&2; fail "compare_study.py message"; }
+  "$py" "$tools/plot_paper.py" s.h5 -o figures > figures.log
+  [ -s figures/fig05_reference.png ] || fail "plot_paper.py drew no reference figure"
+  "$py" "$tools/sweep_map.py" s.h5 -x speed_rpm -y force_law --fix solver.rtol=1e-6 -m max_eps -m steps -o maps > maps.log
+  [ -s maps/map_max_eps_speed_rpm_force_law.png ] || fail "sweep_map.py drew no map"
+  ;;
+*)
+  fail "unknown test $what"
+  ;;
+esac
+echo "sweep_mpi_test $what: ok"

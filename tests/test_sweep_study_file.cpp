@@ -1,0 +1,338 @@
+// Tests of the study file (lub/sweep/study_file.hpp) and of running and encoding one case
+// (lub/sweep/case_result.hpp): layout and units, dimension scales, canonical order,
+// resume by hash (also from a killed writer), a foreign output file, the progress line.
+#include "lub/sweep/study_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "lub/json_reader.hpp"
+#include "lub/sweep/case_result.hpp"
+#include "lub/sweep/grid.hpp"
+#include "lub/sweep/progress.hpp"
+#include "lub/sweep/sweep.hpp"
+
+namespace fs = std::filesystem;
+using namespace lub::sweep;
+using nlohmann::json;
+
+namespace {
+
+const std::string kScenes = std::string(LUB_SOURCE_DIR) + "/configs/scenes";
+
+/// 2 x 2 factorial plus one explicit case: 5 cases, two of them store series.
+Grid small_grid() {
+  return parse_grid(R"({
+      "scene": "slider_crank.json",
+      "set": {"/solver/rtol": 1e-6},
+      "study": {"max_cycles": 2, "metric_cycles": 1, "channels": ["h_min"], "last_cycles": 1, "samples_per_cycle": 90},
+      "grids": [{"name": "main", "axes": [{"name": "force_law", "values": ["ideal", "frene_short"]},
+                                          {"name": "speed_rpm", "values": [5000, 500]}]},
+                {"name": "extra", "cases": [{"/solver/rtol": 1e-7, "force_law": "ideal"}]}]})",
+                    kScenes, "small.json");
+}
+
+/// A made-up result: distinct values per case, series for even ids.
+CaseResult fake(const Grid& g, int id, const std::string& status = "ok") {
+  CaseResult r;
+  r.case_id = id;
+  r.rank = id % 2;
+  r.status = status;
+  r.message = status == "ok" ? "" : "it broke";
+  r.revision = lub::build_revision();
+  const auto fields = result_fields();
+  for (std::size_t i = 0; i < fields.size(); ++i) r.values.push_back(fields[i].integer ? double(id + i) : 0.5 * id + 0.001 * i);
+  if (id % 2 == 0) {
+    r.series.names = {"t", "h_min"};
+    r.series.units = {"s", "m"};
+    r.series.data = {{0.0, 0.1, 0.2}, {1e-4 * id, 2e-4, 3e-4}};
+  }
+  (void)g;
+  return r;
+}
+
+class StudyFile : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::path(::testing::TempDir()) / ("lub_sweep_" + std::to_string(::getpid()) + "_" + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+  std::string file(const std::string& name) const { return (dir_ / name).string(); }
+  fs::path dir_;
+};
+
+}  // namespace
+
+TEST_F(StudyFile, LayoutUnitsAndAttributes) {
+  const Grid g = small_grid();
+  ASSERT_EQ(g.cases.size(), 5u);
+  const std::string path = file("s.h5");
+  {
+    StudyWriter w(path, g, {}, "");
+    for (int id : {0, 1, 2, 3, 4}) w.append(fake(g, id));
+    EXPECT_TRUE(w.complete());
+    w.finalize();
+  }
+  EXPECT_FALSE(fs::exists(path + ".partial"));
+  const auto f = lub::h5::File::open(path);
+  EXPECT_EQ(f.attribute_string("program"), "lubsweep");
+  EXPECT_EQ(f.attribute_string("format"), kStudyFormat);
+  EXPECT_EQ(f.attribute_string("grid"), g.text);
+  EXPECT_EQ(f.attribute_string("grid_file"), "small.json");
+  EXPECT_EQ(f.attribute_string("base_scene"), g.base_scene_text);
+  EXPECT_EQ(f.attribute_string("version"), lub::program_version());
+  EXPECT_EQ(f.attribute_string("revision"), lub::build_revision());
+  EXPECT_EQ(f.attribute_int64("cases_total"), 5);
+  EXPECT_EQ(f.attribute_int64("complete"), 1);
+
+  const auto t = f.open_table("cases");
+  EXPECT_EQ(t.rows(), 5u);
+  std::vector<std::string> names;
+  for (const auto& c : t.columns()) names.push_back(c.name);
+  const std::vector<std::string> head = {"case_id", "case", "hash", "force_law", "speed_rpm", "solver.rtol", "status", "message"};
+  EXPECT_EQ(std::vector<std::string>(names.begin(), names.begin() + 8), head);
+  EXPECT_EQ(names.back(), "revision");
+  EXPECT_EQ(t.columns()[t.column_index("speed_rpm")].units, "rpm");
+  EXPECT_EQ(t.columns()[t.column_index("min_film_thickness_m")].units, "m");
+  EXPECT_EQ(t.columns()[t.column_index("steps")].type, lub::h5::ColumnType::Int64);
+  EXPECT_EQ(t.attribute_strings("axes"), (std::vector<std::string>{"force_law", "speed_rpm", "solver.rtol"}));
+  EXPECT_EQ(t.read_strings("force_law"), (std::vector<std::string>{"ideal", "ideal", "frene_short", "frene_short", "ideal"}));
+  EXPECT_EQ(t.read_doubles("speed_rpm"), (std::vector<double>{5000, 500, 5000, 500, 5000}));
+  EXPECT_EQ(t.read_doubles("solver.rtol")[4], 1e-7);
+  EXPECT_EQ(t.read_strings("hash")[3], g.cases[3].hash);
+
+  // Every case's scene, by case id.
+  const auto scenes = read_strings(f, "scenes");
+  ASSERT_EQ(scenes.size(), 5u);
+  EXPECT_EQ(scenes[2], g.cases[2].scene);
+
+  // The factorial's case ids over its axes, with dimension scales.
+  const auto idx = f.open_dataset("grids/main/case_id");
+  EXPECT_EQ(idx.shape(), (std::vector<std::size_t>{2, 2}));
+  EXPECT_EQ(idx.read_int64s(), (std::vector<std::int64_t>{0, 1, 2, 3}));
+  EXPECT_TRUE(f.open_dataset("grids/main/speed_rpm").is_scale());
+  EXPECT_EQ(f.open_dataset("grids/main/speed_rpm").read_doubles(), (std::vector<double>{5000, 500}));
+  EXPECT_EQ(f.open_dataset("grids/main/speed_rpm").units(), "rpm");
+  EXPECT_EQ(read_strings(f.open_group("grids/main"), "force_law"), (std::vector<std::string>{"ideal", "frene_short"}));
+  EXPECT_EQ(f.open_dataset("grids/extra/case_id").read_int64s(), std::vector<std::int64_t>{4});
+
+  // Series of the cases that have them.
+  EXPECT_TRUE(f.exists("series/case_0002/h_min"));
+  EXPECT_FALSE(f.exists("series/case_0001"));
+  EXPECT_EQ(f.open_dataset("series/case_0002/h_min").units(), "m");
+  EXPECT_EQ(f.open_group("series/case_0002").attribute_strings("channels"), (std::vector<std::string>{"t", "h_min"}));
+}
+
+TEST_F(StudyFile, FinalFileIsInCaseIdOrderWhateverTheArrivalOrder) {
+  const Grid g = small_grid();
+  const std::string a = file("a.h5"), b = file("b.h5");
+  for (const auto& [path, order] : {std::pair{a, std::vector<int>{0, 1, 2, 3, 4}}, std::pair{b, std::vector<int>{3, 0, 4, 2, 1}}}) {
+    StudyWriter w(path, g, {}, "");
+    for (int id : order) w.append(fake(g, id));
+    w.finalize();
+  }
+  const auto ta = lub::h5::File::open(a).open_table("cases"), tb = lub::h5::File::open(b).open_table("cases");
+  EXPECT_EQ(tb.read_int64s("case_id"), (std::vector<std::int64_t>{0, 1, 2, 3, 4}));
+  for (const auto& f : result_fields()) EXPECT_EQ(ta.read_doubles(f.name), tb.read_doubles(f.name)) << f.name;
+}
+
+TEST_F(StudyFile, ResumeFindsTheCasesByHash) {
+  const Grid g = small_grid();
+  const std::string path = file("r.h5");
+  {
+    StudyWriter w(path, g, {}, "");
+    w.append(fake(g, 2));
+    w.append(fake(g, 3, "film_collapse"));
+    // not finalized: the live file, rows in arrival order
+  }
+  ResumeState st = read_existing(path, g, false, lub::build_revision());
+  ASSERT_EQ(st.done.size(), 2u);
+  EXPECT_EQ(st.done.at(3).status, "film_collapse");
+  EXPECT_EQ(st.done.at(3).message, "it broke");
+  EXPECT_EQ(st.done.at(2).values, fake(g, 2).values);
+  EXPECT_EQ(st.other_rows, 0u);
+  EXPECT_EQ(read_existing(path, g, true, lub::build_revision()).done.size(), 1u);  // --retry-failed
+  EXPECT_EQ(read_existing(path, g, true, lub::build_revision()).retried, 1u);
+  // Rows of another build are run again: a file never mixes two builds' results.
+  const ResumeState newer = read_existing(path, g, false, "another-revision");
+  EXPECT_TRUE(newer.done.empty());
+  EXPECT_EQ(newer.other_revision, 2u);
+
+  // Resume: the reused rows and their series are carried over, the rest appended.
+  {
+    StudyWriter w(path, g, st.done, path);
+    EXPECT_EQ(w.rows(), 2u);
+    for (int id : {0, 1, 4}) w.append(fake(g, id));
+    w.finalize();
+  }
+  const auto f = lub::h5::File::open(path);
+  EXPECT_EQ(f.attribute_int64("complete"), 1);
+  EXPECT_EQ(f.open_table("cases").read_int64s("case_id"), (std::vector<std::int64_t>{0, 1, 2, 3, 4}));
+  EXPECT_EQ(f.open_dataset("series/case_0002/h_min").read_doubles(), fake(g, 2).series.data[1]);
+
+  // Another grid over the same file: rows of other scenes are not reused.
+  const Grid other = parse_grid(R"({"scene": "slider_crank.json", "study": {"max_cycles": 3},
+                                    "axes": [{"name": "force_law", "values": ["ideal"]}]})", kScenes);
+  const ResumeState o = read_existing(path, other, false, lub::build_revision());
+  EXPECT_TRUE(o.done.empty());
+  EXPECT_EQ(o.other_rows, 5u);
+}
+
+TEST_F(StudyFile, KilledWriterLeavesAFileThatResumes) {
+  const Grid g = small_grid();
+  const std::string path = file("k.h5");
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    StudyWriter w(path, g, {}, "");
+    w.append(fake(g, 0));
+    w.append(fake(g, 4));
+    ::kill(::getpid(), SIGKILL);  // no close, no finalize
+    ::_exit(0);
+  }
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  const ResumeState st = read_existing(path, g, false, lub::build_revision());
+  EXPECT_EQ(st.done.size(), 2u);
+  EXPECT_TRUE(st.done.count(0) && st.done.count(4));
+  StudyWriter w(path, g, st.done, path);
+  for (int id : {1, 2, 3}) w.append(fake(g, id));
+  w.finalize();
+  EXPECT_EQ(lub::h5::File::open(path).open_table("cases").rows(), 5u);
+  EXPECT_TRUE(lub::h5::File::open(path).exists("series/case_0000/t"));
+}
+
+TEST_F(StudyFile, IncompleteStudyIsMarkedIncomplete) {
+  const Grid g = small_grid();
+  const std::string path = file("i.h5");
+  StudyWriter w(path, g, {}, "");
+  w.append(fake(g, 1));
+  EXPECT_FALSE(w.complete());
+  w.finalize();
+  EXPECT_EQ(lub::h5::File::open(path).attribute_int64("complete"), 0);
+}
+
+TEST_F(StudyFile, ForeignOutputFileIsRefused) {
+  const Grid g = small_grid();
+  const std::string text = file("notes.h5"), other = file("other.h5");
+  std::ofstream(text) << "not hdf5";
+  try {
+    read_existing(text, g, false, "r");
+    FAIL() << "no error";
+  } catch (const lub::InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "-o " + text + ": the file exists and is not an HDF5 file (use --restart to overwrite it, or another -o)");
+  }
+  lub::h5::File::create(other).set_attribute("program", "lubsim");
+  try {
+    read_existing(other, g, false, "r");
+    FAIL() << "no error";
+  } catch (const lub::InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "-o " + other + ": the file exists and is not a lubsweep study file (use --restart to overwrite it, or another -o)");
+  }
+}
+
+TEST(SweepCase, RunsAScene) {
+  const Grid g = small_grid();
+  const CaseResult r = run_case(2, g.cases[2].scene, 7);  // frene_short, 5000 rpm, 2 cycles
+  EXPECT_EQ(r.status, "ok") << r.message;
+  EXPECT_EQ(r.case_id, 2);
+  EXPECT_EQ(r.rank, 7);
+  ASSERT_EQ(r.values.size(), result_fields().size());
+  for (double v : r.values) EXPECT_TRUE(std::isfinite(v));
+  EXPECT_EQ(r.series.names, (std::vector<std::string>{"t", "h_min"}));
+  // Only the last cycle is kept, sampled 90 times (both ends included).
+  EXPECT_EQ(r.series.data[0].size(), 91u);
+  // The same scene gives the same numbers (what makes -np 1 and -np 2 agree).
+  const CaseResult again = run_case(2, g.cases[2].scene, 0);
+  for (std::size_t i = 0; i < r.values.size(); ++i) {
+    if (std::string(result_fields()[i].name) == "wall_time_s") continue;
+    EXPECT_EQ(r.values[i], again.values[i]) << result_fields()[i].name;
+  }
+}
+
+TEST(SweepCase, FailuresAreValues) {
+  const CaseResult bad = run_case(1, "{not json", 0);
+  EXPECT_EQ(bad.status, "error");
+  EXPECT_FALSE(bad.message.empty());
+  EXPECT_TRUE(std::isnan(bad.values[0]));
+  const CaseResult invalid = run_case(1, R"({"bodies": []})", 0);
+  EXPECT_EQ(invalid.status, "invalid_scene");
+  EXPECT_EQ(invalid.message.substr(0, 7), "bodies ");
+}
+
+TEST(SweepCase, EncodeDecodeRoundTrip) {
+  const Grid g = small_grid();
+  CaseResult r = fake(g, 4, "solver_failure");
+  r.values[1] = std::nan("");
+  const CaseResult d = decode(encode(r));
+  EXPECT_EQ(d.case_id, 4);
+  EXPECT_EQ(d.rank, r.rank);
+  EXPECT_EQ(d.status, r.status);
+  EXPECT_EQ(d.message, r.message);
+  EXPECT_EQ(d.revision, r.revision);
+  ASSERT_EQ(d.values.size(), r.values.size());
+  EXPECT_TRUE(std::isnan(d.values[1]));
+  EXPECT_EQ(d.values[2], r.values[2]);
+  EXPECT_EQ(d.series.names, r.series.names);
+  EXPECT_EQ(d.series.units, r.series.units);
+  EXPECT_EQ(d.series.data, r.series.data);
+  std::string cut = encode(r);
+  cut.resize(cut.size() - 3);
+  EXPECT_THROW(decode(cut), std::runtime_error);
+  EXPECT_THROW(decode("short"), std::runtime_error);
+}
+
+TEST(SweepProgress, LineAndEta) {
+  const Grid g = small_grid();
+  Progress p(5, 1, 0);  // one case already in the file
+  CaseResult r = fake(g, 2);
+  std::string line = p.record(g.cases[2], r, 2.0);
+  EXPECT_EQ(line.substr(0, 17), "[2/5] case_0002 o");
+  EXPECT_NE(line.find("frene_short"), std::string::npos);
+  EXPECT_NE(line.find("0 failed"), std::string::npos);
+  EXPECT_NEAR(p.eta_s(2.0), 6.0, 1e-12);  // 3 left at 2 s per case
+  r.status = "film_collapse";
+  line = p.record(g.cases[3], r, 4.0);
+  EXPECT_NE(line.find("1 failed"), std::string::npos);
+  EXPECT_EQ(format_duration(0.5), "0.50 s");
+  EXPECT_EQ(format_duration(185), "3 min 05 s");
+  EXPECT_EQ(format_duration(7300), "2 h 01 min");
+}
+
+TEST(SweepOptions, CommandLine) {
+  Options o;
+  bool help = false;
+  std::string text;
+  EXPECT_FALSE(parse_options({"g.json", "-o", "s.h5", "--retry-failed", "-q"}, o, help, text));
+  EXPECT_EQ(o.grid, "g.json");
+  EXPECT_EQ(o.output, "s.h5");
+  EXPECT_TRUE(o.retry_failed && o.quiet);
+  Options e;
+  EXPECT_EQ(*parse_options({"g.json"}, e, help, text), "no output file given (-o STUDY.h5)");
+  Options c;
+  EXPECT_FALSE(parse_options({"g.json", "--check"}, c, help, text));
+  Options u;
+  EXPECT_EQ(*parse_options({"g.json", "-o", "x", "--fast"}, u, help, text), "unknown option --fast");
+  Options h;
+  EXPECT_FALSE(parse_options({"--help"}, h, help, text));
+  EXPECT_TRUE(help);
+  Options r;
+  EXPECT_EQ(*parse_options({"g.json", "-o", "x", "--restart", "--retry-failed"}, r, help, text),
+            "--restart and --retry-failed exclude each other");
+}
