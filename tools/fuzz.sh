@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Fuzzes the scene reader (tests/fuzz/fuzz_scene.cpp) with libFuzzer, AddressSanitizer and
+# UndefinedBehaviorSanitizer. Uses clang in its own build directory, build-fuzz/ (the main
+# build, build/, stays g++), and starts from the seed corpus configs/scenes/*.json and
+# tests/fuzz/corpus/*.
+#
+#   bash tools/fuzz.sh                      # 200000 inputs (LUB_FUZZ_RUNS), about a minute
+#   LUB_FUZZ_RUNS=5000000 bash tools/fuzz.sh
+#   bash tools/fuzz.sh -max_total_time=600  # any further arguments go to libFuzzer
+#   bash tools/fuzz.sh -runs=0              # replay the corpus only
+#
+# New interesting inputs accumulate in build-fuzz/fuzz-corpus/; a crashing input is written
+# to build-fuzz/fuzz-artifacts/ (reproduce: build-fuzz/tests/fuzz/fuzz_scene FILE). Once it
+# is fixed, copy the input into tests/fuzz/corpus/ so ctest's replay (fuzz_scene_replay)
+# keeps checking it.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+bash "$root/tools/setup.sh"
+build="$root/build-fuzz"
+# -O1 -g without -DNDEBUG: Eigen's and the standard library's assertions stay on.
+cmake -S "$root" -B "$build" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
+  -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g" -DLUB_FUZZ=ON -DLUB_BUILD_BENCH=OFF >/dev/null
+cmake --build "$build" -j "$(nproc)" --target fuzz_scene
+mkdir -p "$build/fuzz-corpus" "$build/fuzz-artifacts"
+exec "$build/tests/fuzz/fuzz_scene" -runs="${LUB_FUZZ_RUNS:-200000}" -max_len=8192 -timeout=10 \
+  -dict="$root/tests/fuzz/scene.dict" -artifact_prefix="$build/fuzz-artifacts/" \
+  -print_final_stats=1 "$@" "$build/fuzz-corpus" "$root/configs/scenes" "$root/tests/fuzz/corpus"
