@@ -96,6 +96,7 @@ class Runner {
   }
   bool steady_now() const;
   void switch_modes(MultibodySystem& sys, const std::vector<int>& flags, double t, const double* y);
+  bool resync_modes(double t, const double* y);
 
   const Scene& scene_;
   Model m_;
@@ -258,6 +259,27 @@ void Runner::switch_modes(MultibodySystem& sys, const std::vector<int>& flags, d
   }
 }
 
+bool Runner::resync_modes(double /*t*/, const double* y) {
+  // A mismatch beyond round-off: 1e-6 1/s is far below any motion the film responds to
+  // (the reference case's ε̇ swings over ±1e3 1/s).
+  constexpr double kTol = 1e-6;
+  bool changed = false;
+  for (size_t k = 0; k < m_.films.size(); ++k) {
+    if (!m_.films[k].switching) continue;
+    const FilmMode mode = ws_.film_mode[k];
+    if (mode != FilmMode::outward && mode != FilmMode::inward) continue;
+    const double ed = film_kinematics(m_, static_cast<int>(k), y, y + m_.nq).state.eps_dot;
+    FilmMode to = mode;
+    if (mode == FilmMode::outward && ed < -kTol) to = FilmMode::inward;
+    if (mode == FilmMode::inward && ed > kTol) to = FilmMode::outward;
+    if (to == mode) continue;
+    ws_.film_mode[k] = to;
+    ++res_.stats.mode_switches;
+    changed = true;
+  }
+  return changed;
+}
+
 RunResult Runner::run() {
   const auto wall0 = std::chrono::steady_clock::now();
   const SimulationSpec& sim = scene_.simulation;
@@ -411,6 +433,12 @@ RunResult Runner::run() {
       integ->reinit(t, yint_.data());
       integ->set_root_directions(sys.root_directions());
       ++res_.stats.repartitions;
+    } else if (have_state && m_.n_switching > 0 && resync_modes(t, yfull_.data())) {
+      // A free mode that no longer matches the sign of ε̇: a crossing the root finder
+      // could not see (ε̇ left zero from an exact zero at a restart). Restart on the
+      // branch that applies.
+      integ->reinit(t, integ->y());
+      integ->set_root_directions(sys.root_directions());
     }
     if (drift_limit && res_.stats.max_position_drift > *drift_limit) {
       res_.status = RunStatus::solver_failure;
