@@ -89,7 +89,8 @@ def main():
                 ex = np.interp(ref_series["t"], ser["t"], ser["e_x"])
                 ey = np.interp(ref_series["t"], ser["t"], ser["e_y"])
                 row["orbit"] = float(np.max(np.hypot(ex - ref_series["e_x"], ey - ref_series["e_y"])) / clearance)
-            row["min_film"] = abs(c["min_film_thickness_m"][i] - h_ref) / h_ref
+            # In contact the reference film is zero: then the error relative to the clearance.
+            row["min_film"] = abs(c["min_film_thickness_m"][i] - h_ref) / (h_ref if h_ref > 0 else clearance)
             row["reaction"] = abs(c["peak_reaction_N"][i] - r_ref) / r_ref
         rows.append(row)
     rows.sort(key=lambda r: (r["other"], r["label"], -r["rtol"]))
