@@ -15,6 +15,24 @@ struct Force2 {
   double t = 0.0;
 };
 
+// Periodic trapezoidal rule over θ ∈ [0, 2π) of f(θ)·(cos θ, sin θ): exponentially
+// convergent for periodic analytic integrands. `f` is the pressure already integrated
+// over the length (units Pa m); the result is multiplied by R_J.
+template <class F>
+Force2 trapezoid_force(const F& f, double radius, int n) {
+  Force2 out;
+  const double h = 2.0 * kPi / n;
+  for (int i = 0; i < n; ++i) {
+    const double th = h * i;
+    const double p = f(th);
+    out.r += p * std::cos(th);
+    out.t += p * std::sin(th);
+  }
+  out.r *= radius * h;
+  out.t *= radius * h;
+  return out;
+}
+
 // Gauss–Legendre nodes and weights on [−1, 1] (Newton on the three-term recurrence).
 struct GaussLegendre {
   std::vector<double> x, w;

@@ -8,6 +8,8 @@
 //
 // Tolerances are relative to a force scale and each carries its reason.
 
+#include "film_quadrature.hpp"
+#include "bearing_fixture.hpp"
 #include "lub/force_laws.hpp"
 
 #include <gtest/gtest.h>
@@ -27,32 +29,12 @@ using lub::ForceLaw;
 
 constexpr double kPi = 3.14159265358979323846;
 
-// The paper's slider-crank joint: R_J = 10 mm, c = 0.5 mm, L = 40 mm, μ = 400 cP.
-BearingGeometry test_geometry() {
-  BearingGeometry g;
-  g.journal_radius_m = 0.010;
-  g.bearing_radius_m = 0.0105;
-  g.length_m = 0.040;
-  return g;
-}
-constexpr double kMu = 0.4;
-
-double long_coef(const BearingGeometry& g) {  // C = μ L R_J³ / c²
-  const double c = g.clearance_m();
-  return kMu * g.length_m * std::pow(g.journal_radius_m, 3) / (c * c);
-}
-double short_coef(const BearingGeometry& g) {  // C_s = μ L³ R_J / c²
-  const double c = g.clearance_m();
-  return kMu * std::pow(g.length_m, 3) * g.journal_radius_m / (c * c);
-}
-
-BearingState state(double eps, double eps_dot, double wedge) {
-  BearingState s;
-  s.eps = eps;
-  s.eps_dot = eps_dot;
-  s.wedge = wedge;
-  return s;
-}
+// The paper's slider-crank joint (tests/bearing_fixture.hpp).
+using bearing_fixture::kMu;
+using bearing_fixture::long_coef;
+using bearing_fixture::short_coef;
+using bearing_fixture::state;
+using bearing_fixture::test_geometry;
 
 // --- Reference transcriptions of the paper's pressure fields (ε > 0) ------------------
 
@@ -81,120 +63,11 @@ double ref_pressure_long(const BearingGeometry& g, const BearingState& s, double
 
 // --- Quadrature --------------------------------------------------------------------
 
-struct Force2 {
-  double r = 0.0;
-  double t = 0.0;
-};
-
-// Periodic trapezoidal rule over θ ∈ [0, 2π) of f(θ)·(cos θ, sin θ): exponentially
-// convergent for periodic analytic integrands. `f` is the pressure already integrated
-// over the length (units Pa m); the result is multiplied by R_J.
-template <class F>
-Force2 trapezoid_force(const F& f, double radius, int n) {
-  Force2 out;
-  const double h = 2.0 * kPi / n;
-  for (int i = 0; i < n; ++i) {
-    const double th = h * i;
-    const double p = f(th);
-    out.r += p * std::cos(th);
-    out.t += p * std::sin(th);
-  }
-  out.r *= radius * h;
-  out.t *= radius * h;
-  return out;
-}
-
-// Gauss–Legendre nodes and weights on [−1, 1] (Newton on the three-term recurrence).
-struct GaussLegendre {
-  std::vector<double> x, w;
-  explicit GaussLegendre(int n) : x(n), w(n) {
-    for (int i = 0; i < n; ++i) {
-      double xi = std::cos(kPi * (i + 0.75) / (n + 0.5));
-      double dp = 1.0;
-      for (int it = 0; it < 100; ++it) {
-        double p0 = 1.0, p1 = xi;
-        for (int k = 2; k <= n; ++k) {
-          const double p2 = ((2.0 * k - 1.0) * xi * p1 - (k - 1.0) * p0) / k;
-          p0 = p1;
-          p1 = p2;
-        }
-        dp = n * (xi * p1 - p0) / (xi * xi - 1.0);
-        const double dx = p1 / dp;
-        xi -= dx;
-        if (std::fabs(dx) < 1e-16) break;
-      }
-      x[i] = xi;
-      w[i] = 2.0 / ((1.0 - xi * xi) * dp * dp);
-    }
-  }
-};
-
-// ∫_a^b f(θ)(cos θ, sin θ) dθ · R_J by composite Gauss–Legendre (64 panels × 20 nodes).
-template <class F>
-Force2 gauss_force(const F& f, double a, double b, double radius) {
-  static const GaussLegendre gl(20);
-  constexpr int kPanels = 64;
-  Force2 out;
-  const double hp = (b - a) / kPanels;
-  for (int k = 0; k < kPanels; ++k) {
-    const double mid = a + (k + 0.5) * hp;
-    for (std::size_t i = 0; i < gl.x.size(); ++i) {
-      const double th = mid + 0.5 * hp * gl.x[i];
-      const double p = f(th);
-      out.r += gl.w[i] * 0.5 * hp * p * std::cos(th);
-      out.t += gl.w[i] * 0.5 * hp * p * std::sin(th);
-    }
-  }
-  out.r *= radius;
-  out.t *= radius;
-  return out;
-}
-
-// Half-Sommerfeld (Gümbel) force: integral of the POSITIVE PART of f over the circle.
-// The pressure zeros are bracketed on a fine grid (offset so that exact zeros such as
-// θ = 0, π fall between grid points), refined by bisection to the last bit, and each
-// positive interval, on which f is smooth, is integrated by composite Gauss–Legendre.
-// (At a zero f vanishes, so a root error δ costs only O(δ²).)
-template <class F>
-Force2 positive_part_force(const F& f, double radius) {
-  constexpr int n = 2048;
-  constexpr double offset = 0.3819660112501051;  // fraction of a step, irrational-ish
-  std::vector<double> th(n + 1), pv(n + 1);
-  for (int i = 0; i <= n; ++i) {
-    th[i] = 2.0 * kPi * (i + offset) / n;
-    pv[i] = f(th[i]);
-  }
-  struct Root {
-    double theta;
-    bool up;  // pressure goes from <= 0 to > 0
-  };
-  std::vector<Root> roots;
-  for (int i = 0; i < n; ++i) {
-    const bool pa = pv[i] > 0.0;
-    if (pa == (pv[i + 1] > 0.0)) continue;
-    double a = th[i], b = th[i + 1];
-    for (int it = 0; it < 200; ++it) {
-      const double m = 0.5 * (a + b);
-      if (m <= a || m >= b) break;
-      if ((f(m) > 0.0) == pa) a = m; else b = m;
-    }
-    roots.push_back({0.5 * (a + b), !pa});
-  }
-  if (roots.empty()) {
-    return pv[0] > 0.0 ? trapezoid_force(f, radius, n) : Force2{};
-  }
-  Force2 out;
-  for (std::size_t j = 0; j < roots.size(); ++j) {
-    if (!roots[j].up) continue;
-    const double a = roots[j].theta;
-    double b = roots[(j + 1) % roots.size()].theta;
-    if (b <= a) b += 2.0 * kPi;
-    const Force2 part = gauss_force(f, a, b, radius);
-    out.r += part.r;
-    out.t += part.t;
-  }
-  return out;
-}
+// Quadrature (shared with the other force-law tests): tests/film_quadrature.hpp.
+using filmquad::Force2;
+using filmquad::gauss_force;
+using filmquad::positive_part_force;
+using filmquad::trapezoid_force;
 
 // Long-bearing pressure times L (units Pa m), from the reference transcription for ε > 0
 // and from the library at ε = 0 (where Eq. 5 as printed is 0/0).

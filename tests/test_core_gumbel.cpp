@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "film_quadrature.hpp"
+#include "bearing_fixture.hpp"
 #include "lub/force_laws.hpp"
 
 namespace {
@@ -25,33 +26,12 @@ using lub::BearingState;
 using lub::FilmForce;
 using lub::ForceLaw;
 
-// The paper's slider-crank joint (as in test_core_force_laws): R_J = 10 mm, c = 0.5 mm,
-// L = 40 mm, μ = 400 cP.
-BearingGeometry test_geometry() {
-  BearingGeometry g;
-  g.journal_radius_m = 0.010;
-  g.bearing_radius_m = 0.0105;
-  g.length_m = 0.040;
-  return g;
-}
-constexpr double kMu = 0.4;
-
-double long_coef(const BearingGeometry& g) {  // C = μ L R_J³ / c²
-  const double c = g.clearance_m();
-  return kMu * g.length_m * std::pow(g.journal_radius_m, 3) / (c * c);
-}
-double short_coef(const BearingGeometry& g) {  // C_s = μ L³ R_J / c²
-  const double c = g.clearance_m();
-  return kMu * std::pow(g.length_m, 3) * g.journal_radius_m / (c * c);
-}
-
-BearingState state(double eps, double eps_dot, double wedge) {
-  BearingState s;
-  s.eps = eps;
-  s.eps_dot = eps_dot;
-  s.wedge = wedge;
-  return s;
-}
+// The paper's slider-crank joint (tests/bearing_fixture.hpp).
+using bearing_fixture::kMu;
+using bearing_fixture::long_coef;
+using bearing_fixture::short_coef;
+using bearing_fixture::state;
+using bearing_fixture::test_geometry;
 
 FilmForce law(ForceLaw l, double eps, double ed, double w) {
   return lub::film_force(l, test_geometry(), kMu, state(eps, ed, w));

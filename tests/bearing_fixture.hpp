@@ -1,0 +1,37 @@
+// The bearing the force-law tests share: the paper's slider-crank joint, R_J = 10 mm,
+// c = 0.5 mm, L = 40 mm, μ = 400 cP, and the two force scales of the closed forms.
+#pragma once
+
+#include <cmath>
+
+#include "lub/force_laws.hpp"
+
+namespace bearing_fixture {
+
+inline lub::BearingGeometry test_geometry() {
+  lub::BearingGeometry g;
+  g.journal_radius_m = 0.010;
+  g.bearing_radius_m = 0.0105;
+  g.length_m = 0.040;
+  return g;
+}
+constexpr double kMu = 0.4;
+
+inline double long_coef(const lub::BearingGeometry& g) {  // C = μ L R_J³ / c²
+  const double c = g.clearance_m();
+  return kMu * g.length_m * std::pow(g.journal_radius_m, 3) / (c * c);
+}
+inline double short_coef(const lub::BearingGeometry& g) {  // C_s = μ L³ R_J / c²
+  const double c = g.clearance_m();
+  return kMu * std::pow(g.length_m, 3) * g.journal_radius_m / (c * c);
+}
+
+inline lub::BearingState state(double eps, double eps_dot, double wedge) {
+  lub::BearingState s;
+  s.eps = eps;
+  s.eps_dot = eps_dot;
+  s.wedge = wedge;
+  return s;
+}
+
+}  // namespace bearing_fixture
