@@ -96,18 +96,20 @@ class ArkodeIntegrator final : public Integrator {
   const double* y() const override { return N_VGetArrayPointer(y_); }
 
   void statistics(SolverStats& s) const override {
+    // Counters since the last (re)initialisation, plus those from before it.
     long v = 0, w = 0;
-    ARKStepGetNumSteps(mem_, &v); s.steps = v + base_.steps;
-    ARKStepGetNumRhsEvals(mem_, &v, &w); s.rhs_evals = v + w + base_.rhs_evals;
-    ARKStepGetNumErrTestFails(mem_, &v); s.err_test_fails = v + base_.err_test_fails;
-    ARKStepGetNumGEvals(mem_, &v); s.root_evals = v + base_.root_evals;
+    ARKStepGetNumSteps(mem_, &v); s.steps = v;
+    ARKStepGetNumRhsEvals(mem_, &v, &w); s.rhs_evals = v + w;
+    ARKStepGetNumErrTestFails(mem_, &v); s.err_test_fails = v;
+    ARKStepGetNumGEvals(mem_, &v); s.root_evals = v;
     if (implicit_) {
-      ARKStepGetNumNonlinSolvIters(mem_, &v); s.nonlin_iters = v + base_.nonlin_iters;
-      ARKStepGetNumNonlinSolvConvFails(mem_, &v); s.nonlin_conv_fails = v + base_.nonlin_conv_fails;
-      ARKStepGetNumJacEvals(mem_, &v); s.jac_evals = v + base_.jac_evals;
-      ARKStepGetNumLinRhsEvals(mem_, &v); s.rhs_evals_jac = v + base_.rhs_evals_jac;
-      ARKStepGetNumLinSolvSetups(mem_, &v); s.lin_setups = v + base_.lin_setups;
+      ARKStepGetNumNonlinSolvIters(mem_, &v); s.nonlin_iters = v;
+      ARKStepGetNumNonlinSolvConvFails(mem_, &v); s.nonlin_conv_fails = v;
+      ARKStepGetNumJacEvals(mem_, &v); s.jac_evals = v;
+      ARKStepGetNumLinRhsEvals(mem_, &v); s.rhs_evals_jac = v;
+      ARKStepGetNumLinSolvSetups(mem_, &v); s.lin_setups = v;
     }
+    detail::add_counters(s, base_);
   }
 
   std::string error_message() const override { return data_.error; }

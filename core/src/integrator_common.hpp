@@ -70,6 +70,20 @@ inline void err_cb(int /*code*/, const char* module, const char* function, char*
   d->error = std::string(module ? module : "") + "/" + (function ? function : "") + ": " + (msg ? msg : "");
 }
 
+/// Adds the counters of `base` (those accumulated before the last restart: SUNDIALS
+/// resets its counters at every reinit) to `s`.
+inline void add_counters(SolverStats& s, const SolverStats& base) {
+  s.steps += base.steps;
+  s.rhs_evals += base.rhs_evals;
+  s.err_test_fails += base.err_test_fails;
+  s.nonlin_iters += base.nonlin_iters;
+  s.nonlin_conv_fails += base.nonlin_conv_fails;
+  s.root_evals += base.root_evals;
+  s.jac_evals += base.jac_evals;
+  s.rhs_evals_jac += base.rhs_evals_jac;
+  s.lin_setups += base.lin_setups;
+}
+
 }  // namespace lub::detail
 
 namespace lub {

@@ -115,15 +115,7 @@ class CvodeIntegrator final : public Integrator {
 
   void statistics(SolverStats& s) const override {
     current(s);
-    s.steps += base_.steps;
-    s.rhs_evals += base_.rhs_evals;
-    s.err_test_fails += base_.err_test_fails;
-    s.nonlin_iters += base_.nonlin_iters;
-    s.nonlin_conv_fails += base_.nonlin_conv_fails;
-    s.root_evals += base_.root_evals;
-    s.jac_evals += base_.jac_evals;
-    s.rhs_evals_jac += base_.rhs_evals_jac;
-    s.lin_setups += base_.lin_setups;
+    detail::add_counters(s, base_);
   }
 
   // Counters since the last (re)initialisation: CVodeReInit resets them.

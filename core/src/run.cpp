@@ -253,8 +253,7 @@ void Runner::switch_modes(MultibodySystem& sys, const std::vector<int>& flags, d
         to = from == FilmMode::outward ? FilmMode::inward : FilmMode::outward;
       }
     }
-    ws_.film_mode[k] = to;
-    if (to == FilmMode::sliding) ws_.slide_radius[k] = film_kinematics(m_, k, y, y + m_.nq).e.norm();
+    ws_.film_mode[k] = to;  // sliding: slide_radius was set to |e| when the decision was made
     ++res_.stats.mode_switches;
   }
 }
