@@ -160,6 +160,28 @@ const std::vector<Case>& cases() {
        {"drivers[0].speed_rpm = 1e-320: gives a cycle period 2π/|ω| that is not finite"}},
       {"relative tolerance of 2", "four_bar.json", [](json& d) { d["solver"]["rtol"] = 2; }, nullptr,
        {"solver.rtol = 2: must be in [1e-14, 1)"}},
+      {"IDA on the Baumgarte ODE", "four_bar.json",
+       [](json& d) {
+         d["solver"]["method"] = "ida";
+         d["solver"]["formulation"] = "partitioned";
+       },
+       nullptr,
+       {"solver.formulation = \"partitioned\": solver.method = ida integrates the GGL index-2 DAE: the "
+        "formulation must be ggl (or absent)"}},
+      {"the GGL DAE with an ODE method", "four_bar.json", [](json& d) { d["solver"]["formulation"] = "ggl"; },
+       nullptr, {"solver.formulation = \"ggl\": ggl is a DAE: it requires solver.method = ida"}},
+      {"projection with IDA", "four_bar.json",
+       [](json& d) {
+         d["solver"]["method"] = "ida";
+         d["solver"]["projection"] = true;
+       },
+       nullptr, {"solver.projection = true: requires solver.method = cvode_bdf"}},
+      {"BDF order 6 with IDA", "four_bar.json",
+       [](json& d) {
+         d["solver"]["method"] = "ida";
+         d["solver"]["max_order"] = 6;
+       },
+       nullptr, {"solver.max_order = 6: must be <= 5 for ida (BDF orders 1 to 5)"}},
       {"eps limit of 1", "four_bar.json", [](json& d) { d["simulation"]["eps_limit"] = 1; }, nullptr,
        {"simulation.eps_limit = 1: must be in (0, 1)"}},
       {"negative sample interval", "four_bar.json", [](json& d) { d["outputs"]["sample_interval_s"] = -1e-5; },

@@ -30,7 +30,9 @@ def label(cases, i):
     form = cases["formulation"][i] if "formulation" in cases else ""
     proj = cases["projection"][i] if "projection" in cases else ""
     name = method
-    if form == "partitioned":
+    if method == "ida" or form == "ggl":
+        name += " ggl"
+    elif form == "partitioned":
         name += " partitioned"
     elif proj in ("true", True, 1):
         name += " projection"

@@ -11,6 +11,8 @@ std::unique_ptr<Integrator> make_integrator(const IntegratorSettings& settings, 
     case Method::arkode_erk:
     case Method::arkode_dirk:
       return make_arkode_integrator(settings, sys, t0, y0);
+    case Method::ida:
+      return make_ida_integrator(settings, sys, t0, y0);
   }
   throw std::logic_error("make_integrator: unknown method");
 }

@@ -91,4 +91,6 @@ std::unique_ptr<Integrator> make_cvode_integrator(const IntegratorSettings&, Ode
                                                   const std::vector<double>& y0);
 std::unique_ptr<Integrator> make_arkode_integrator(const IntegratorSettings&, OdeSystem&, double t0,
                                                    const std::vector<double>& y0);
+std::unique_ptr<Integrator> make_ida_integrator(const IntegratorSettings&, OdeSystem&, double t0,
+                                                const std::vector<double>& y0);
 }  // namespace lub

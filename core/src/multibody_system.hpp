@@ -9,7 +9,11 @@
 //    integrator works on the mechanism's degrees of freedom, like a hand-written
 //    minimal-coordinate model. The partition is chosen by full-pivoting LU of Φ_q and
 //    renewed when the dependent block becomes ill-conditioned.
-// Both expose roots (ε limit, switching of discontinuous laws) and quadratures (work).
+//  - ggl: the stabilised index-2 DAE of Gear, Gupta & Leimkuhler (1985) for IDA,
+//        q' = v − Φ_qᵀ μ,   M v' = g − Φ_qᵀ λ,   Φ = 0,   Φ_q v + Φ_t = 0,
+//    in Y = (q, v, λ, μ): the constraints hold at position and velocity level without
+//    Baumgarte's terms (μ = 0 on the exact solution; it absorbs the drift).
+// All expose roots (ε limit, switching of discontinuous laws) and quadratures (work).
 #pragma once
 
 #include <Eigen/LU>
@@ -22,7 +26,7 @@
 
 namespace lub {
 
-enum class Formulation { baumgarte, partitioned };
+enum class Formulation { baumgarte, partitioned, ggl };
 
 class MultibodySystem final : public OdeSystem {
  public:
@@ -35,6 +39,10 @@ class MultibodySystem final : public OdeSystem {
   int num_quadratures() const override { return energy_ ? 2 : 0; }
   int quadrature_rhs(double t, const double* y, double* qdot) override;
   int project(double t, const double* y, double* corr, double* err) override;
+  int num_algebraic() const override;
+  int residual(double t, const double* Y, const double* Yp, double* F) override;
+  int consistent_state(double t, const double* y, double* Y, double* Yp) override;
+  void algebraic_tolerances(double rtol, double atol, double* out) const override;
 
   /// Integrator state → full (q, v) (2 nq). Returns 0, or 1 if the dependent
   /// coordinates cannot be recovered (partitioned).
@@ -73,6 +81,9 @@ class MultibodySystem final : public OdeSystem {
   bool have_last_ = false;  // cache of the last expansion
   double last_t_ = 0.0;
   std::vector<double> last_y_;
+  // ggl: multiplier slot of each row of ws_.Phi (constraints, then the sliding rows in
+  // film order) — a switching film's sliding row keeps one slot whether active or not.
+  std::vector<int> slot_of_switching_;  // per film: nc + its index among switching films, or −1
 };
 
 }  // namespace lub

@@ -323,7 +323,9 @@ RunResult Runner::run() {
 
   const bool energy = scene_.output.energy_balance;
   MultibodySystem sys(m_, ws_, sim.eps_limit, energy,
-                      sol.partitioned ? Formulation::partitioned : Formulation::baumgarte);
+                      sol.partitioned ? Formulation::partitioned
+                      : sol.ggl       ? Formulation::ggl
+                                      : Formulation::baumgarte);
   sys.set_projection_tolerance(0.01 * atol);  // Newton on Φ = 0 well inside the error test
   try {
     sys.partition(t0_, qv0.data());

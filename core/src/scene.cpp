@@ -287,7 +287,8 @@ void check_whole_scene(const Scene& scene, const json& doc) {
 }  // namespace
 
 const std::vector<std::string>& method_names() {
-  static const std::vector<std::string> names = {"cvode_adams", "cvode_bdf", "arkode_erk", "arkode_dirk"};
+  static const std::vector<std::string> names = {"cvode_adams", "cvode_bdf", "arkode_erk", "arkode_dirk",
+                                                     "ida"};
   return names;
 }
 
@@ -441,8 +442,16 @@ Scene parse_scene(const json& doc) {
     s.baumgarte_beta = r.number_or("baumgarte_beta", 5.0, non_negative, "must be >= 0 1/s");
     s.max_steps = r.integer_or("max_steps", s.max_steps, 1, 1'000'000'000'000LL);
     s.switching_events = r.choice("switching", {"events", "none"}, std::string("events")) == "events";
-    s.partitioned = r.choice("formulation", {"baumgarte", "partitioned"}, std::string("baumgarte")) ==
-                    "partitioned";
+    const bool ida = s.method == Method::ida;
+    const std::string form =
+        r.choice("formulation", {"baumgarte", "partitioned", "ggl"}, std::string(ida ? "ggl" : "baumgarte"));
+    s.partitioned = form == "partitioned";
+    s.ggl = form == "ggl";
+    if (s.ggl && !ida)
+      fail("solver.formulation", json(form), "ggl is a DAE: it requires solver.method = ida");
+    if (ida && !s.ggl)
+      fail("solver.formulation", json(form),
+           "solver.method = ida integrates the GGL index-2 DAE: the formulation must be ggl (or absent)");
     s.projection = r.boolean_or("projection", false);
     if (s.projection && s.partitioned)
       fail("solver.projection", json(true), "does not apply to solver.formulation = partitioned (no drift to project)");
@@ -451,8 +460,10 @@ Scene parse_scene(const json& doc) {
     s.max_wall_time_s = r.number_or("max_wall_time_s", s.max_wall_time_s, positive, "must be > 0 s");
     r.finish();
   }
-  if (scene.solver.method == Method::cvode_bdf && scene.solver.max_order > 5)
-    fail("solver.max_order", json(scene.solver.max_order), "must be <= 5 for cvode_bdf");
+  if ((scene.solver.method == Method::cvode_bdf || scene.solver.method == Method::ida) &&
+      scene.solver.max_order > 5)
+    fail("solver.max_order", json(scene.solver.max_order),
+         "must be <= 5 for " + to_string(scene.solver.method) + " (BDF orders 1 to 5)");
 
   if (const json* sim = top.raw_optional("simulation")) {
     ObjectReader r(*sim, "simulation");

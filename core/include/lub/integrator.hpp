@@ -26,6 +26,18 @@ class OdeSystem {
   /// Projection onto the constraint manifold after each step (CVODE BDF): writes the
   /// correction to `corr` and projects the error estimate `err` (may be null).
   virtual int project(double /*t*/, const double* /*y*/, double* /*corr*/, double* /*err*/) { return -1; }
+
+  // The same system as a DAE F(t, Y, Y') = 0 (IDA), Y = (y, algebraic variables): y is what
+  // the run loop sees (dense output, roots, quadratures use it alone); the algebraic
+  // variables (multipliers) are the integrator's business.
+  /// Number of algebraic variables appended to y (0: no DAE form).
+  virtual int num_algebraic() const { return 0; }
+  /// F(t, Y, Y'), size() + num_algebraic() components. Return codes as for rhs().
+  virtual int residual(double /*t*/, const double* /*Y*/, const double* /*Yp*/, double* /*F*/) { return -1; }
+  /// Consistent (Y, Y') from the state y at t (the algebraic variables and all derivatives).
+  virtual int consistent_state(double /*t*/, const double* /*y*/, double* /*Y*/, double* /*Yp*/) { return -1; }
+  /// Absolute tolerances of the algebraic variables, given those of the state.
+  virtual void algebraic_tolerances(double /*rtol*/, double /*atol*/, double* /*out*/) const {}
 };
 
 struct IntegratorSettings {

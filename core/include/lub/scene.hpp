@@ -61,8 +61,9 @@ struct DriverSpec {
 
 /// Integration methods: CVODE Adams–Moulton (fixed-point corrector: the paper's variable
 /// step and order predictor–corrector), CVODE BDF (Newton, dense), ARKODE explicit
-/// Dormand–Prince 5(4), ARKODE implicit L-stable SDIRK 4 (Newton, dense).
-enum class Method { cvode_adams, cvode_bdf, arkode_erk, arkode_dirk };
+/// Dormand–Prince 5(4), ARKODE implicit L-stable SDIRK 4 (Newton, dense), IDAS variable-
+/// order BDF on the stabilised index-2 (GGL) DAE (Newton, dense).
+enum class Method { cvode_adams, cvode_bdf, arkode_erk, arkode_dirk, ida };
 /// Scene names of all methods, comma separated.
 const std::vector<std::string>& method_names();
 bool parse_method(const std::string& name, Method& m);
@@ -87,8 +88,10 @@ struct SolverSpec {
   bool projection = false;
   /// solver.formulation: "baumgarte" (all coordinates, Baumgarte's terms: the paper) or
   /// "partitioned" (generalised coordinate partitioning: only the mechanism's degrees of
-  /// freedom are integrated; dependent coordinates solved from Φ = 0; no drift).
+  /// freedom are integrated; dependent coordinates solved from Φ = 0; no drift) or "ggl"
+  /// (Gear–Gupta–Leimkuhler index-2 DAE in (q, v, λ, μ), method ida only, its default).
   bool partitioned = false;
+  bool ggl = false;
   long long max_steps = 20'000'000;  ///< budget: internal steps for the whole run
   double max_wall_time_s = 600.0;    ///< budget: wall time for the whole run
 };
