@@ -26,6 +26,11 @@ class OdeSystem {
   /// Projection onto the constraint manifold after each step (CVODE BDF): writes the
   /// correction to `corr` and projects the error estimate `err` (may be null).
   virtual int project(double /*t*/, const double* /*y*/, double* /*corr*/, double* /*err*/) { return -1; }
+  /// ∂f/∂y at (t, y) (fy = f(t, y)) into J, column-major size() × size(), every entry
+  /// written. 0: ok; > 0: recoverable; −1: not provided (the integrator must then use
+  /// difference quotients: only ask for it with IntegratorSettings::user_jacobian).
+  /// Called from inside the integrator's step: no allocation.
+  virtual int jacobian(double /*t*/, const double* /*y*/, const double* /*fy*/, double* /*J*/) { return -1; }
 };
 
 struct IntegratorSettings {
@@ -37,6 +42,9 @@ struct IntegratorSettings {
   int max_order = 0;         ///< 0: default
   double t_stop = 0.0;       ///< never step past this time
   bool projection = false;   ///< project onto the constraints after each step (cvode_bdf)
+  /// Newton methods (cvode_bdf, arkode_dirk): the system's jacobian() instead of SUNDIALS'
+  /// dense difference quotients.
+  bool user_jacobian = false;
 };
 
 enum class StepOutcome { step, root, failure };
