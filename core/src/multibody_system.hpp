@@ -24,6 +24,15 @@ namespace lub {
 
 enum class Formulation { baumgarte, partitioned };
 
+/// Preallocated scratch of the structured Jacobian (MultibodySystem::jacobian).
+struct JacobianScratch {
+  explicit JacobianScratch(const Model& m);
+  std::vector<double> q, v;      ///< perturbed copies of the state
+  Eigen::MatrixXd Gq, Gv;        ///< ∂g/∂q, ∂g/∂v (nq × nq)
+  Eigen::MatrixXd B, R, Gamma_v; ///< Φ_q M⁻¹, right-hand sides, ∂γ/∂v (rows: nc + switching films)
+  Eigen::MatrixXd S;             ///< Φ_q M⁻¹ Φ_qᵀ, factorised in place
+};
+
 class MultibodySystem final : public OdeSystem {
  public:
   MultibodySystem(const Model& m, Workspace& ws, double eps_limit, bool energy, Formulation f);
@@ -35,6 +44,9 @@ class MultibodySystem final : public OdeSystem {
   int num_quadratures() const override { return energy_ ? 2 : 0; }
   int quadrature_rhs(double t, const double* y, double* qdot) override;
   int project(double t, const double* y, double* corr, double* err) override;
+  /// Structured Jacobian of the baumgarte formulation (multibody_jacobian.cpp); −1 (not
+  /// provided: difference quotients) for the partitioned one.
+  int jacobian(double t, const double* y, const double* fy, double* J) override;
 
   /// Integrator state → full (q, v) (2 nq). Returns 0, or 1 if the dependent
   /// coordinates cannot be recovered (partitioned).
@@ -73,6 +85,7 @@ class MultibodySystem final : public OdeSystem {
   bool have_last_ = false;  // cache of the last expansion
   double last_t_ = 0.0;
   std::vector<double> last_y_;
+  JacobianScratch jac_{m_};
 };
 
 }  // namespace lub
