@@ -89,6 +89,12 @@ struct SolverSpec {
   /// "partitioned" (generalised coordinate partitioning: only the mechanism's degrees of
   /// freedom are integrated; dependent coordinates solved from Φ = 0; no drift).
   bool partitioned = false;
+  /// solver.jacobian (Newton methods: cvode_bdf, arkode_dirk): "structured" (the
+  /// baumgarte formulation's Jacobian from the film elements' derivatives and the
+  /// constraint structure, multibody_jacobian.cpp) or "difference_quotients" (SUNDIALS'
+  /// dense DQ: 2 nq full evaluations per Jacobian). The partitioned formulation always
+  /// uses difference quotients (2 dof columns).
+  bool structured_jacobian = true;
   long long max_steps = 20'000'000;  ///< budget: internal steps for the whole run
   double max_wall_time_s = 600.0;    ///< budget: wall time for the whole run
 };
