@@ -31,8 +31,11 @@ bool film_generalised_force(const Model& m, Workspace& ws, int k, const double* 
   const FilmKinematics fk = film_kinematics(m, k, q, v);
   if (!f.contact && !(fk.state.eps < 1.0)) return false;
   FilmForce force = film_element_force(m, ws, k, fk.state, ws.film_mode[k], &ws.counters.film_jacobian);
-  // Sliding: the radial force is the sliding row's multiplier (in Φ_q, not in g).
-  if (ws.film_mode[k] == FilmMode::sliding) force.radial_N = 0.0;
+  // Sliding: the radial force is the sliding row's multiplier −λ_s, held at its value
+  // at the state of the last evaluate(): differentiating F = −λ_s r(q) at fixed λ_s gives
+  // the row's geometric stiffness −∂(Φ_s,qᵀ λ_s)/∂q, which is not small (λ_s/|e|, with
+  // |e| ~ the clearance as radius of curvature) and which a = M⁻¹(g − Φ_qᵀλ) needs.
+  if (ws.film_mode[k] == FilmMode::sliding) force.radial_N = -ws.lambda(ws.slide_row[k]);
   const Vector2d F = force.radial_N * fk.r + force.tangential_N * perp(fk.r);
   if (!std::isfinite(F.x()) || !std::isfinite(F.y())) return false;
   const Vector2d ai = rot(angle(f.bearing, q), f.s_bearing), aj = rot(angle(f.journal, q), f.s_journal);
@@ -45,7 +48,63 @@ bool film_generalised_force(const Model& m, Workspace& ws, int k, const double* 
   return true;
 }
 
+// Φ̈ + 2α Φ̇ + β² Φ of the sliding row of film k at (q, v, q̈ = a): Φ = |e| − e_s,
+// Φ̇ = r·ė, Φ̈ = r·ë + |ė⊥|²/|e|.
+double sliding_row_residual(const Model& m, const Workspace& ws, int k, const double* q, const double* v,
+                            const double* a) {
+  const FilmElement& f = m.films[k];
+  Vector2d e(0, 0), ed(0, 0), edd(0, 0);
+  const int bodies[2] = {f.bearing, f.journal};
+  const Vector2d* points[2] = {&f.s_bearing, &f.s_journal};
+  for (int side = 0; side < 2; ++side) {
+    const int b = bodies[side];
+    if (b == kGround) continue;
+    const double sign = side == 0 ? -1.0 : 1.0;
+    const int o = 3 * b;
+    const Vector2d s = rot(q[o + 2], *points[side]);
+    e += sign * (Vector2d(q[o], q[o + 1]) + s);
+    ed += sign * (Vector2d(v[o], v[o + 1]) + v[o + 2] * perp(s));
+    edd += sign * (Vector2d(a[o], a[o + 1]) + a[o + 2] * perp(s) - v[o + 2] * v[o + 2] * s);
+  }
+  const double en = e.norm();
+  const Vector2d r = e / en;
+  const double erd = r.dot(ed);
+  const double Phidd = r.dot(edd) + (ed.squaredNorm() - erd * erd) / en;
+  return Phidd + 2.0 * m.alpha * erd + m.beta * m.beta * (en - ws.slide_radius[k]);
+}
+
 }  // namespace
+
+void sliding_rows_position_jacobian(const Model& m, const Workspace& ws, double* q, const double* v,
+                                    const double* a, Eigen::Ref<Eigen::MatrixXd> D) {
+  const double delta = std::cbrt(DBL_EPSILON);
+  for (int k = 0; k < static_cast<int>(m.films.size()); ++k) {
+    if (ws.film_mode[k] != FilmMode::sliding) continue;
+    const FilmElement& f = m.films[k];
+    const int row = ws.slide_row[k];
+    D.row(row).setZero();
+    const double h_pos = delta * f.clearance;
+    const int bodies[2] = {f.bearing, f.journal};
+    const double arms[2] = {std::max(f.s_bearing.norm(), f.clearance), std::max(f.s_journal.norm(), f.clearance)};
+    for (int side = 0; side < 2; ++side) {
+      const int b = bodies[side];
+      if (b == kGround) continue;
+      for (int dof = 0; dof < 3; ++dof) {
+        const int col = 3 * b + dof;
+        const double h = dof == 2 ? h_pos / arms[side] : h_pos;
+        const double x0 = q[col];
+        q[col] = x0 + h;
+        const double hp = q[col] - x0;
+        const double fp = sliding_row_residual(m, ws, k, q, v, a);
+        q[col] = x0 - h;
+        const double hm = x0 - q[col];
+        const double fm = sliding_row_residual(m, ws, k, q, v, a);
+        q[col] = x0;
+        D(row, col) = (fp - fm) / (hp + hm);
+      }
+    }
+  }
+}
 
 int add_film_force_jacobian(const Model& m, Workspace& ws, double* q, double* v, Eigen::Ref<Eigen::MatrixXd> Gq,
                             Eigen::Ref<Eigen::MatrixXd> Gv) {

@@ -13,7 +13,11 @@
 // switching modes included; gravity is constant). ∂γ/∂v: analytic (γ is quadratic in v:
 // the φ̇² a terms of the revolute rows, the Coriolis term of the translational rows, the
 // |ė⊥|²/|e| of a sliding row); it is not small: 2ω|a| ≈ 1000 1/s at 5000 rpm against
-// 2α = 10 1/s. The sliding rows of sliding films are in Φ_q (constraint_residual).
+// 2α = 10 1/s. The sliding rows of sliding films are in Φ_q (constraint_residual), and
+// because their curvature radius is |e| ~ c (not a link length) their second derivatives
+// are kept: the geometric stiffness λ_s ∂r/∂q (in ∂g/∂q, the multiplier held) and the
+// full ∂(Φ̈ + 2αΦ̇ + β²Φ)/∂q of the row (sliding_rows_position_jacobian). Without them the
+// position block is 5 % off at a sliding state (tests/test_core_jacobian.cpp).
 //
 // Neglected (J_v is exact up to ∂Φ_t/∂v = 0; J_q is not): the derivatives with respect to
 // q of P and of M⁻¹Φ_qᵀS⁻¹ (through Φ_q(q)), of γ and of −2αΦ̇ = −2α(Φ_q v + Φ_t). Each is
@@ -42,6 +46,7 @@ namespace lub {
 JacobianScratch::JacobianScratch(const Model& m)
     : q(static_cast<size_t>(m.nq), 0.0),
       v(static_cast<size_t>(m.nq), 0.0),
+      a(static_cast<size_t>(m.nq), 0.0),
       Gq(Eigen::MatrixXd::Zero(m.nq, m.nq)),
       Gv(Eigen::MatrixXd::Zero(m.nq, m.nq)),
       B(Eigen::MatrixXd::Zero(m.nc + m.n_switching, m.nq)),
@@ -57,6 +62,11 @@ int MultibodySystem::jacobian(double t, const double* y, const double* /*fy*/, d
   std::copy(y + nq, y + 2 * nq, s.v.begin());
   s.Gq.setZero();
   s.Gv.setZero();
+  // A sliding film's radial force is a multiplier: its value at this state (and q̈ for the
+  // sliding row's curvature) from one evaluation, only while some film slides.
+  bool sliding = false;
+  for (size_t k = 0; k < m_.films.size(); ++k) sliding = sliding || ws_.film_mode[k] == FilmMode::sliding;
+  if (sliding && evaluate(m_, ws_, t, s.q.data(), s.v.data(), s.a.data()) != 0) return 1;
   if (add_film_force_jacobian(m_, ws_, s.q.data(), s.v.data(), s.Gq, s.Gv) != 0) return 1;
 
   // Φ_q at this state, with the sliding rows of the films sliding now.
@@ -71,15 +81,22 @@ int MultibodySystem::jacobian(double t, const double* y, const double* /*fy*/, d
     S.noalias() = B.lazyProduct(Phq.transpose());
     Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(S);  // in place: no allocation
     if (llt.info() != Eigen::Success) return 1;
-    auto Gam = s.Gamma_v.topRows(nc);
-    constraint_gamma_velocity_jacobian(m_, ws_, s.q.data(), s.v.data(), Gam);
     auto R = s.R.topRows(nc);
     const double beta2 = m_.beta * m_.beta, two_alpha = 2.0 * m_.alpha;
     // J_q M = ∂g/∂q − Φ_qᵀ S⁻¹ (Φ_q M⁻¹ ∂g/∂q + β² Φ_q)
     R.noalias() = B.lazyProduct(s.Gq);
     R += beta2 * Phq;
+    // Sliding rows: their full ∂(Φ̈ + 2αΦ̇ + β²Φ)/∂q (curvature radius |e| ~ c).
+    if (sliding) {
+      auto D = s.Gamma_v.topRows(nc);  // free until ∂γ/∂v below
+      sliding_rows_position_jacobian(m_, ws_, s.q.data(), s.v.data(), s.a.data(), D);
+      for (size_t k = 0; k < m_.films.size(); ++k)
+        if (ws_.film_mode[k] == FilmMode::sliding) R.row(ws_.slide_row[k]) += D.row(ws_.slide_row[k]) - beta2 * Phq.row(ws_.slide_row[k]);
+    }
     llt.solveInPlace(R);
     s.Gq.noalias() -= Phq.transpose().lazyProduct(R);
+    auto Gam = s.Gamma_v.topRows(nc);
+    constraint_gamma_velocity_jacobian(m_, ws_, s.q.data(), s.v.data(), Gam);
     // J_v M = ∂g/∂v − Φ_qᵀ S⁻¹ (Φ_q M⁻¹ ∂g/∂v − ∂γ/∂v + 2α Φ_q)
     R.noalias() = B.lazyProduct(s.Gv);
     R += two_alpha * Phq - Gam;

@@ -27,7 +27,7 @@ enum class Formulation { baumgarte, partitioned };
 /// Preallocated scratch of the structured Jacobian (MultibodySystem::jacobian).
 struct JacobianScratch {
   explicit JacobianScratch(const Model& m);
-  std::vector<double> q, v;      ///< perturbed copies of the state
+  std::vector<double> q, v, a;   ///< perturbed copies of the state; accelerations
   Eigen::MatrixXd Gq, Gv;        ///< ∂g/∂q, ∂g/∂v (nq × nq)
   Eigen::MatrixXd B, R, Gamma_v; ///< Φ_q M⁻¹, right-hand sides, ∂γ/∂v (rows: nc + switching films)
   Eigen::MatrixXd S;             ///< Φ_q M⁻¹ Φ_qᵀ, factorised in place

@@ -163,8 +163,9 @@ Eigen::Vector2d joint_force(const Model& m, const Workspace& ws, int joint);
 
 /// Structured Jacobian, force part: adds ∂g/∂q and ∂g/∂v (nq × nq each) of every film
 /// element at (q, v) to Gq and Gv, with each switching film held in its current mode
-/// (ws.film_mode; a sliding film's radial force is the sliding row's multiplier, so only
-/// its tangential force is differentiated), contact hand-over included: exactly what
+/// (ws.film_mode; a sliding film's radial force is the sliding row's multiplier, held at
+/// ws.lambda of an evaluate() at the same state: the row's geometric stiffness), contact
+/// hand-over included: exactly what
 /// evaluate() adds to g. Central difference quotients of the film element alone (≤ 2
 /// bodies: ≤ 12 columns, 24 calls of film_element_force; steps scaled with the distance
 /// to the wall). q and v are scratch copies (perturbed and restored in place). Gravity is
@@ -172,6 +173,13 @@ Eigen::Vector2d joint_force(const Model& m, const Workspace& ws, int joint);
 /// leaves the model's domain (ε >= 1 without contact).
 int add_film_force_jacobian(const Model& m, Workspace& ws, double* q, double* v, Eigen::Ref<Eigen::MatrixXd> Gq,
                             Eigen::Ref<Eigen::MatrixXd> Gv);
+
+/// Rows of the sliding films' constraints: ∂(Φ̈ + 2αΦ̇ + β²Φ)/∂q at fixed (v, q̈ = a)
+/// into the sliding rows of D (ws.slide_row; other rows untouched): the curvature of a
+/// sliding row has the clearance as its length scale, so unlike that of the ideal joints it
+/// is not negligible in a Newton matrix. Central differences; q is perturbed and restored.
+void sliding_rows_position_jacobian(const Model& m, const Workspace& ws, double* q, const double* v,
+                                    const double* a, Eigen::Ref<Eigen::MatrixXd> D);
 
 /// ∂γ/∂v (ws.nc_active × nq) of the constraint rows at (q, v), the sliding rows of sliding
 /// films included (their row numbers from ws.slide_row: call constraint_residual() at the
