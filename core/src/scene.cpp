@@ -446,7 +446,7 @@ Scene parse_scene(const json& doc) {
     s.projection = r.boolean_or("projection", false);
     if (const json* jac = r.raw_optional("jacobian")) {
       const std::string name =
-          r.choice("jacobian", {"structured", "difference_quotients"}, std::string("structured"));
+          r.choice("jacobian", {"structured", "difference_quotients"}, std::string("difference_quotients"));
       s.structured_jacobian = name == "structured";
       if (s.method != Method::cvode_bdf && s.method != Method::arkode_dirk)
         fail("solver.jacobian", *jac,
