@@ -47,6 +47,10 @@ class ArkodeIntegrator final : public Integrator {
       A_ = SUNDenseMatrix(n, n, ctx_);
       ls_ = SUNLinSol_Dense(y_, A_, ctx_);
       check(ARKStepSetLinearSolver(mem_, ls_, A_), "ARKStepSetLinearSolver");
+      if (s.user_jacobian) {
+        if (data_.nquad > 0) data_.jac.assign(static_cast<size_t>(data_.n) * data_.n, 0.0);
+        check(ARKStepSetJacFn(mem_, detail::jac_cb), "ARKStepSetJacFn");
+      }
     } else {
       check(ARKStepSetTableNum(mem_, ARKODE_DIRK_NONE, ARKODE_DORMAND_PRINCE_7_4_5), "ARKStepSetTableNum");
     }

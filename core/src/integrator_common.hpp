@@ -3,7 +3,9 @@
 #pragma once
 
 #include <nvector/nvector_serial.h>
+#include <sunmatrix/sunmatrix_dense.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <exception>
 #include <memory>
@@ -19,6 +21,7 @@ struct CallbackData {
   int n = 0;         ///< ODE size (quadratures appended after it by ARKODE)
   int nquad = 0;     ///< quadratures integrated as extra states (ARKODE)
   std::string error; ///< SUNDIALS' first error text, or an exception's
+  std::vector<double> jac;  ///< n × n scratch for the system's Jacobian when nquad > 0
 };
 
 template <class F>
@@ -61,6 +64,34 @@ inline int proj_cb(sunrealtype t, N_Vector y, N_Vector corr, sunrealtype /*eps*/
   return guarded(d, "projection", [&] {
     return d->sys->project(t, N_VGetArrayPointer(y), N_VGetArrayPointer(corr),
                            err ? N_VGetArrayPointer(err) : nullptr);
+  });
+}
+
+// The system's Jacobian into SUNDIALS' dense matrix (column-major, leading dimension
+// n + nquad). Quadratures integrated as states (ARKODE) feed back into nothing: their
+// columns are zero, and so are their rows (∂q̇/∂y is left out: the Newton iteration then
+// converges the quadratures one iteration behind the states they depend on).
+inline int jac_cb(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void* user, N_Vector, N_Vector,
+                  N_Vector) {
+  auto* d = static_cast<CallbackData*>(user);
+  return guarded(d, "Jacobian", [&] {
+    double* out = SUNDenseMatrix_Data(J);
+    const int n = d->n;
+    int rc = 0;
+    if (d->nquad == 0) {
+      rc = d->sys->jacobian(t, N_VGetArrayPointer(y), N_VGetArrayPointer(fy), out);
+    } else {
+      rc = d->sys->jacobian(t, N_VGetArrayPointer(y), N_VGetArrayPointer(fy), d->jac.data());
+      if (rc == 0) {
+        const int ld = n + d->nquad;
+        std::fill(out, out + static_cast<size_t>(ld) * ld, 0.0);
+        for (int c = 0; c < n; ++c)
+          std::copy(d->jac.data() + static_cast<size_t>(c) * n, d->jac.data() + static_cast<size_t>(c + 1) * n,
+                    out + static_cast<size_t>(c) * ld);
+      }
+    }
+    if (rc == -1 && d->error.empty()) d->error = "Jacobian: the system provides none (use difference quotients)";
+    return rc;
   });
 }
 

@@ -57,6 +57,7 @@ class CvodeIntegrator final : public Integrator {
       A_ = SUNDenseMatrix(n, n, ctx_);
       ls_ = SUNLinSol_Dense(y_, A_, ctx_);
       check(CVodeSetLinearSolver(mem_, ls_, A_), "CVodeSetLinearSolver");
+      if (s.user_jacobian) check(CVodeSetJacFn(mem_, detail::jac_cb), "CVodeSetJacFn");
       if (s.projection) check(CVodeSetProjFn(mem_, detail::proj_cb), "CVodeSetProjFn");
     }
     if (sys.num_roots() > 0) {

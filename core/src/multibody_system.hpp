@@ -28,6 +28,15 @@ namespace lub {
 
 enum class Formulation { baumgarte, partitioned, ggl };
 
+/// Preallocated scratch of the structured Jacobian (MultibodySystem::jacobian).
+struct JacobianScratch {
+  explicit JacobianScratch(const Model& m);
+  std::vector<double> q, v, a;   ///< perturbed copies of the state; accelerations
+  Eigen::MatrixXd Gq, Gv;        ///< ∂g/∂q, ∂g/∂v (nq × nq)
+  Eigen::MatrixXd B, R, Gamma_v; ///< Φ_q M⁻¹, right-hand sides, ∂γ/∂v (rows: nc + switching films)
+  Eigen::MatrixXd S;             ///< Φ_q M⁻¹ Φ_qᵀ, factorised in place
+};
+
 class MultibodySystem final : public OdeSystem {
  public:
   MultibodySystem(const Model& m, Workspace& ws, double eps_limit, bool energy, Formulation f);
@@ -43,6 +52,9 @@ class MultibodySystem final : public OdeSystem {
   int residual(double t, const double* Y, const double* Yp, double* F) override;
   int consistent_state(double t, const double* y, double* Y, double* Yp) override;
   void algebraic_tolerances(double rtol, double atol, double* out) const override;
+  /// Structured Jacobian of the baumgarte formulation (multibody_jacobian.cpp); −1 (not
+  /// provided: difference quotients) for the partitioned one.
+  int jacobian(double t, const double* y, const double* fy, double* J) override;
 
   /// Integrator state → full (q, v) (2 nq). Returns 0, or 1 if the dependent
   /// coordinates cannot be recovered (partitioned).
@@ -84,6 +96,7 @@ class MultibodySystem final : public OdeSystem {
   // ggl: multiplier slot of each row of ws_.Phi (constraints, then the sliding rows in
   // film order) — a switching film's sliding row keeps one slot whether active or not.
   std::vector<int> slot_of_switching_;  // per film: nc + its index among switching films, or −1
+  JacobianScratch jac_{m_};
 };
 
 }  // namespace lub

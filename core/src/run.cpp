@@ -317,9 +317,12 @@ RunResult Runner::run() {
   is.max_order = sol.max_order;
   is.t_stop = t_end;
   is.projection = sol.projection;
+  const bool newton = sol.method == Method::cvode_bdf || sol.method == Method::arkode_dirk;
+  is.user_jacobian = newton && sol.structured_jacobian && !sol.partitioned;
   res_.stats.rtol = sol.rtol;
   res_.stats.atol = atol;
   res_.stats.method = to_string(sol.method);
+  res_.stats.jacobian = !newton ? "none" : is.user_jacobian ? "structured" : "difference_quotients";
 
   const bool energy = scene_.output.energy_balance;
   MultibodySystem sys(m_, ws_, sim.eps_limit, energy,
@@ -475,6 +478,7 @@ RunResult Runner::run() {
   res_.stats.model_evals = ws_.counters.rhs;
   res_.stats.gravity_evals = ws_.counters.gravity;
   res_.stats.film_law_evals = ws_.counters.film;
+  res_.stats.film_law_evals_jac = ws_.counters.film_jacobian;
 
   // Steady-cycle metrics over the last metric_cycles cycles.
   Metrics& mt = res_.metrics;

@@ -36,6 +36,7 @@ const std::vector<ResultField>& solver_fields() {
       {"rhs_evals", "", true, [](const RunResult& r) { return double(r.stats.rhs_evals); }},
       {"rhs_evals_jacobian", "", true, [](const RunResult& r) { return double(r.stats.rhs_evals_jac); }},
       {"jacobian_evals", "", true, [](const RunResult& r) { return double(r.stats.jac_evals); }},
+      {"film_law_evals_jacobian", "", true, [](const RunResult& r) { return double(r.stats.film_law_evals_jac); }},
       {"linear_setups", "", true, [](const RunResult& r) { return double(r.stats.lin_setups); }},
       {"error_test_fails", "", true, [](const RunResult& r) { return double(r.stats.err_test_fails); }},
       {"nonlinear_iters", "", true, [](const RunResult& r) { return double(r.stats.nonlin_iters); }},
@@ -93,6 +94,7 @@ void write_run_file(const std::string& path, const std::string& scene_text, cons
     }
     h5::Group sv = f.require_group("solver");
     sv.set_attribute("method", r.stats.method);
+    sv.set_attribute("jacobian", r.stats.jacobian);
     sv.set_attribute("rtol", r.stats.rtol);
     sv.set_attribute("atol", r.stats.atol);
     for (const auto& fld : solver_fields()) put(sv, fld, r);

@@ -38,6 +38,11 @@ class OdeSystem {
   virtual int consistent_state(double /*t*/, const double* /*y*/, double* /*Y*/, double* /*Yp*/) { return -1; }
   /// Absolute tolerances of the algebraic variables, given those of the state.
   virtual void algebraic_tolerances(double /*rtol*/, double /*atol*/, double* /*out*/) const {}
+  /// ∂f/∂y at (t, y) (fy = f(t, y)) into J, column-major size() × size(), every entry
+  /// written. 0: ok; > 0: recoverable; −1: not provided (the integrator must then use
+  /// difference quotients: only ask for it with IntegratorSettings::user_jacobian).
+  /// Called from inside the integrator's step: no allocation.
+  virtual int jacobian(double /*t*/, const double* /*y*/, const double* /*fy*/, double* /*J*/) { return -1; }
 };
 
 struct IntegratorSettings {
@@ -49,6 +54,9 @@ struct IntegratorSettings {
   int max_order = 0;         ///< 0: default
   double t_stop = 0.0;       ///< never step past this time
   bool projection = false;   ///< project onto the constraints after each step (cvode_bdf)
+  /// Newton methods (cvode_bdf, arkode_dirk): the system's jacobian() instead of SUNDIALS'
+  /// dense difference quotients.
+  bool user_jacobian = false;
 };
 
 enum class StepOutcome { step, root, failure };

@@ -104,6 +104,7 @@ struct EvalCounters {
   long long rhs = 0;
   long long gravity = 0;
   long long film = 0;
+  long long film_jacobian = 0;  ///< force-law calls spent on structured Jacobians
 };
 
 /// Preallocated buffers; one per thread of work, reused for every case of the same model.
@@ -159,6 +160,32 @@ FilmKinematics film_kinematics(const Model& m, int k, const double* q, const dou
 /// Force on body j of scene joint `joint` from body i, global [N], after evaluate():
 /// the film force on the journal for a lubricated joint, the constraint reaction otherwise.
 Eigen::Vector2d joint_force(const Model& m, const Workspace& ws, int joint);
+
+/// Structured Jacobian, force part: adds ∂g/∂q and ∂g/∂v (nq × nq each) of every film
+/// element at (q, v) to Gq and Gv, with each switching film held in its current mode
+/// (ws.film_mode; a sliding film's radial force is the sliding row's multiplier, held at
+/// ws.lambda of an evaluate() at the same state: the row's geometric stiffness), contact
+/// hand-over included: exactly what
+/// evaluate() adds to g. Central difference quotients of the film element alone (≤ 2
+/// bodies: ≤ 12 columns, 24 calls of film_element_force; steps scaled with the distance
+/// to the wall). q and v are scratch copies (perturbed and restored in place). Gravity is
+/// constant and contributes nothing. No allocation. Returns 0, or 1 if a perturbed state
+/// leaves the model's domain (ε >= 1 without contact).
+int add_film_force_jacobian(const Model& m, Workspace& ws, double* q, double* v, Eigen::Ref<Eigen::MatrixXd> Gq,
+                            Eigen::Ref<Eigen::MatrixXd> Gv);
+
+/// Rows of the sliding films' constraints: ∂(Φ̈ + 2αΦ̇ + β²Φ)/∂q at fixed (v, q̈ = a)
+/// into the sliding rows of D (ws.slide_row; other rows untouched): the curvature of a
+/// sliding row has the clearance as its length scale, so unlike that of the ideal joints it
+/// is not negligible in a Newton matrix. Central differences; q is perturbed and restored.
+void sliding_rows_position_jacobian(const Model& m, const Workspace& ws, double* q, const double* v,
+                                    const double* a, Eigen::Ref<Eigen::MatrixXd> D);
+
+/// ∂γ/∂v (ws.nc_active × nq) of the constraint rows at (q, v), the sliding rows of sliding
+/// films included (their row numbers from ws.slide_row: call constraint_residual() at the
+/// same state first). γ is quadratic in v, so this is exact (analytic). No allocation.
+void constraint_gamma_velocity_jacobian(const Model& m, const Workspace& ws, const double* q, const double* v,
+                                        Eigen::Ref<Eigen::MatrixXd> Gamma_v);
 
 /// Kinetic energy + gravity potential [J].
 double mechanical_energy(const Model& m, const double* q, const double* v);

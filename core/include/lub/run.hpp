@@ -24,6 +24,7 @@ struct SolverStats {
   long long rhs_evals = 0;          ///< right-hand-side evaluations by the integrator
   long long jac_evals = 0;          ///< Jacobian evaluations (BDF with dense Newton)
   long long rhs_evals_jac = 0;      ///< right-hand sides spent on difference-quotient Jacobians
+  long long film_law_evals_jac = 0; ///< force-law calls spent on structured Jacobians
   long long lin_setups = 0;
   long long err_test_fails = 0;
   long long nonlin_iters = 0;
@@ -43,6 +44,7 @@ struct SolverStats {
   double max_velocity_drift = 0.0;  ///< max |Φ̇| over the run (m/s or rad/s)
   double rtol = 0.0, atol = 0.0;
   std::string method;
+  std::string jacobian;             ///< "structured", "difference_quotients" or "none" (no Newton)
 };
 
 /// Extremes over one crank cycle (or the whole run without cycles).
