@@ -182,6 +182,22 @@ const std::vector<Case>& cases() {
          d["solver"]["max_order"] = 6;
        },
        nullptr, {"solver.max_order = 6: must be <= 5 for ida (BDF orders 1 to 5)"}},
+      {"a Jacobian for a method without Newton", "four_bar.json",
+       [](json& d) {
+         d["solver"]["method"] = "cvode_adams";
+         d["solver"]["jacobian"] = "structured";
+       },
+       nullptr,
+       {"solver.jacobian = \"structured\": applies only to the methods with a Newton iteration (cvode_bdf, "
+        "arkode_dirk)"}},
+      {"structured Jacobian of the partitioned formulation", "four_bar.json",
+       [](json& d) {
+         d["solver"]["formulation"] = "partitioned";
+         d["solver"]["jacobian"] = "structured";
+       },
+       nullptr, {"solver.jacobian = \"structured\": structured requires solver.formulation = baumgarte"}},
+      {"unknown Jacobian", "four_bar.json", [](json& d) { d["solver"]["jacobian"] = "exact"; }, nullptr,
+       {"solver.jacobian = \"exact\": must be one of"}},
       {"eps limit of 1", "four_bar.json", [](json& d) { d["simulation"]["eps_limit"] = 1; }, nullptr,
        {"simulation.eps_limit = 1: must be in (0, 1)"}},
       {"negative sample interval", "four_bar.json", [](json& d) { d["outputs"]["sample_interval_s"] = -1e-5; },
