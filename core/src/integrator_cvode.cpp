@@ -57,6 +57,10 @@ class CvodeIntegrator final : public Integrator {
       A_ = SUNDenseMatrix(n, n, ctx_);
       ls_ = SUNLinSol_Dense(y_, A_, ctx_);
       check(CVodeSetLinearSolver(mem_, ls_, A_), "CVodeSetLinearSolver");
+      if (s.jacobian_every_step) {
+        check(CVodeSetJacEvalFrequency(mem_, 1), "CVodeSetJacEvalFrequency");
+        check(CVodeSetLSetupFrequency(mem_, 1), "CVodeSetLSetupFrequency");
+      }
       if (s.projection) check(CVodeSetProjFn(mem_, detail::proj_cb), "CVodeSetProjFn");
     }
     if (sys.num_roots() > 0) {

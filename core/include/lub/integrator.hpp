@@ -37,6 +37,9 @@ struct IntegratorSettings {
   int max_order = 0;         ///< 0: default
   double t_stop = 0.0;       ///< never step past this time
   bool projection = false;   ///< project onto the constraints after each step (cvode_bdf)
+  /// A fresh Jacobian and iteration matrix at every step (cvode_bdf), instead of CVODE's
+  /// reuse over up to 20/51 steps.
+  bool jacobian_every_step = false;
 };
 
 enum class StepOutcome { step, root, failure };
