@@ -57,6 +57,9 @@ struct IntegratorSettings {
   /// Newton methods (cvode_bdf, arkode_dirk): the system's jacobian() instead of SUNDIALS'
   /// dense difference quotients.
   bool user_jacobian = false;
+  /// A fresh Jacobian and iteration matrix at every step (cvode_bdf), instead of CVODE's
+  /// reuse over up to 20/51 steps.
+  bool jacobian_every_step = false;
 };
 
 enum class StepOutcome { step, root, failure };
