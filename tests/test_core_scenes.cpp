@@ -111,10 +111,11 @@ TEST(FourBar, MovesTheSameWhicheverBodyCarriesTheBearing) {
   // velocity and γ̇ in the global frame, is not symmetric: with the bearing in the rocker,
   // which swings at up to ±150 rad/s, it would change the film and the motion by O(c).)
   //
-  // Tolerance: at rtol 1e-8 (atol = rtol × c) we measure the global error of the
-  // rocker-bearing run against a run at rtol 1e-11 and require the difference between the
-  // two variants to be within 10× that error (two runs, each off by about the same error:
-  // a difference of 1–3× the error is expected). We measured, over two cycles: positions
+  // Tolerance: at rtol 1e-8 (atol = rtol × c) we measure the global error of each variant
+  // against a run at rtol 1e-11 and require the difference between the two variants to be
+  // within 10× the larger error (two runs, each off by its own error: a difference of 1–3×
+  // the error is expected; the error of one run alone can be 20× smaller than the other's
+  // when round-off changes the step sequence). We measured, over two cycles: positions
   // 2e-8–4e-8 m, angles 4e-7 rad, e 1e-8 m (2e-5 c), ε 3e-5. An absolute bound backs it up:
   // |e_A + e_B| < 1e-3 c, while the orbit spans the whole clearance (ε up to 0.98).
   const double c = 0.5e-3;
@@ -143,7 +144,8 @@ TEST(FourBar, MovesTheSameWhicheverBodyCarriesTheBearing) {
   };
   for (const Check& k : checks) {
     const double diff = max_abs_diff(channel(A, k.channel), channel(B, k.channel), k.sign);
-    const double err = max_abs_diff(channel(A, k.channel), channel(ref, k.channel));
+    const double err = std::max(max_abs_diff(channel(A, k.channel), channel(ref, k.channel)),
+                                max_abs_diff(channel(B, k.channel), channel(ref, k.channel), k.sign));
     EXPECT_LE(diff, 10.0 * std::max(err, 1e-3 * k.abs_bound))
         << k.channel << ": variants differ by " << diff << ", the integration error is " << err;
     EXPECT_LT(diff, k.abs_bound) << k.channel;

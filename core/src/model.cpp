@@ -7,30 +7,57 @@
 #include <limits>
 #include <sstream>
 
+#include "small_dense.hpp"
+
 namespace lub {
 
 namespace {
 
 using Eigen::Vector2d;
 
-inline Vector2d rot(double phi, const Vector2d& s) {
-  const double c = std::cos(phi), sn = std::sin(phi);
-  return {c * s.x() - sn * s.y(), sn * s.x() + c * s.y()};
-}
 inline Vector2d perp(const Vector2d& v) { return {-v.y(), v.x()}; }  // R90 v
 inline double cross(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-// Pose and velocity of a body (the ground is fixed at the origin).
+// Pose and velocity of a body (the ground is fixed at the origin), with cos φ and sin φ.
 struct BodyState {
   Vector2d r{0, 0}, rd{0, 0};
   double phi = 0.0, phid = 0.0;
+  double c = 1.0, s = 0.0;
+  /// A body-frame vector in the global frame.
+  Vector2d rot(const Vector2d& p) const { return {c * p.x() - s * p.y(), s * p.x() + c * p.y()}; }
 };
+// The trigonometric functions are most of the cost of the kinematics: an evaluation
+// computes them once per body (body_trig) and every constraint and film reads the table.
+inline void body_trig(int nb, const double* q, double* cphi, double* sphi) {
+  for (int b = 0; b < nb; ++b) {
+    const double phi = q[3 * b + 2];  // one local argument: the compiler fuses sin and cos
+    cphi[b] = std::cos(phi);
+    sphi[b] = std::sin(phi);
+  }
+}
+inline BodyState body_state(int b, const double* q, const double* v, const double* cphi, const double* sphi) {
+  BodyState s;
+  if (b == kGround) return s;
+  const int o = 3 * b;
+  s.r = {q[o], q[o + 1]};
+  s.phi = q[o + 2];
+  s.c = cphi[b];
+  s.s = sphi[b];
+  if (v) {
+    s.rd = {v[o], v[o + 1]};
+    s.phid = v[o + 2];
+  }
+  return s;
+}
+// The same without a table (one-off kinematics of a single film).
 inline BodyState body_state(int b, const double* q, const double* v) {
   BodyState s;
   if (b == kGround) return s;
   const int o = 3 * b;
   s.r = {q[o], q[o + 1]};
   s.phi = q[o + 2];
+  s.c = std::cos(s.phi);
+  s.s = std::sin(s.phi);
   if (v) {
     s.rd = {v[o], v[o + 1]};
     s.phid = v[o + 2];
@@ -52,17 +79,17 @@ inline void driver_motion(const Constraint& c, double t, double& f, double& fd, 
   }
 }
 
-// Fills rows of Phi_q, Phi, Phi_dot, gamma for every constraint.
+// Fills rows of Phi_q, Phi, Phi_dot, gamma for every constraint; cphi, sphi: body_trig().
 void fill_constraints(const std::vector<Constraint>& cons, double t, const double* q,
-                      const double* v, Eigen::MatrixXd& J, Eigen::VectorXd& Phi,
-                      Eigen::VectorXd& Phid, Eigen::VectorXd* gamma) {
+                      const double* v, const double* cphi, const double* sphi, Eigen::MatrixXd& J,
+                      Eigen::VectorXd& Phi, Eigen::VectorXd& Phid, Eigen::VectorXd* gamma) {
   J.setZero();
   for (const Constraint& c : cons) {
     const int row = c.row;
     switch (c.kind) {
       case Constraint::Kind::revolute: {
-        const BodyState bi = body_state(c.body_i, q, v), bj = body_state(c.body_j, q, v);
-        const Vector2d ai = rot(bi.phi, c.s_i), aj = rot(bj.phi, c.s_j);
+        const BodyState bi = body_state(c.body_i, q, v, cphi, sphi), bj = body_state(c.body_j, q, v, cphi, sphi);
+        const Vector2d ai = bi.rot(c.s_i), aj = bj.rot(c.s_j);
         Phi.segment<2>(row) = bi.r + ai + c.offset - bj.r - aj;
         Phid.segment<2>(row) = bi.rd + bi.phid * perp(ai) - bj.rd - bj.phid * perp(aj);
         if (gamma) gamma->segment<2>(row) = bi.phid * bi.phid * ai - bj.phid * bj.phid * aj;
@@ -81,9 +108,9 @@ void fill_constraints(const std::vector<Constraint>& cons, double t, const doubl
         break;
       }
       case Constraint::Kind::translational: {
-        const BodyState bi = body_state(c.body_i, q, v), bj = body_state(c.body_j, q, v);
-        const Vector2d ai = rot(bi.phi, c.s_i), aj = rot(bj.phi, c.s_j);
-        const Vector2d n = rot(bi.phi, c.n_i), pn = perp(n);
+        const BodyState bi = body_state(c.body_i, q, v, cphi, sphi), bj = body_state(c.body_j, q, v, cphi, sphi);
+        const Vector2d ai = bi.rot(c.s_i), aj = bj.rot(c.s_j);
+        const Vector2d n = bi.rot(c.n_i), pn = perp(n);
         const Vector2d d = bj.r + aj - bi.r - ai;
         const Vector2d dd = bj.rd + bj.phid * perp(aj) - bi.rd - bi.phid * perp(ai);
         Phi(row) = bj.phi - bi.phi - c.phi0;
@@ -181,7 +208,9 @@ Workspace::Workspace(const Model& m)
       lambda(Eigen::VectorXd::Zero(m.nc + m.n_switching)),
       qdd(Eigen::VectorXd::Zero(m.nq)),
       S(Eigen::MatrixXd::Zero(m.nc + m.n_switching, m.nc + m.n_switching)),
-      llt(m.nc),
+      row_bodies(static_cast<size_t>(m.nc + m.n_switching), {kGround, kGround}),
+      cos_phi(static_cast<size_t>(m.nb), 1.0),
+      sin_phi(static_cast<size_t>(m.nb), 0.0),
       films(m.films.size()),
       film_mode(m.films.size(), FilmMode::natural),
       slide_radius(m.films.size(), 0.0),
@@ -193,6 +222,13 @@ Workspace::Workspace(const Model& m)
     if (m.films[k].switching) film_mode[k] = FilmMode::outward;  // ε̇ >= 0 at a centred start
     if (m.films[k].law == ForceLaw::finite_reynolds) film_solvers[k].emplace(m.films[k].finite);
   }
+  for (const Constraint& c : m.constraints)
+    for (int r = c.row; r < c.row + c.rows; ++r)
+      row_bodies[r] = {c.body_i, c.body_j == c.body_i ? kGround : c.body_j};
+  for (int r = 0; r < m.nc; ++r)
+    for (int s = 0; s <= r; ++s)
+      for (const int b : row_bodies[r])
+        if (b != kGround && (b == row_bodies[s][0] || b == row_bodies[s][1])) schur_pairs.push_back({r, s, b});
 }
 
 Model build_model(const Scene& scene) {
@@ -294,10 +330,13 @@ Model build_model(const Scene& scene) {
   return m;
 }
 
-FilmKinematics film_kinematics(const Model& m, int k, const double* q, const double* v) {
-  const FilmElement& f = m.films[k];
-  const BodyState bi = body_state(f.bearing, q, v), bj = body_state(f.journal, q, v);
-  const Vector2d ai = rot(bi.phi, f.s_bearing), aj = rot(bj.phi, f.s_journal);
+namespace {
+// Kinematics of film f between bearing body bi and journal body bj; ai, aj: the bearing
+// and journal points from their bodies' centres, global.
+FilmKinematics film_kinematics(const FilmElement& f, const BodyState& bi, const BodyState& bj, Vector2d& ai,
+                               Vector2d& aj) {
+  ai = bi.rot(f.s_bearing);
+  aj = bj.rot(f.s_journal);
   FilmKinematics k_out;
   k_out.e = bj.r + aj - bi.r - ai;
   k_out.e_dot = bj.rd + bj.phid * perp(aj) - bi.rd - bi.phid * perp(ai);
@@ -319,9 +358,15 @@ FilmKinematics film_kinematics(const Model& m, int k, const double* q, const dou
     k_out.state.eps_dot = ed / c;
     k_out.gamma_dot = 0.0;
   }
-  k_out.gamma = std::atan2(k_out.r.y(), k_out.r.x());
   k_out.state.wedge = bj.phid + bi.phid - 2.0 * k_out.gamma_dot;
   return k_out;
+}
+}  // namespace
+
+FilmKinematics film_kinematics(const Model& m, int k, const double* q, const double* v) {
+  const FilmElement& f = m.films[k];
+  Vector2d ai, aj;
+  return film_kinematics(f, body_state(f.bearing, q, v), body_state(f.journal, q, v), ai, aj);
 }
 
 namespace {
@@ -334,7 +379,7 @@ inline void add_body_force(Eigen::VectorXd& g, int b, const Vector2d& F, double 
 }  // namespace
 
 namespace {
-// Sliding on ε̇ = 0: the row Φ = |e| − e_s (e_s the |e| held since the switch), with
+// Sliding on ε̇ = 0 (ws.cos_phi, sin_phi at q): the row Φ = |e| − e_s (e_s the |e| held since the switch), with
 // Φ̇ = r·ė and γ = r·(φ̇_j² a_j − φ̇_i² a_i) − |ė⊥|²/|e|.
 void fill_sliding_rows(const Model& m, Workspace& ws, const double* q, const double* v) {
   for (size_t k = 0; k < m.films.size(); ++k) {
@@ -342,8 +387,9 @@ void fill_sliding_rows(const Model& m, Workspace& ws, const double* q, const dou
     if (!fk.sliding) continue;
     const FilmElement& f = m.films[k];
     const int row = ws.slide_row[k];
-    const BodyState bi = body_state(f.bearing, q, v), bj = body_state(f.journal, q, v);
-    const Vector2d ai = rot(bi.phi, f.s_bearing), aj = rot(bj.phi, f.s_journal);
+    const BodyState bi = body_state(f.bearing, q, v, ws.cos_phi.data(), ws.sin_phi.data());
+    const BodyState bj = body_state(f.journal, q, v, ws.cos_phi.data(), ws.sin_phi.data());
+    const Vector2d ai = bi.rot(f.s_bearing), aj = bj.rot(f.s_journal);
     const double e = fk.e.norm();
     const double erd = fk.r.dot(fk.e_dot);
     const Vector2d ed_perp = fk.e_dot - erd * fk.r;
@@ -386,9 +432,81 @@ FilmForce film_element_force(const Model& m, Workspace& ws, int k, const Bearing
   return f.contact ? force_with_contact(*f.contact, f.clearance, state, film, &ws.contact_N[k]) : film(st);
 }
 
+namespace {
+// The rows of Φ_q are sparse (a constraint block touches at most two bodies, see
+// Workspace::row_bodies): the products below visit those columns only. Raw column-major
+// access (leading dimension ld): these loops are most of an evaluation's arithmetic.
+
+// Φ_q,r · x.
+inline double row_dot(const Workspace& ws, int r, const double* x) {
+  const double* J = ws.Phi_q.data();
+  const long ld = ws.Phi_q.rows();
+  double s = 0.0;
+  for (const int b : ws.row_bodies[r]) {
+    if (b == kGround) continue;
+    for (int i = 3 * b; i < 3 * b + 3; ++i) s += J[i * ld + r] * x[i];
+  }
+  return s;
+}
+
+// x −= Φ_qᵀ λ over the first nc rows.
+inline void subtract_transpose(const Workspace& ws, int nc, const double* lambda, double* x) {
+  const double* J = ws.Phi_q.data();
+  const long ld = ws.Phi_q.rows();
+  for (int r = 0; r < nc; ++r) {
+    const double l = lambda[r];
+    for (const int b : ws.row_bodies[r]) {
+      if (b == kGround) continue;
+      const double* Jr = J + 3 * b * ld + r;
+      double* xb = x + 3 * b;
+      xb[0] -= Jr[0] * l;
+      xb[1] -= Jr[ld] * l;
+      xb[2] -= Jr[2 * ld] * l;
+    }
+  }
+}
+
+// S = Φ_q M⁻¹ Φ_qᵀ over the first nc rows into ws.S (lower triangle), factored in place
+// (Cholesky). Rows r and s couple only through a body both touch. False if S is not
+// positive definite (redundant or singular constraints).
+bool factor_schur(const Model& m, Workspace& ws, int nc) {
+  const double* w = m.inv_mass_diag.data();
+  const double* J = ws.Phi_q.data();
+  const long ld = ws.Phi_q.rows();
+  const std::array<int, 2>* rb = ws.row_bodies.data();
+  double* S = ws.S.data();
+  const long lds = ws.S.rows();
+  std::fill(S, S + lds * nc, 0.0);
+  for (const auto& [r, s, b] : ws.schur_pairs) {
+    const double* Jr = J + 3 * b * ld + r;
+    const double* Js = J + 3 * b * ld + s;
+    const double* wb = w + 3 * b;
+    double sum = Jr[0] * wb[0] * Js[0];
+    sum += Jr[ld] * wb[1] * Js[ld];
+    sum += Jr[2 * ld] * wb[2] * Js[2 * ld];
+    S[s * lds + r] += sum;
+  }
+  // The sliding rows change with the films' modes: found on the fly.
+  for (int r = m.nc; r < nc; ++r) {
+    for (int s = 0; s <= r; ++s) {
+      double sum = 0.0;
+      for (const int b : rb[r]) {
+        if (b == kGround || (b != rb[s][0] && b != rb[s][1])) continue;
+        for (int i = 3 * b; i < 3 * b + 3; ++i) sum += J[i * ld + r] * w[i] * J[i * ld + s];
+      }
+      S[s * lds + r] = sum;
+    }
+  }
+  return dense::cholesky(S, static_cast<int>(lds), nc);
+}
+}  // namespace
+
 int evaluate(const Model& m, Workspace& ws, double t, const double* q, const double* v,
              double* qdd) {
   ++ws.counters.rhs;
+  const double* cphi = ws.cos_phi.data();
+  const double* sphi = ws.sin_phi.data();
+  body_trig(m.nb, q, ws.cos_phi.data(), ws.sin_phi.data());
   ws.g.setZero();
   if (m.gravity) {
     ++ws.counters.gravity;
@@ -401,7 +519,9 @@ int evaluate(const Model& m, Workspace& ws, double t, const double* q, const dou
   for (size_t k = 0; k < m.films.size(); ++k) {
     const FilmElement& f = m.films[k];
     FilmKinematics& fk = ws.films[k];
-    fk = film_kinematics(m, static_cast<int>(k), q, v);
+    Vector2d ai, aj;
+    fk = film_kinematics(f, body_state(f.bearing, q, v, cphi, sphi), body_state(f.journal, q, v, cphi, sphi), ai,
+                         aj);
     // Journal through the wall: outside the model, unless the contact effect takes over.
     if (!f.contact && !(fk.state.eps < 1.0)) return 1;
     fk.force = film_element_force(m, ws, static_cast<int>(k), fk.state, ws.film_mode[k], &ws.counters.film);
@@ -409,38 +529,34 @@ int evaluate(const Model& m, Workspace& ws, double t, const double* q, const dou
     if (fk.sliding) {
       fk.force.radial_N = 0.0;  // the sliding constraint's multiplier, after the solve
       ws.slide_row[k] = m.nc + n_sliding++;
+      ws.row_bodies[ws.slide_row[k]] = {f.bearing, f.journal};
     }
     const Vector2d t_dir = perp(fk.r);
     fk.F = fk.force.radial_N * fk.r + fk.force.tangential_N * t_dir;
     if (!std::isfinite(fk.F.x()) || !std::isfinite(fk.F.y())) return 1;
-    const BodyState bi = body_state(f.bearing, q, nullptr), bj = body_state(f.journal, q, nullptr);
-    const Vector2d ai = rot(bi.phi, f.s_bearing), aj = rot(bj.phi, f.s_journal);
     add_body_force(ws.g, f.journal, fk.F, cross(aj, fk.F));
     add_body_force(ws.g, f.bearing, -fk.F, -cross(ai, fk.F));
   }
-  Eigen::Map<Eigen::VectorXd> a(qdd, m.nq);
+  const double* w = m.inv_mass_diag.data();
   const int nc = m.nc + n_sliding;
   ws.nc_active = nc;
   if (nc == 0) {
-    a = m.inv_mass_diag.cwiseProduct(ws.g);
+    for (int i = 0; i < m.nq; ++i) qdd[i] = w[i] * ws.g(i);
     return 0;
   }
-  fill_constraints(m.constraints, t, q, v, ws.Phi_q, ws.Phi, ws.Phi_dot, &ws.gamma);
+  fill_constraints(m.constraints, t, q, v, cphi, sphi, ws.Phi_q, ws.Phi, ws.Phi_dot, &ws.gamma);
   if (n_sliding > 0) fill_sliding_rows(m, ws, q, v);
-  const auto J = ws.Phi_q.topRows(nc);
-  auto rhs = ws.rhs.head(nc);
-  auto lambda = ws.lambda.head(nc);
-  // γ̂ = γ − 2α Φ̇ − β² Φ
-  rhs.noalias() = J * m.inv_mass_diag.cwiseProduct(ws.g);
-  rhs -= ws.gamma.head(nc) - 2.0 * m.alpha * ws.Phi_dot.head(nc) - (m.beta * m.beta) * ws.Phi.head(nc);
-  auto S = ws.S.topLeftCorner(nc, nc);
-  // Small matrices: coefficient-based products beat the blocked GEMM path here.
-  S.noalias() = (J * m.inv_mass_diag.asDiagonal()).lazyProduct(J.transpose());
-  ws.llt.compute(S);
-  if (ws.llt.info() != Eigen::Success) return -1;
-  lambda = ws.llt.solve(rhs);
-  ws.qdd.noalias() = ws.g - J.transpose() * lambda;
-  a = m.inv_mass_diag.cwiseProduct(ws.qdd);
+  // (Φ_q M⁻¹ Φ_qᵀ) λ = Φ_q M⁻¹ g − γ̂,  γ̂ = γ − 2α Φ̇ − β² Φ  (qdd holds M⁻¹ g meanwhile)
+  for (int i = 0; i < m.nq; ++i) qdd[i] = w[i] * ws.g(i);
+  for (int r = 0; r < nc; ++r)
+    ws.rhs(r) = row_dot(ws, r, qdd) - (ws.gamma(r) - 2.0 * m.alpha * ws.Phi_dot(r) - (m.beta * m.beta) * ws.Phi(r));
+  if (!factor_schur(m, ws, nc)) return -1;
+  ws.lambda.head(nc) = ws.rhs.head(nc);
+  dense::cholesky_solve(ws.S.data(), static_cast<int>(ws.S.rows()), nc, ws.lambda.data());
+  // q̈ = M⁻¹ (g − Φ_qᵀ λ)
+  ws.qdd = ws.g;
+  subtract_transpose(ws, nc, ws.lambda.data(), ws.qdd.data());
+  for (int i = 0; i < m.nq; ++i) qdd[i] = w[i] * ws.qdd(i);
   if (n_sliding > 0) {
     for (size_t k = 0; k < m.films.size(); ++k) {
       FilmKinematics& fk = ws.films[k];
@@ -454,17 +570,24 @@ int evaluate(const Model& m, Workspace& ws, double t, const double* q, const dou
 }
 
 void constraint_residual(const Model& m, Workspace& ws, double t, const double* q, const double* v) {
-  fill_constraints(m.constraints, t, q, v, ws.Phi_q, ws.Phi, ws.Phi_dot, nullptr);
+  const double* cphi = ws.cos_phi.data();
+  const double* sphi = ws.sin_phi.data();
+  body_trig(m.nb, q, ws.cos_phi.data(), ws.sin_phi.data());
+  fill_constraints(m.constraints, t, q, v, cphi, sphi, ws.Phi_q, ws.Phi, ws.Phi_dot, nullptr);
   int n_sliding = 0;
   for (size_t k = 0; k < m.films.size(); ++k) {
     FilmKinematics& fk = ws.films[k];
     fk.sliding = ws.film_mode[k] == FilmMode::sliding;
     if (!fk.sliding) continue;
-    const FilmKinematics kin = film_kinematics(m, static_cast<int>(k), q, v);
+    const FilmElement& f = m.films[k];
+    Vector2d ai, aj;
+    const FilmKinematics kin =
+        film_kinematics(f, body_state(f.bearing, q, v, cphi, sphi), body_state(f.journal, q, v, cphi, sphi), ai, aj);
     fk.e = kin.e;
     fk.e_dot = kin.e_dot;
     fk.r = kin.r;
     ws.slide_row[k] = m.nc + n_sliding++;
+    ws.row_bodies[ws.slide_row[k]] = {f.bearing, f.journal};
   }
   if (n_sliding > 0) fill_sliding_rows(m, ws, q, v);
   ws.nc_active = m.nc + n_sliding;
@@ -473,39 +596,44 @@ void constraint_residual(const Model& m, Workspace& ws, double t, const double* 
 int project_state(const Model& m, Workspace& ws, double t, double* q, double* v, double* dq, double* dv,
                   double tol, double* err) {
   // M-weighted least corrections: Δ = −M⁻¹ Jᵀ (J M⁻¹ Jᵀ)⁻¹ r, for r = Φ (Newton on the
-  // positions) and then r = Φ̇ (one linear step on the velocities).
+  // positions) and then r = Φ̇ (one linear step on the velocities). Scratch: ws.rhs (r),
+  // ws.qdd (Δ).
   Eigen::Map<Eigen::VectorXd> Q(q, m.nq), V(v, m.nq), DQ(dq, m.nq), DV(dv, m.nq);
   DQ.setZero();
   DV.setZero();
-  auto solve = [&](int nc, const Eigen::VectorXd& r) -> Eigen::VectorXd {
-    const auto J = ws.Phi_q.topRows(nc);
-    auto S = ws.S.topLeftCorner(nc, nc);
-    S.noalias() = J * m.inv_mass_diag.asDiagonal() * J.transpose();
-    ws.llt.compute(S);
-    return -m.inv_mass_diag.cwiseProduct(J.transpose() * ws.llt.solve(r));
+  // ws.qdd = Δ for r = ws.rhs; false if J M⁻¹ Jᵀ is singular.
+  auto solve = [&](int nc) {
+    if (!factor_schur(m, ws, nc)) return false;
+    dense::cholesky_solve(ws.S.data(), static_cast<int>(ws.S.rows()), nc, ws.rhs.data());
+    ws.qdd.setZero();
+    subtract_transpose(ws, nc, ws.rhs.data(), ws.qdd.data());
+    ws.qdd.array() *= m.inv_mass_diag.array();
+    return true;
   };
   for (int it = 0; it < 8; ++it) {
     constraint_residual(m, ws, t, q, v);
     const int nc = ws.nc_active;
     if (nc == 0) return 0;
     if (ws.Phi.head(nc).lpNorm<Eigen::Infinity>() <= tol) break;
-    const Eigen::VectorXd d = solve(nc, ws.Phi.head(nc));
-    if (ws.llt.info() != Eigen::Success) return -1;
-    Q += d;
-    DQ += d;
+    ws.rhs.head(nc) = ws.Phi.head(nc);
+    if (!solve(nc)) return -1;
+    Q += ws.qdd;
+    DQ += ws.qdd;
     if (it == 7) return 1;  // did not converge: let the integrator retry smaller
   }
   constraint_residual(m, ws, t, q, v);
   const int nc = ws.nc_active;
-  const Eigen::VectorXd d = solve(nc, ws.Phi_dot.head(nc));
-  V += d;
-  DV = d;
+  ws.rhs.head(nc) = ws.Phi_dot.head(nc);
+  if (!solve(nc)) return -1;
+  V += ws.qdd;
+  DV = ws.qdd;
   if (err) {
     // The error estimate loses its components normal to the constraint manifold.
-    Eigen::Map<Eigen::VectorXd> EQ(err, m.nq), EV(err + m.nq, m.nq);
-    const auto J = ws.Phi_q.topRows(nc);
-    EQ += solve(nc, J * EQ);
-    EV += solve(nc, J * EV);
+    for (double* e : {err, err + m.nq}) {
+      for (int r = 0; r < nc; ++r) ws.rhs(r) = row_dot(ws, r, e);
+      if (!solve(nc)) return -1;
+      Eigen::Map<Eigen::VectorXd>(e, m.nq) += ws.qdd;
+    }
   }
   return 0;
 }
@@ -567,10 +695,12 @@ void assemble_initial_state(const Model& m, const Scene& scene, double t0, Eigen
 
   Eigen::MatrixXd J(nc, m.nq);
   Eigen::VectorXd Phi(nc), Phid(nc);
+  std::vector<double> cphi(static_cast<size_t>(m.nb)), sphi(static_cast<size_t>(m.nb));
   const double tol = 1e-13 * length_scale;
   double res = 0.0;
   for (int it = 0; it < 100; ++it) {
-    fill_constraints(cons, t0, q.data(), nullptr, J, Phi, Phid, nullptr);
+    body_trig(m.nb, q.data(), cphi.data(), sphi.data());
+    fill_constraints(cons, t0, q.data(), nullptr, cphi.data(), sphi.data(), J, Phi, Phid, nullptr);
     res = Phi.lpNorm<Eigen::Infinity>();
     if (res <= tol) break;
     Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(J);
@@ -588,7 +718,8 @@ void assemble_initial_state(const Model& m, const Scene& scene, double t0, Eigen
                   "bodies' initial poses and the lengths";
     throw InputError(msg.str());
   }
-  fill_constraints(cons, t0, q.data(), nullptr, J, Phi, Phid, nullptr);
+  body_trig(m.nb, q.data(), cphi.data(), sphi.data());
+  fill_constraints(cons, t0, q.data(), nullptr, cphi.data(), sphi.data(), J, Phi, Phid, nullptr);
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(J);
   cod.setThreshold(1e-10);
   if (cod.rank() < nc) {

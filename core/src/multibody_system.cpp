@@ -1,9 +1,13 @@
 #include "multibody_system.hpp"
 
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+
+#include "small_dense.hpp"
 
 namespace lub {
 
@@ -16,10 +20,11 @@ MultibodySystem::MultibodySystem(const Model& m, Workspace& ws, double eps_limit
   int next_slot = m.nc;
   for (const FilmElement& film : m.films) slot_of_switching_.push_back(film.switching ? next_slot++ : -1);
   if (f == Formulation::partitioned) {
-    A_.resize(m.nc, m.nc);
-    r_.resize(m.nc);
-    dz_.resize(m.nc);
-    lu_ = Eigen::PartialPivLU<Eigen::MatrixXd>(m.nc);
+    lu_.assign(static_cast<size_t>(m.nc) * m.nc, 0.0);
+    block_ = lu_;
+    piv_.assign(static_cast<size_t>(m.nc), 0);
+    r_.assign(static_cast<size_t>(m.nc), 0.0);
+    last_y_.assign(static_cast<size_t>(2 * nz_), 0.0);
   }
 }
 
@@ -45,6 +50,22 @@ void MultibodySystem::partition(double t, const double* qv) {
   lu_valid_ = false;
 }
 
+void MultibodySystem::factor_dependent_block() {
+  // The block already factored (e.g. the integrator's difference quotients that perturb
+  // only velocities): nothing to do, the factors are exact for it.
+  const int nc = m_.nc;
+  bool same = lu_valid_;
+  for (int j = 0; j < nc; ++j)
+    for (int i = 0; i < nc; ++i) {
+      const double a = ws_.Phi_q(i, dep_[j]);
+      double& b = block_[static_cast<size_t>(j) * nc + i];
+      if (a != b) same = false, b = a;
+    }
+  if (same) return;
+  std::copy(block_.begin(), block_.end(), lu_.begin());
+  dense::lu(lu_.data(), nc, nc, piv_.data());
+}
+
 int MultibodySystem::expand(double t, const double* y, double* qv) {
   const int nq = m_.nq;
   if (form_ != Formulation::partitioned) {
@@ -68,48 +89,58 @@ int MultibodySystem::expand(double t, const double* y, double* qv) {
     // Chord Newton: the LU of the dependent block from the last evaluation serves as
     // long as it converges fast (the configuration moved little); it is refreshed at
     // the solution for the velocities, and whenever the iteration stalls.
+    const int nc = m_.nc;
+    const double* Phi = ws_.Phi.data();
     bool converged = false;
     double last = std::numeric_limits<double>::infinity();
     for (int it = 0; it < 30; ++it) {
       constraint_residual(m_, ws_, t, q, nullptr);
-      r_ = ws_.Phi.head(m_.nc);
-      const double res = r_.lpNorm<Eigen::Infinity>();
-      if (!std::isfinite(res)) return 1;
+      double res = 0.0;
+      for (int i = 0; i < nc; ++i) {
+        if (!std::isfinite(Phi[i])) return 1;
+        res = std::max(res, std::abs(Phi[i]));
+      }
       if (res <= tol) {
         converged = true;
         break;
       }
       if (!lu_valid_ || res > 0.25 * last) {
-        A_ = ws_.Phi_q(Eigen::seqN(0, m_.nc), dep_);
-        lu_.compute(A_);
+        factor_dependent_block();
         lu_valid_ = true;
       }
       last = res;
-      dz_ = lu_.solve(r_);
-      for (int i = 0; i < m_.nc; ++i) q[dep_[i]] -= dz_(i);
+      std::copy(Phi, Phi + nc, r_.begin());
+      dense::lu_solve(lu_.data(), nc, nc, piv_.data(), r_.data());
+      for (int i = 0; i < nc; ++i) q[dep_[i]] -= r_[i];
     }
     if (!converged) {
       lu_valid_ = false;
       return 1;
     }
-    A_ = ws_.Phi_q(Eigen::seqN(0, m_.nc), dep_);
-    lu_.compute(A_);
-    // Velocities: Φ_q,dep v_dep = −(Φ_q,ind ż + Φ_t), with Φ_t = Φ̇ at v = 0.
-    const auto d = lu_.matrixLU().diagonal().cwiseAbs();
-    degraded_ = d.minCoeff() < 1e-4 * d.maxCoeff();
-    r_ = ws_.Phi_dot.head(m_.nc);
+    // Velocities: Φ_q,dep v_dep = −(Φ_q,ind ż + Φ_t), with Φ_t = Φ̇ at v = 0. Exact only
+    // with the dependent block at the solution: factor it (this is also the next chord).
+    factor_dependent_block();
+    lu_valid_ = true;
+    double dmin = std::numeric_limits<double>::infinity(), dmax = 0.0;
+    for (int i = 0; i < nc; ++i) {
+      const double d = std::abs(lu_[static_cast<size_t>(i) * nc + i]);
+      dmin = std::min(dmin, d);
+      dmax = std::max(dmax, d);
+    }
+    degraded_ = dmin < 1e-4 * dmax;
+    std::copy(ws_.Phi_dot.data(), ws_.Phi_dot.data() + nc, r_.begin());
     for (int i = 0; i < nd; ++i) {
       v[ind_[i]] = y[nd + i];
-      r_ += ws_.Phi_q.block(0, ind_[i], m_.nc, 1) * y[nd + i];
+      for (int r = 0; r < nc; ++r) r_[r] += ws_.Phi_q(r, ind_[i]) * y[nd + i];
     }
-    dz_ = lu_.solve(r_);
-    for (int i = 0; i < m_.nc; ++i) v[dep_[i]] = -dz_(i);
+    dense::lu_solve(lu_.data(), nc, nc, piv_.data(), r_.data());
+    for (int i = 0; i < nc; ++i) v[dep_[i]] = -r_[i];
   } else {
     for (int i = 0; i < nd; ++i) v[ind_[i]] = y[nd + i];
   }
   std::copy(qv_.begin(), qv_.end(), qv);
   last_t_ = t;
-  last_y_.assign(y, y + 2 * nd);
+  std::copy(y, y + 2 * nd, last_y_.begin());
   have_last_ = true;
   return 0;
 }

@@ -16,8 +16,6 @@
 // All expose roots (ε limit, switching of discontinuous laws) and quadratures (work).
 #pragma once
 
-#include <Eigen/LU>
-
 #include <utility>
 #include <vector>
 
@@ -85,9 +83,11 @@ class MultibodySystem final : public OdeSystem {
   std::vector<double> scratch_, qv_, acc_;
   // partitioned
   std::vector<int> ind_, dep_;
-  Eigen::MatrixXd A_;  // Φ_q restricted to the dependent columns
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
-  Eigen::VectorXd r_, dz_;
+  // Φ_q restricted to the dependent columns when last factored, its LU factors (dense::lu)
+  // and pivots
+  std::vector<double> block_, lu_;
+  std::vector<int> piv_;
+  std::vector<double> r_;
   bool degraded_ = false;
   bool lu_valid_ = false;  // lu_ holds a factorisation of a recent dependent block
   bool have_last_ = false;  // cache of the last expansion
@@ -97,6 +97,8 @@ class MultibodySystem final : public OdeSystem {
   // film order) — a switching film's sliding row keeps one slot whether active or not.
   std::vector<int> slot_of_switching_;  // per film: nc + its index among switching films, or −1
   JacobianScratch jac_{m_};
+
+  void factor_dependent_block();
 };
 
 }  // namespace lub

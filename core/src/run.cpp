@@ -67,7 +67,7 @@ double channel_value(const Scene& scene, const Model& m, const Workspace& ws, co
   if (qn == "e_y") return k.e.y();
   if (qn == "eps") return k.state.eps;
   if (qn == "eps_dot") return k.state.eps_dot;
-  if (qn == "gamma") return k.gamma;
+  if (qn == "gamma") return k.gamma();
   if (qn == "gamma_dot") return k.gamma_dot;
   if (qn == "wedge") return k.state.wedge;
   if (qn == "h_min") return clearance * (1.0 - k.state.eps);

@@ -13,9 +13,10 @@
 // the journal at the journal centre P_j, −F on the bearing at the bearing centre P_i.
 #pragma once
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 
+#include <array>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -93,10 +94,12 @@ struct FilmKinematics {
   Eigen::Vector2d e{0, 0};      ///< journal centre − bearing centre [m]
   Eigen::Vector2d e_dot{0, 0};  ///< [m/s]
   Eigen::Vector2d r{1, 0};      ///< unit radial direction (along e; along ė or x at e = 0)
-  double gamma = 0.0, gamma_dot = 0.0;
+  double gamma_dot = 0.0;
   BearingState state;           ///< ε, ε̇, wedge
   FilmForce force;              ///< on the journal, radial/tangential
   Eigen::Vector2d F{0, 0};      ///< on the journal, global [N]
+  /// Angle of the line of centres [rad]; on demand, as only observers need it.
+  double gamma() const { return std::atan2(r.y(), r.x()); }
 };
 
 /// Counters of what the right-hand side evaluated (for the effect-counting tests).
@@ -112,8 +115,13 @@ struct Workspace {
   explicit Workspace(const Model& m);
   Eigen::MatrixXd Phi_q;   ///< nc × nq
   Eigen::VectorXd Phi, Phi_dot, gamma, g, rhs, lambda, qdd;
-  Eigen::MatrixXd S;       ///< nc × nc
-  Eigen::LLT<Eigen::MatrixXd> llt;
+  Eigen::MatrixXd S;       ///< nc × nc; after evaluate() its Cholesky factor (lower triangle)
+  /// The moving bodies (at most two; kGround: none) each row of Phi_q touches: the rows
+  /// are sparse, and S = Φ_q M⁻¹ Φ_qᵀ is formed from these columns only.
+  std::vector<std::array<int, 2>> row_bodies;
+  /// (r, s, b): constraint rows r >= s that share moving body b, the nonzero terms of S.
+  std::vector<std::array<int, 3>> schur_pairs;
+  std::vector<double> cos_phi, sin_phi;  ///< of each body's angle, at the last evaluation
   std::vector<FilmKinematics> films;
   EvalCounters counters;
   // Switching films: mode, and in sliding mode the held |e| [m] and the constraint row.
