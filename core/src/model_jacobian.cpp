@@ -73,6 +73,22 @@ double sliding_row_residual(const Model& m, const Workspace& ws, int k, const do
   return Phidd + 2.0 * m.alpha * erd + m.beta * m.beta * (en - ws.slide_radius[k]);
 }
 
+// One central difference along x[col]: f(+1) at x[col] + h, f(−1) at x[col] − h (each
+// with x changed in place), then x[col] restored. Returns the span between the two
+// representable points, or 0 if f failed at either.
+template <class F>
+double central_difference(double* x, int col, double h, F&& f) {
+  const double x0 = x[col];
+  x[col] = x0 + h;
+  const double hp = x[col] - x0;
+  const bool ok_p = f(+1);
+  x[col] = x0 - h;
+  const double hm = x0 - x[col];
+  const bool ok_m = f(-1);
+  x[col] = x0;
+  return ok_p && ok_m ? hp + hm : 0.0;
+}
+
 }  // namespace
 
 void sliding_rows_position_jacobian(const Model& m, const Workspace& ws, double* q, const double* v,
@@ -92,15 +108,12 @@ void sliding_rows_position_jacobian(const Model& m, const Workspace& ws, double*
       for (int dof = 0; dof < 3; ++dof) {
         const int col = 3 * b + dof;
         const double h = dof == 2 ? h_pos / arms[side] : h_pos;
-        const double x0 = q[col];
-        q[col] = x0 + h;
-        const double hp = q[col] - x0;
-        const double fp = sliding_row_residual(m, ws, k, q, v, a);
-        q[col] = x0 - h;
-        const double hm = x0 - q[col];
-        const double fm = sliding_row_residual(m, ws, k, q, v, a);
-        q[col] = x0;
-        D(row, col) = (fp - fm) / (hp + hm);
+        double fp = 0.0, fm = 0.0;
+        const double span = central_difference(q, col, h, [&](int sign) {
+          (sign > 0 ? fp : fm) = sliding_row_residual(m, ws, k, q, v, a);
+          return true;
+        });
+        D(row, col) = (fp - fm) / span;
       }
     }
   }
@@ -136,22 +149,17 @@ int add_film_force_jacobian(const Model& m, Workspace& ws, double* q, double* v,
           double* x = which == 0 ? q : v;
           double h = which == 0 ? h_pos : h_vel;
           if (dof == 2) h /= arms[side];  // a rotation moves the point by |s| δφ
-          const double x0 = x[col];
-          x[col] = x0 + h;
-          const double hp = x[col] - x0;
-          const bool ok_p = film_generalised_force(m, ws, k, q, v, plus);
-          x[col] = x0 - h;
-          const double hm = x0 - x[col];
-          const bool ok_m = film_generalised_force(m, ws, k, q, v, minus);
-          x[col] = x0;
-          if (!ok_p || !ok_m) {
+          const double span = central_difference(x, col, h, [&](int sign) {
+            return film_generalised_force(m, ws, k, q, v, sign > 0 ? plus : minus);
+          });
+          if (span == 0.0) {
             ws.contact_N[k] = contact_N;
             return 1;
           }
           Eigen::Ref<Eigen::MatrixXd>& G = which == 0 ? Gq : Gv;
           for (int s2 = 0; s2 < 2; ++s2) {
             if (bodies[s2] == kGround) continue;
-            for (int r = 0; r < 3; ++r) G(3 * bodies[s2] + r, col) += (plus[3 * s2 + r] - minus[3 * s2 + r]) / (hp + hm);
+            for (int r = 0; r < 3; ++r) G(3 * bodies[s2] + r, col) += (plus[3 * s2 + r] - minus[3 * s2 + r]) / span;
           }
         }
       }
