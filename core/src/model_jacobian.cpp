@@ -26,7 +26,7 @@ inline double rate(int b, const double* v) { return b == kGround ? 0.0 : v[3 * b
 // What film element k adds to g at (q, v), as evaluate() adds it: out[0..2] on the bearing
 // body (x, y, φ), out[3..5] on the journal body. False outside the model's domain.
 bool film_generalised_force(const Model& m, Workspace& ws, int k, const double* q, const double* v,
-                            double out[6]) {
+                            SlidingRadial sliding, double out[6]) {
   const FilmElement& f = m.films[k];
   const FilmKinematics fk = film_kinematics(m, k, q, v);
   if (!f.contact && !(fk.state.eps < 1.0)) return false;
@@ -35,7 +35,10 @@ bool film_generalised_force(const Model& m, Workspace& ws, int k, const double* 
   // at the state of the last evaluate(): differentiating F = −λ_s r(q) at fixed λ_s gives
   // the row's geometric stiffness −∂(Φ_s,qᵀ λ_s)/∂q, which is not small (λ_s/|e|, with
   // |e| ~ the clearance as radius of curvature) and which a = M⁻¹(g − Φ_qᵀλ) needs.
-  if (ws.film_mode[k] == FilmMode::sliding) force.radial_N = -ws.lambda(ws.slide_row[k]);
+  // In the GGL DAE (SlidingRadial::in_constraint) the radial force is not in g but in
+  // Φ_qᵀλ with the DAE's multiplier, as in evaluate() before its solve: zero here.
+  if (ws.film_mode[k] == FilmMode::sliding)
+    force.radial_N = sliding == SlidingRadial::held_multiplier ? -ws.lambda(ws.slide_row[k]) : 0.0;
   const Vector2d F = force.radial_N * fk.r + force.tangential_N * perp(fk.r);
   if (!std::isfinite(F.x()) || !std::isfinite(F.y())) return false;
   const Vector2d ai = rot(angle(f.bearing, q), f.s_bearing), aj = rot(angle(f.journal, q), f.s_journal);
@@ -107,7 +110,7 @@ void sliding_rows_position_jacobian(const Model& m, const Workspace& ws, double*
 }
 
 int add_film_force_jacobian(const Model& m, Workspace& ws, double* q, double* v, Eigen::Ref<Eigen::MatrixXd> Gq,
-                            Eigen::Ref<Eigen::MatrixXd> Gv) {
+                            Eigen::Ref<Eigen::MatrixXd> Gv, SlidingRadial sliding) {
   // Central differences: truncation ~ (h/d)² with d the length over which the force
   // changes (the distance to the wall, (1 − ε) c), round-off ~ u d/h. h = u^(1/3) d
   // balances them at ~ u^(2/3) ≈ 4e-11 relative, uniformly up to the wall.
@@ -139,10 +142,10 @@ int add_film_force_jacobian(const Model& m, Workspace& ws, double* q, double* v,
           const double x0 = x[col];
           x[col] = x0 + h;
           const double hp = x[col] - x0;
-          const bool ok_p = film_generalised_force(m, ws, k, q, v, plus);
+          const bool ok_p = film_generalised_force(m, ws, k, q, v, sliding, plus);
           x[col] = x0 - h;
           const double hm = x0 - x[col];
-          const bool ok_m = film_generalised_force(m, ws, k, q, v, minus);
+          const bool ok_m = film_generalised_force(m, ws, k, q, v, sliding, minus);
           x[col] = x0;
           if (!ok_p || !ok_m) {
             ws.contact_N[k] = contact_N;

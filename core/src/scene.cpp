@@ -457,9 +457,9 @@ Scene parse_scene(const json& doc) {
       const std::string name =
           r.choice("jacobian", {"structured", "difference_quotients"}, std::string("difference_quotients"));
       s.structured_jacobian = name == "structured";
-      if (s.method != Method::cvode_bdf && s.method != Method::arkode_dirk)
+      if (s.method != Method::cvode_bdf && s.method != Method::arkode_dirk && !ida)
         fail("solver.jacobian", *jac,
-             "applies only to the methods with a Newton iteration (cvode_bdf, arkode_dirk)");
+             "applies only to the methods with a Newton iteration (cvode_bdf, arkode_dirk, ida)");
       if (s.structured_jacobian && s.partitioned)
         fail("solver.jacobian", *jac,
              "structured requires solver.formulation = baumgarte (the partitioned formulation uses "
