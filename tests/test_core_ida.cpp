@@ -58,6 +58,7 @@ TEST(IdaGgl, AgreesWithThePartitionedReferenceForEachPaperLaw) {
     const RunResult g = run(law, "ida", "ggl", 1e-8, 3);
     ASSERT_EQ(ref.status, RunStatus::ok) << ref.message;
     ASSERT_EQ(g.status, RunStatus::ok) << g.message;
+    EXPECT_EQ(g.stats.jacobian, "structured");  // IDA's default
     EXPECT_NEAR(g.metrics.min_film_thickness_m / ref.metrics.min_film_thickness_m, 1.0, 2e-3);
     EXPECT_NEAR(g.metrics.max_eps / ref.metrics.max_eps, 1.0, 2e-3);
     EXPECT_NEAR(g.metrics.peak_reaction_N / ref.metrics.peak_reaction_N, 1.0, 2e-3);

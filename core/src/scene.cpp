@@ -453,6 +453,8 @@ Scene parse_scene(const json& doc) {
       fail("solver.formulation", json(form),
            "solver.method = ida integrates the GGL index-2 DAE: the formulation must be ggl (or absent)");
     s.projection = r.boolean_or("projection", false);
+    // IDA: the structured iteration matrix by default (README "Integration", Jacobian).
+    s.structured_jacobian = ida;
     if (const json* jac = r.raw_optional("jacobian")) {
       const std::string name =
           r.choice("jacobian", {"structured", "difference_quotients"}, std::string("difference_quotients"));
