@@ -1,7 +1,7 @@
 // The structured Jacobian of the baumgarte formulation (core/src/multibody_jacobian.cpp)
 // against a central-difference Jacobian of the full right-hand side near the wall, for
 // every force law, in sliding mode and with the contact hand-over; no allocation inside
-// it; and whole runs with it against runs with SUNDIALS' difference quotients.
+// it (nor inside the GGL DAE's, test_core_ida.cpp); and whole runs with it against runs with SUNDIALS' difference quotients.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -10,10 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "../core/src/multibody_system.hpp"
-#include "lub/json_reader.hpp"
-#include "lub/model.hpp"
-#include "lub/run.hpp"
+#include "near_wall_state.hpp"
 
 // Counts the heap allocations of this process while g_count is set (glibc: the real
 // allocator is __libc_malloc; lubcore is linked statically, so its calls land here).
@@ -31,57 +28,9 @@ namespace {
 
 using nlohmann::json;
 
-json reference_doc() {
-  json doc = lub::read_json_file(std::string(LUB_SOURCE_DIR) + "/configs/scenes/slider_crank.json");
-  doc["outputs"]["channels"] = json::array();
-  return doc;
-}
-
-struct Case {
-  std::string name, law;
-  bool sliding = false;
-  bool contact = false;
-};
-
-// A state of the reference slider-crank with the journal at ε = 0.95, moving outwards
-// (ε̇ > 0: the printed law on its outward branch) and round the bearing.
-struct NearWall {
-  explicit NearWall(const Case& c) {
-    json doc = reference_doc();
-    doc["joints"][3]["force_law"] = c.law;
-    if (c.law == "finite_reynolds") {
-      doc["joints"][3]["cavitation"] = "sommerfeld";  // smooth in the state
-    }
-    if (c.contact)
-      doc["effects"]["contact"] = {{"stiffness_N_per_m_n", 1e10}, {"restitution", 0.9},
-                                   {"handover_eps", {0.93, 0.97}}};
-    scene = lub::parse_scene(doc);
-    model = lub::build_model(scene);
-    ws = std::make_unique<lub::Workspace>(model);
-    Eigen::VectorXd q, v;
-    lub::assemble_initial_state(model, scene, 0.0, q, v);
-    const lub::FilmElement& f = model.films.at(0);
-    const double c_m = f.clearance, omega = 5000.0 * 2.0 * M_PI / 60.0;
-    const Eigen::Vector2d r(std::cos(0.7), std::sin(0.7)), t(-r.y(), r.x());
-    const Eigen::Vector2d e = 0.95 * c_m * r, ed = c_m * omega * (0.2 * r + 0.5 * t);
-    // Move the bearing body (the slider): e = journal point − bearing point.
-    const int b = f.bearing;
-    q.segment<2>(3 * b) -= e;
-    v.segment<2>(3 * b) -= ed;
-    y.resize(2 * model.nq);
-    y << q, v;
-    sys = std::make_unique<lub::MultibodySystem>(model, *ws, 0.999, false, lub::Formulation::baumgarte);
-    if (c.sliding) {
-      ws->film_mode[0] = lub::FilmMode::sliding;
-      ws->slide_radius[0] = 0.95 * c_m;
-    }
-  }
-  lub::Scene scene;
-  lub::Model model;
-  std::unique_ptr<lub::Workspace> ws;
-  std::unique_ptr<lub::MultibodySystem> sys;
-  Eigen::VectorXd y;
-};
+using lub_test::Case;
+using lub_test::NearWall;
+using lub_test::reference_doc;
 
 // Central differences of the whole right-hand side (18 columns × 2 full evaluations).
 Eigen::MatrixXd full_difference_jacobian(NearWall& s) {
@@ -164,6 +113,23 @@ TEST_P(StructuredJacobian, DoesNotAllocate) {
   EXPECT_EQ(g_allocs.load(), allowed);
 }
 
+// The GGL DAE's iteration matrix (IDA, dae_jacobian) allocates nothing at all: it needs
+// no evaluate(), the sliding film included (its multiplier is part of Y).
+TEST_P(StructuredJacobian, DaeJacobianDoesNotAllocate) {
+  NearWall s(GetParam(), lub::Formulation::ggl);
+  const int n = s.sys->size() + s.sys->num_algebraic();
+  Eigen::VectorXd Y(n), Yp(n);
+  ASSERT_EQ(s.sys->consistent_state(0.0, s.y.data(), Y.data(), Yp.data()), 0);
+  Eigen::MatrixXd J(n, n);
+  ASSERT_EQ(s.sys->dae_jacobian(0.0, 1e4, Y.data(), Yp.data(), J.data()), 0);  // warm
+  g_allocs = 0;
+  g_count = true;
+  const int rc = s.sys->dae_jacobian(0.0, 1e4, Y.data(), Yp.data(), J.data());
+  g_count = false;
+  EXPECT_EQ(rc, 0);
+  EXPECT_EQ(g_allocs.load(), 0);
+}
+
 INSTANTIATE_TEST_SUITE_P(
     ForceLaws, StructuredJacobian,
     ::testing::Values(Case{"pinkus_sternlicht", "pinkus_sternlicht"},
@@ -210,22 +176,7 @@ TEST(StructuredJacobianRun, SameMetricsFewerEvaluations) {
       SCOPED_TRACE(method + " " + law);
       const lub::RunResult dq = run(method, "difference_quotients", law, 1e-8, 3);
       const lub::RunResult st = run(method, "structured", law, 1e-8, 3);
-      ASSERT_EQ(dq.status, lub::RunStatus::ok) << dq.message;
-      ASSERT_EQ(st.status, lub::RunStatus::ok) << st.message;
-      EXPECT_EQ(dq.stats.jacobian, "difference_quotients");
-      EXPECT_EQ(st.stats.jacobian, "structured");
-      const double c = 0.5e-3;
-      EXPECT_NEAR(st.metrics.min_film_thickness_m, dq.metrics.min_film_thickness_m, 2e-5 * c);
-      EXPECT_NEAR(st.metrics.max_eps, dq.metrics.max_eps, 2e-5);
-      EXPECT_NEAR(st.metrics.peak_reaction_N, dq.metrics.peak_reaction_N, 1e-3 * dq.metrics.peak_reaction_N);
-      EXPECT_NEAR(st.metrics.peak_acceleration_m_s2, dq.metrics.peak_acceleration_m_s2,
-                  1e-3 * dq.metrics.peak_acceleration_m_s2);
-      // The count, not a timing: every right-hand side the integrator asked for.
-      EXPECT_GT(dq.stats.rhs_evals_jac, 0);
-      EXPECT_EQ(st.stats.rhs_evals_jac, 0);
-      EXPECT_GT(st.stats.jac_evals, 0);
-      EXPECT_GT(st.stats.film_law_evals_jac, 0);
-      EXPECT_LT(st.stats.rhs_evals + st.stats.rhs_evals_jac, dq.stats.rhs_evals + dq.stats.rhs_evals_jac);
+      lub_test::expect_same_run_fewer_evaluations(dq, st, {2e-5, 2e-5, 1e-3, 1e-3});
     }
   }
 }

@@ -189,7 +189,7 @@ const std::vector<Case>& cases() {
        },
        nullptr,
        {"solver.jacobian = \"structured\": applies only to the methods with a Newton iteration (cvode_bdf, "
-        "arkode_dirk)"}},
+        "arkode_dirk, ida)"}},
       {"structured Jacobian of the partitioned formulation", "four_bar.json",
        [](json& d) {
          d["solver"]["formulation"] = "partitioned";

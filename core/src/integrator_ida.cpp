@@ -1,6 +1,7 @@
 // IDAS adapter: variable-order BDF on the DAE F(t, Y, Y') = 0 that the system provides
-// (MultibodySystem's GGL form), Newton with a dense direct linear solver and a
-// difference-quotient Jacobian. The run loop sees only the state y (the first size()
+// (MultibodySystem's GGL form), Newton with a dense direct linear solver and either the
+// system's structured iteration matrix (dae_jacobian, IntegratorSettings::user_jacobian)
+// or SUNDIALS' dense difference quotients. The run loop sees only the state y (the first size()
 // components of Y); the multipliers stay inside. They are excluded from the local error
 // test (IDASetSuppressAlg): an index-2 DAE's multipliers are not controlled to the
 // accuracy of the state, and need not be — the forces that matter are recomputed from
@@ -32,6 +33,18 @@ int res_cb(sunrealtype t, N_Vector Y, N_Vector Yp, N_Vector F, void* user) {
   auto* d = static_cast<CallbackData*>(user);
   return guarded(d, "DAE residual", [&] {
     return d->sys->residual(t, N_VGetArrayPointer(Y), N_VGetArrayPointer(Yp), N_VGetArrayPointer(F));
+  });
+}
+
+// The system's iteration matrix ∂F/∂Y + cj ∂F/∂Y' into SUNDIALS' dense matrix
+// (column-major, leading dimension n: IDA's quadratures are not part of the system).
+int ida_jac_cb(sunrealtype t, sunrealtype cj, N_Vector Y, N_Vector Yp, N_Vector /*rr*/, SUNMatrix J, void* user,
+               N_Vector, N_Vector, N_Vector) {
+  auto* d = static_cast<CallbackData*>(user);
+  return guarded(d, "DAE Jacobian", [&] {
+    const int rc = d->sys->dae_jacobian(t, cj, N_VGetArrayPointer(Y), N_VGetArrayPointer(Yp), SUNDenseMatrix_Data(J));
+    if (rc == -1 && d->error.empty()) d->error = "DAE Jacobian: the system provides none (use difference quotients)";
+    return rc;
   });
 }
 
@@ -81,6 +94,7 @@ class IdaIntegrator final : public Integrator {
     A_ = SUNDenseMatrix(n, n, ctx_);
     ls_ = SUNLinSol_Dense(Y_, A_, ctx_);
     check(IDASetLinearSolver(mem_, ls_, A_), "IDASetLinearSolver");
+    if (s.user_jacobian) check(IDASetJacFn(mem_, ida_jac_cb), "IDASetJacFn");
     if (sys.num_roots() > 0) {
       check(IDARootInit(mem_, sys.num_roots(), ida_root_cb), "IDARootInit");
       IDASetNoInactiveRootWarn(mem_);

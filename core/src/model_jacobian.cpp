@@ -26,7 +26,7 @@ inline double rate(int b, const double* v) { return b == kGround ? 0.0 : v[3 * b
 // What film element k adds to g at (q, v), as evaluate() adds it: out[0..2] on the bearing
 // body (x, y, φ), out[3..5] on the journal body. False outside the model's domain.
 bool film_generalised_force(const Model& m, Workspace& ws, int k, const double* q, const double* v,
-                            double out[6]) {
+                            SlidingRadial sliding, double out[6]) {
   const FilmElement& f = m.films[k];
   const FilmKinematics fk = film_kinematics(m, k, q, v);
   if (!f.contact && !(fk.state.eps < 1.0)) return false;
@@ -35,7 +35,10 @@ bool film_generalised_force(const Model& m, Workspace& ws, int k, const double* 
   // at the state of the last evaluate(): differentiating F = −λ_s r(q) at fixed λ_s gives
   // the row's geometric stiffness −∂(Φ_s,qᵀ λ_s)/∂q, which is not small (λ_s/|e|, with
   // |e| ~ the clearance as radius of curvature) and which a = M⁻¹(g − Φ_qᵀλ) needs.
-  if (ws.film_mode[k] == FilmMode::sliding) force.radial_N = -ws.lambda(ws.slide_row[k]);
+  // In the GGL DAE (SlidingRadial::in_constraint) the radial force is not in g but in
+  // Φ_qᵀλ with the DAE's multiplier, as in evaluate() before its solve: zero here.
+  if (ws.film_mode[k] == FilmMode::sliding)
+    force.radial_N = sliding == SlidingRadial::held_multiplier ? -ws.lambda(ws.slide_row[k]) : 0.0;
   const Vector2d F = force.radial_N * fk.r + force.tangential_N * perp(fk.r);
   if (!std::isfinite(F.x()) || !std::isfinite(F.y())) return false;
   const Vector2d ai = rot(angle(f.bearing, q), f.s_bearing), aj = rot(angle(f.journal, q), f.s_journal);
@@ -120,7 +123,7 @@ void sliding_rows_position_jacobian(const Model& m, const Workspace& ws, double*
 }
 
 int add_film_force_jacobian(const Model& m, Workspace& ws, double* q, double* v, Eigen::Ref<Eigen::MatrixXd> Gq,
-                            Eigen::Ref<Eigen::MatrixXd> Gv) {
+                            Eigen::Ref<Eigen::MatrixXd> Gv, SlidingRadial sliding) {
   // Central differences: truncation ~ (h/d)² with d the length over which the force
   // changes (the distance to the wall, (1 − ε) c), round-off ~ u d/h. h = u^(1/3) d
   // balances them at ~ u^(2/3) ≈ 4e-11 relative, uniformly up to the wall.
@@ -150,7 +153,7 @@ int add_film_force_jacobian(const Model& m, Workspace& ws, double* q, double* v,
           double h = which == 0 ? h_pos : h_vel;
           if (dof == 2) h /= arms[side];  // a rotation moves the point by |s| δφ
           const double span = central_difference(x, col, h, [&](int sign) {
-            return film_generalised_force(m, ws, k, q, v, sign > 0 ? plus : minus);
+            return film_generalised_force(m, ws, k, q, v, sliding, sign > 0 ? plus : minus);
           });
           if (span == 0.0) {
             ws.contact_N[k] = contact_N;

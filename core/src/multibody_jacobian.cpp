@@ -38,6 +38,8 @@
 #include <Eigen/Cholesky>
 
 #include <algorithm>
+#include <cfloat>
+#include <cmath>
 
 #include "multibody_system.hpp"
 
@@ -52,7 +54,14 @@ JacobianScratch::JacobianScratch(const Model& m)
       B(Eigen::MatrixXd::Zero(m.nc + m.n_switching, m.nq)),
       R(Eigen::MatrixXd::Zero(m.nc + m.n_switching, m.nq)),
       Gamma_v(Eigen::MatrixXd::Zero(m.nc + m.n_switching, m.nq)),
-      S(Eigen::MatrixXd::Zero(m.nc + m.n_switching, m.nc + m.n_switching)) {}
+      S(Eigen::MatrixXd::Zero(m.nc + m.n_switching, m.nc + m.n_switching)),
+      lam_rows(Eigen::VectorXd::Zero(m.nc + m.n_switching)),
+      mu_rows(Eigen::VectorXd::Zero(m.nc + m.n_switching)),
+      slot_of_row(static_cast<size_t>(m.nc + m.n_switching), 0),
+      slot_active(static_cast<size_t>(m.nc + m.n_switching), 0),
+      Lq(Eigen::MatrixXd::Zero(m.nq, m.nq)),
+      Uq(Eigen::MatrixXd::Zero(m.nq, m.nq)),
+      Dq(Eigen::MatrixXd::Zero(m.nc + m.n_switching, m.nq)) {}
 
 int MultibodySystem::jacobian(double t, const double* y, const double* /*fy*/, double* Jout) {
   if (form_ != Formulation::baumgarte) return -1;
@@ -109,6 +118,107 @@ int MultibodySystem::jacobian(double t, const double* y, const double* /*fy*/, d
   J.topRightCorner(nq, nq).setIdentity();
   J.bottomLeftCorner(nq, nq).noalias() = Minv.asDiagonal() * s.Gq;
   J.bottomRightCorner(nq, nq).noalias() = Minv.asDiagonal() * s.Gv;
+  return 0;
+}
+
+// Iteration matrix of the GGL DAE (IDA), Y = (q, v, λ, μ), na slots each for λ and μ:
+//     F_q = q' − v + Φ_qᵀμ,  F_v = M v' − g + Φ_qᵀλ,  F_λ = Φ,  F_μ = Φ_q v + Φ_t,
+// J = ∂F/∂Y + cj ∂F/∂Y' (rows and columns in that order):
+//     q cols: [cj I + ∂(Φ_qᵀμ)/∂q ; −∂g/∂q + ∂(Φ_qᵀλ)/∂q ; Φ_q ; ∂(Φ_q v + Φ_t)/∂q]
+//     v cols: [−I ; cj M − ∂g/∂v ; 0 ; Φ_q]
+//     λ cols: [0 ; Φ_qᵀ ; 0 ; 0],   μ cols: [Φ_qᵀ ; 0 ; 0 ; 0]
+// on the active rows; an inactive slot (a switching film not sliding) has F = λ_s, F = μ_s:
+// identity on its own equations. Nothing is neglected:
+//  - ∂g/∂q, ∂g/∂v: the film elements (add_film_force_jacobian), with a sliding film's
+//    radial force left out (SlidingRadial::in_constraint): the residual's g is
+//    evaluate()'s before the solve, where that force is zero; it acts through the sliding
+//    row's Φ_qᵀλ with the DAE's own multiplier, whose curvature term (λ_s/|e|, not small)
+//    is in ∂(Φ_qᵀλ)/∂q below. Gravity is constant.
+//  - ∂(Φ_qᵀλ)/∂q, ∂(Φ_qᵀμ)/∂q, ∂Φ̇/∂q: central differences of constraint_residual alone
+//    (geometry only: no film law, no solve), 2 nq calls, step u^(1/3) of the smallest
+//    clearance (the sliding rows' radius of curvature is |e| ~ c; the ideal joints' is a
+//    link length, so their truncation error is smaller still). Φ_q (∂Φ/∂q, ∂Φ̇/∂v): exact.
+// Cost: ~24 film-law calls per film and 2 nq = 18 constraint evaluations, against
+// 2 nq + 2 na = 32 full residuals for SUNDIALS' dense difference quotients.
+int MultibodySystem::dae_jacobian(double t, double cj, const double* Y, const double* /*Yp*/, double* Jout) {
+  if (form_ != Formulation::ggl) return -1;
+  const int nq = m_.nq, na = m_.nc + m_.n_switching, n = 2 * nq + 2 * na;
+  const int iv = nq, il = 2 * nq, imu = 2 * nq + na;  // first row/column of each block
+  JacobianScratch& s = jac_;
+  double* q = s.q.data();
+  double* v = s.v.data();
+  std::copy(Y, Y + nq, q);
+  std::copy(Y + nq, Y + 2 * nq, v);
+  s.Gq.setZero();
+  s.Gv.setZero();
+  if (add_film_force_jacobian(m_, ws_, q, v, s.Gq, s.Gv, SlidingRadial::in_constraint) != 0) return 1;
+
+  // Rows of Φ at this state (the constraints, then the sliding rows) and their slots.
+  constraint_residual(m_, ws_, t, q, v);
+  const int nr = ws_.nc_active;
+  std::fill(s.slot_active.begin(), s.slot_active.end(), 0);
+  for (int row = 0; row < m_.nc; ++row) s.slot_of_row[row] = row;
+  for (size_t k = 0; k < m_.films.size(); ++k)
+    if (ws_.film_mode[k] == FilmMode::sliding) s.slot_of_row[ws_.slide_row[k]] = slot_of_switching_[k];
+  for (int row = 0; row < nr; ++row) {
+    const int sl = s.slot_of_row[row];
+    s.slot_active[sl] = 1;
+    s.lam_rows(row) = Y[il + sl];
+    s.mu_rows(row) = Y[imu + sl];
+  }
+
+  Eigen::Map<Eigen::MatrixXd> J(Jout, n, n);
+  J.setZero();
+  for (int row = 0; row < nr; ++row) {
+    const int sl = s.slot_of_row[row];
+    const auto a = ws_.Phi_q.row(row);
+    J.block(0, imu + sl, nq, 1) = a.transpose();   // ∂F_q/∂μ
+    J.block(iv, il + sl, nq, 1) = a.transpose();   // ∂F_v/∂λ
+    J.block(il + sl, 0, 1, nq) = a;                // ∂Φ/∂q
+    J.block(imu + sl, iv, 1, nq) = a;              // ∂Φ̇/∂v
+  }
+  for (int sl = 0; sl < na; ++sl)
+    if (!s.slot_active[sl]) {
+      J(il + sl, il + sl) = 1.0;
+      J(imu + sl, imu + sl) = 1.0;
+    }
+
+  // q-derivatives of the constraint terms.
+  double length = 1.0;
+  for (const FilmElement& f : m_.films) length = std::min(length, f.clearance);
+  const double h = std::cbrt(DBL_EPSILON) * length;  // [m], and [rad]: arms <= 1 m
+  const auto Phq = ws_.Phi_q.topRows(nr);
+  const auto lam = s.lam_rows.head(nr), mu = s.mu_rows.head(nr);
+  auto Dq = s.Dq.topRows(nr);
+  for (int j = 0; j < nq; ++j) {
+    const double x0 = q[j];
+    q[j] = x0 + h;
+    const double hp = q[j] - x0;
+    constraint_residual(m_, ws_, t, q, v);
+    s.Lq.col(j).noalias() = Phq.transpose().lazyProduct(lam);
+    s.Uq.col(j).noalias() = Phq.transpose().lazyProduct(mu);
+    Dq.col(j) = ws_.Phi_dot.head(nr);
+    q[j] = x0 - h;
+    const double hm = x0 - q[j];
+    constraint_residual(m_, ws_, t, q, v);
+    s.Lq.col(j).noalias() -= Phq.transpose().lazyProduct(lam);
+    s.Uq.col(j).noalias() -= Phq.transpose().lazyProduct(mu);
+    Dq.col(j) -= ws_.Phi_dot.head(nr);
+    q[j] = x0;
+    const double inv = 1.0 / (hp + hm);
+    s.Lq.col(j) *= inv;
+    s.Uq.col(j) *= inv;
+    Dq.col(j) *= inv;
+  }
+  constraint_residual(m_, ws_, t, q, v);  // leave ws at this state
+
+  J.block(0, 0, nq, nq) = s.Uq;
+  J.block(0, 0, nq, nq).diagonal().array() += cj;
+  J.block(0, iv, nq, nq).diagonal().setConstant(-1.0);
+  J.block(iv, 0, nq, nq) = s.Lq - s.Gq;
+  J.block(iv, iv, nq, nq) = -s.Gv;
+  J.block(iv, iv, nq, nq).diagonal() += cj * m_.mass_diag;
+  for (int row = 0; row < nr; ++row) J.block(imu + s.slot_of_row[row], 0, 1, nq) = Dq.row(row);
   return 0;
 }
 

@@ -33,6 +33,12 @@ struct JacobianScratch {
   Eigen::MatrixXd Gq, Gv;        ///< ∂g/∂q, ∂g/∂v (nq × nq)
   Eigen::MatrixXd B, R, Gamma_v; ///< Φ_q M⁻¹, right-hand sides, ∂γ/∂v (rows: nc + switching films)
   Eigen::MatrixXd S;             ///< Φ_q M⁻¹ Φ_qᵀ, factorised in place
+  // ggl (dae_jacobian): multipliers by row of ws.Phi, each row's slot in (λ, μ), and the
+  // q-derivatives of Φ_qᵀλ, Φ_qᵀμ (nq × nq) and of Φ̇ (rows × nq).
+  Eigen::VectorXd lam_rows, mu_rows;
+  std::vector<int> slot_of_row;
+  std::vector<char> slot_active;
+  Eigen::MatrixXd Lq, Uq, Dq;
 };
 
 class MultibodySystem final : public OdeSystem {
@@ -53,6 +59,9 @@ class MultibodySystem final : public OdeSystem {
   /// Structured Jacobian of the baumgarte formulation (multibody_jacobian.cpp); −1 (not
   /// provided: difference quotients) for the partitioned one.
   int jacobian(double t, const double* y, const double* fy, double* J) override;
+  /// Structured iteration matrix of the GGL DAE (ida; multibody_jacobian.cpp); −1 for the
+  /// ODE formulations.
+  int dae_jacobian(double t, double cj, const double* Y, const double* Yp, double* J) override;
 
   /// Integrator state → full (q, v) (2 nq). Returns 0, or 1 if the dependent
   /// coordinates cannot be recovered (partitioned).

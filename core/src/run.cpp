@@ -317,7 +317,8 @@ RunResult Runner::run() {
   is.max_order = sol.max_order;
   is.t_stop = t_end;
   is.projection = sol.projection;
-  const bool newton = sol.method == Method::cvode_bdf || sol.method == Method::arkode_dirk;
+  const bool newton =
+      sol.method == Method::cvode_bdf || sol.method == Method::arkode_dirk || sol.method == Method::ida;
   is.user_jacobian = newton && sol.structured_jacobian && !sol.partitioned;
   // Partitioned: the integrated coordinates are the mechanism's degrees of freedom (e.g. a
   // rod's angle and the slider's x), and the squeeze film's stiff mode lies almost along
@@ -333,9 +334,7 @@ RunResult Runner::run() {
   res_.stats.rtol = sol.rtol;
   res_.stats.atol = atol;
   res_.stats.method = to_string(sol.method);
-  res_.stats.jacobian = !newton && sol.method != Method::ida ? "none"
-                        : is.user_jacobian                   ? "structured"
-                                                             : "difference_quotients";
+  res_.stats.jacobian = !newton ? "none" : is.user_jacobian ? "structured" : "difference_quotients";
 
   const bool energy = scene_.output.energy_balance;
   MultibodySystem sys(m_, ws_, sim.eps_limit, energy,

@@ -453,13 +453,15 @@ Scene parse_scene(const json& doc) {
       fail("solver.formulation", json(form),
            "solver.method = ida integrates the GGL index-2 DAE: the formulation must be ggl (or absent)");
     s.projection = r.boolean_or("projection", false);
+    // IDA: the structured iteration matrix by default (README "Integration", Jacobian).
+    s.structured_jacobian = ida;
     if (const json* jac = r.raw_optional("jacobian")) {
       const std::string name =
           r.choice("jacobian", {"structured", "difference_quotients"}, std::string("difference_quotients"));
       s.structured_jacobian = name == "structured";
-      if (s.method != Method::cvode_bdf && s.method != Method::arkode_dirk)
+      if (s.method != Method::cvode_bdf && s.method != Method::arkode_dirk && !ida)
         fail("solver.jacobian", *jac,
-             "applies only to the methods with a Newton iteration (cvode_bdf, arkode_dirk)");
+             "applies only to the methods with a Newton iteration (cvode_bdf, arkode_dirk, ida)");
       if (s.structured_jacobian && s.partitioned)
         fail("solver.jacobian", *jac,
              "structured requires solver.formulation = baumgarte (the partitioned formulation uses "

@@ -43,6 +43,12 @@ class OdeSystem {
   /// difference quotients: only ask for it with IntegratorSettings::user_jacobian).
   /// Called from inside the integrator's step: no allocation.
   virtual int jacobian(double /*t*/, const double* /*y*/, const double* /*fy*/, double* /*J*/) { return -1; }
+  /// The DAE's iteration matrix ∂F/∂Y + cj ∂F/∂Y' at (t, Y, Y') into J, column-major,
+  /// (size() + num_algebraic())², every entry written. Return codes as for jacobian()
+  /// (−1: not provided; ask for it with IntegratorSettings::user_jacobian). No allocation.
+  virtual int dae_jacobian(double /*t*/, double /*cj*/, const double* /*Y*/, const double* /*Yp*/, double* /*J*/) {
+    return -1;
+  }
 };
 
 struct IntegratorSettings {
@@ -54,8 +60,8 @@ struct IntegratorSettings {
   int max_order = 0;         ///< 0: default
   double t_stop = 0.0;       ///< never step past this time
   bool projection = false;   ///< project onto the constraints after each step (cvode_bdf)
-  /// Newton methods (cvode_bdf, arkode_dirk): the system's jacobian() instead of SUNDIALS'
-  /// dense difference quotients.
+  /// Newton methods: the system's jacobian() (cvode_bdf, arkode_dirk) or dae_jacobian()
+  /// (ida) instead of SUNDIALS' dense difference quotients.
   bool user_jacobian = false;
   /// A fresh Jacobian and iteration matrix at every step (cvode_bdf), instead of CVODE's
   /// reuse over up to 20/51 steps.

@@ -169,18 +169,28 @@ FilmKinematics film_kinematics(const Model& m, int k, const double* q, const dou
 /// the film force on the journal for a lubricated joint, the constraint reaction otherwise.
 Eigen::Vector2d joint_force(const Model& m, const Workspace& ws, int joint);
 
+/// How add_film_force_jacobian treats a sliding film's radial force (the sliding row's
+/// multiplier −λ_s).
+enum class SlidingRadial {
+  /// Part of g, held at ws.lambda of an evaluate() at the same state: its derivative is
+  /// the row's geometric stiffness, which the baumgarte ODE's a = M⁻¹(g − Φ_qᵀλ) needs.
+  held_multiplier,
+  /// Not part of g (zero): it enters elsewhere as Φ_qᵀλ with the DAE's own multiplier
+  /// (the GGL residual, whose g is evaluate()'s before the solve).
+  in_constraint,
+};
+
 /// Structured Jacobian, force part: adds ∂g/∂q and ∂g/∂v (nq × nq each) of every film
 /// element at (q, v) to Gq and Gv, with each switching film held in its current mode
-/// (ws.film_mode; a sliding film's radial force is the sliding row's multiplier, held at
-/// ws.lambda of an evaluate() at the same state: the row's geometric stiffness), contact
-/// hand-over included: exactly what
-/// evaluate() adds to g. Central difference quotients of the film element alone (≤ 2
+/// (ws.film_mode; a sliding film's radial force as `sliding` says), contact hand-over
+/// included: exactly what evaluate() adds to g. Central difference quotients of the film element alone (≤ 2
 /// bodies: ≤ 12 columns, 24 calls of film_element_force; steps scaled with the distance
 /// to the wall). q and v are scratch copies (perturbed and restored in place). Gravity is
 /// constant and contributes nothing. No allocation. Returns 0, or 1 if a perturbed state
 /// leaves the model's domain (ε >= 1 without contact).
 int add_film_force_jacobian(const Model& m, Workspace& ws, double* q, double* v, Eigen::Ref<Eigen::MatrixXd> Gq,
-                            Eigen::Ref<Eigen::MatrixXd> Gv);
+                            Eigen::Ref<Eigen::MatrixXd> Gv,
+                            SlidingRadial sliding = SlidingRadial::held_multiplier);
 
 /// Rows of the sliding films' constraints: ∂(Φ̈ + 2αΦ̇ + β²Φ)/∂q at fixed (v, q̈ = a)
 /// into the sliding rows of D (ws.slide_row; other rows untouched): the curvature of a
