@@ -192,6 +192,43 @@ TEST_F(StudyFile, ResumeFindsTheCasesByHash) {
   EXPECT_EQ(o.other_rows, 5u);
 }
 
+TEST_F(StudyFile, ResumeIntoAnExtendedGridKeepsEachCaseItsOwnSeries) {
+  // A grid extended by an axis value renumbers its cases: the reused case's series must
+  // follow its hash to its new name (it once kept the old name's, another case's, series).
+  const Grid g = small_grid();
+  const std::string path = file("x.h5");
+  {
+    StudyWriter w(path, g, {}, "");
+    w.append(fake(g, 2));
+  }
+  const Grid wider = parse_grid(R"({
+      "scene": "slider_crank.json",
+      "set": {"/solver/rtol": 1e-6},
+      "study": {"max_cycles": 2, "metric_cycles": 1, "channels": ["h_min"], "last_cycles": 1, "samples_per_cycle": 90},
+      "grids": [{"name": "main", "axes": [{"name": "force_law", "values": ["frene_long", "ideal", "frene_short"]},
+                                          {"name": "speed_rpm", "values": [5000, 500]}]},
+                {"name": "extra", "cases": [{"/solver/rtol": 1e-7, "force_law": "ideal"}]}]})",
+                                kScenes, "wider.json");
+  int moved = -1;
+  for (const Case& c : wider.cases)
+    if (c.hash == g.cases[2].hash) moved = c.id;
+  ASSERT_GE(moved, 0);
+  ASSERT_NE(moved, 2);
+  const ResumeState st = read_existing(path, wider, false, lub::build_revision());
+  ASSERT_EQ(st.done.size(), 1u);
+  ASSERT_EQ(st.done.count(moved), 1u);
+  {
+    StudyWriter w(path, wider, st.done, path);
+    w.finalize();
+  }
+  const auto f = lub::h5::File::open(path);
+  const std::string name = wider.cases[static_cast<std::size_t>(moved)].name;
+  EXPECT_EQ(f.open_dataset("series/" + name + "/h_min").read_doubles(), fake(g, 2).series.data[1]);
+  EXPECT_EQ(f.open_group("series/" + name).attribute_int64("case_id"), moved);
+  EXPECT_EQ(f.open_group("series/" + name).attribute_string("hash"), g.cases[2].hash);
+  EXPECT_FALSE(f.exists("series/" + g.cases[2].name));  // no series under the old name
+}
+
 TEST_F(StudyFile, KilledWriterLeavesAFileThatResumes) {
   const Grid g = small_grid();
   const std::string path = file("k.h5");

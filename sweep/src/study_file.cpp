@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <stdexcept>
 
 #include "lub/json_reader.hpp"
@@ -281,13 +282,16 @@ ResumeState read_existing(const std::string& path, const Grid& grid, bool retry_
   return st;
 }
 
-void copy_series(const h5::File& from, h5::File& to, const std::string& case_name) {
-  const std::string g = "series/" + case_name;
+// Copies series/<from_name> of `from` to the series of case `to_case` in `to`. The names
+// differ when the file being resumed came from another grid: a case keeps its hash but
+// its id and name follow its place in the new grid.
+void copy_series(const h5::File& from, const std::string& from_name, h5::File& to, const Case& to_case) {
+  const std::string g = "series/" + from_name;
   if (!from.exists("series") || !from.exists(g)) return;
   h5::Group src = from.open_group(g);
-  h5::Group dst = to.require_group(g);
-  if (src.has_attribute("case_id")) dst.set_attribute_int64("case_id", src.attribute_int64("case_id"));
-  if (src.has_attribute("hash")) dst.set_attribute("hash", src.attribute_string("hash"));
+  h5::Group dst = to.require_group("series/" + to_case.name);
+  dst.set_attribute("case_id", static_cast<std::int64_t>(to_case.id));
+  dst.set_attribute("hash", to_case.hash);
   std::vector<std::string> names = src.has_attribute("channels") ? src.attribute_strings("channels") : src.list();
   dst.set_attribute("channels", names);
   for (const std::string& name : names) {
@@ -307,7 +311,18 @@ StudyWriter::StudyWriter(std::string path, const Grid& grid, const std::map<int,
     write_header(f, grid_, false);
     if (!reuse_from.empty() && !reused.empty()) {
       const h5::File old = h5::File::open(reuse_from, h5::File::Mode::ReadOnly);
-      for (const auto& [id, r] : reused) copy_series(old, f, grid_.cases.at(static_cast<std::size_t>(id)).name);
+      // The old file's series by hash (its case names are those of the grid it was made from).
+      std::map<std::string, std::string> old_group;
+      if (old.exists("series"))
+        for (const std::string& name : old.open_group("series").list()) {
+          const h5::Group g = old.open_group("series/" + name);
+          if (g.has_attribute("hash")) old_group[g.attribute_string("hash")] = name;
+        }
+      for (const auto& [id, r] : reused) {
+        const Case& c = grid_.cases.at(static_cast<std::size_t>(id));
+        const auto it = old_group.find(c.hash);
+        if (it != old_group.end()) copy_series(old, it->second, f, c);
+      }
     }
     std::vector<h5::Row> rows;
     for (const auto& [id, r] : reused) rows.push_back(case_row(grid_, r));
@@ -336,7 +351,8 @@ void StudyWriter::finalize() {
     write_header(f, grid_, complete());
     std::vector<h5::Row> rows;
     for (const auto& [id, r] : results_) {
-      copy_series(file_, f, grid_.cases.at(static_cast<std::size_t>(id)).name);
+      const Case& c = grid_.cases.at(static_cast<std::size_t>(id));
+      copy_series(file_, c.name, f, c);
       rows.push_back(case_row(grid_, r));
     }
     h5::Table t = f.open_table("cases");
