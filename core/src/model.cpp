@@ -501,8 +501,7 @@ bool factor_schur(const Model& m, Workspace& ws, int nc) {
 }
 }  // namespace
 
-int evaluate(const Model& m, Workspace& ws, double t, const double* q, const double* v,
-             double* qdd) {
+int evaluate_forces(const Model& m, Workspace& ws, double t, const double* q, const double* v) {
   ++ws.counters.rhs;
   const double* cphi = ws.cos_phi.data();
   const double* sphi = ws.sin_phi.data();
@@ -537,15 +536,23 @@ int evaluate(const Model& m, Workspace& ws, double t, const double* q, const dou
     add_body_force(ws.g, f.journal, fk.F, cross(aj, fk.F));
     add_body_force(ws.g, f.bearing, -fk.F, -cross(ai, fk.F));
   }
+  ws.nc_active = m.nc + n_sliding;
+  if (ws.nc_active == 0) return 0;
+  fill_constraints(m.constraints, t, q, v, cphi, sphi, ws.Phi_q, ws.Phi, ws.Phi_dot, &ws.gamma);
+  if (n_sliding > 0) fill_sliding_rows(m, ws, q, v);
+  return 0;
+}
+
+int evaluate(const Model& m, Workspace& ws, double t, const double* q, const double* v,
+             double* qdd) {
+  if (const int rc = evaluate_forces(m, ws, t, q, v); rc != 0) return rc;
   const double* w = m.inv_mass_diag.data();
-  const int nc = m.nc + n_sliding;
-  ws.nc_active = nc;
+  const int nc = ws.nc_active;
   if (nc == 0) {
     for (int i = 0; i < m.nq; ++i) qdd[i] = w[i] * ws.g(i);
     return 0;
   }
-  fill_constraints(m.constraints, t, q, v, cphi, sphi, ws.Phi_q, ws.Phi, ws.Phi_dot, &ws.gamma);
-  if (n_sliding > 0) fill_sliding_rows(m, ws, q, v);
+  const bool any_sliding = nc > m.nc;
   // (Φ_q M⁻¹ Φ_qᵀ) λ = Φ_q M⁻¹ g − γ̂,  γ̂ = γ − 2α Φ̇ − β² Φ  (qdd holds M⁻¹ g meanwhile)
   for (int i = 0; i < m.nq; ++i) qdd[i] = w[i] * ws.g(i);
   for (int r = 0; r < nc; ++r)
@@ -557,7 +564,7 @@ int evaluate(const Model& m, Workspace& ws, double t, const double* q, const dou
   ws.qdd = ws.g;
   subtract_transpose(ws, nc, ws.lambda.data(), ws.qdd.data());
   for (int i = 0; i < m.nq; ++i) qdd[i] = w[i] * ws.qdd(i);
-  if (n_sliding > 0) {
+  if (any_sliding) {
     for (size_t k = 0; k < m.films.size(); ++k) {
       FilmKinematics& fk = ws.films[k];
       if (!fk.sliding) continue;

@@ -258,11 +258,8 @@ int MultibodySystem::residual(double t, const double* Y, const double* Yp, doubl
   const double* v = Y + nq;
   const double* lam = Y + 2 * nq;
   const double* mu = lam + na;
-  // g, Φ, Φ_q and Φ̇ at (q, v), with the sliding rows of sliding films. evaluate() also
-  // solves for accelerations the residual does not need: one code path for the forces.
-  const int rc = evaluate(m_, ws_, t, q, v, acc_.data());
-  if (rc < 0) throw std::runtime_error("the constraint matrix Phi_q M^-1 Phi_q^T is singular");
-  if (rc != 0) return rc;
+  // g, Φ, Φ_q and Φ̇ at (q, v), with the sliding rows of sliding films: no solve.
+  if (const int rc = evaluate_forces(m_, ws_, t, q, v); rc != 0) return rc;
   for (int i = 0; i < nq; ++i) {
     F[i] = Yp[i] - v[i];
     F[nq + i] = m_.mass_diag(i) * Yp[nq + i] - ws_.g(i);

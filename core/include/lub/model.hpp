@@ -146,6 +146,13 @@ FilmForce film_element_force(const Model& m, Workspace& ws, int k, const Bearing
 /// constraints are detected later, at assembly).
 Model build_model(const Scene& scene);
 
+/// The first half of evaluate(): generalised forces ws.g (gravity and film elements; a
+/// sliding film's radial force left out: it is its row's multiplier), film kinematics
+/// and forces, and — when there are constraint rows — Φ, Φ_q, Φ̇, γ of the ws.nc_active
+/// rows, without solving for λ and q̈ (the GGL residual needs no more). Returns 0, or 1
+/// outside the model's domain.
+int evaluate_forces(const Model& m, Workspace& ws, double t, const double* q, const double* v);
+
 /// Evaluates accelerations q̈ (and λ, film kinematics and forces in `ws`) at (t, q, v).
 /// Returns 0, or 1 if the state is outside the model's domain (ε >= 1: a recoverable
 /// failure for the integrator), or -1 if the constraint system is singular.
