@@ -6,6 +6,7 @@
 #include <cfloat>
 #include <cmath>
 
+#include "central_difference.hpp"
 #include "lub/model.hpp"
 
 namespace lub {
@@ -76,22 +77,6 @@ double sliding_row_residual(const Model& m, const Workspace& ws, int k, const do
   return Phidd + 2.0 * m.alpha * erd + m.beta * m.beta * (en - ws.slide_radius[k]);
 }
 
-// One central difference along x[col]: f(+1) at x[col] + h, f(−1) at x[col] − h (each
-// with x changed in place), then x[col] restored. Returns the span between the two
-// representable points, or 0 if f failed at either.
-template <class F>
-double central_difference(double* x, int col, double h, F&& f) {
-  const double x0 = x[col];
-  x[col] = x0 + h;
-  const double hp = x[col] - x0;
-  const bool ok_p = f(+1);
-  x[col] = x0 - h;
-  const double hm = x0 - x[col];
-  const bool ok_m = f(-1);
-  x[col] = x0;
-  return ok_p && ok_m ? hp + hm : 0.0;
-}
-
 }  // namespace
 
 void sliding_rows_position_jacobian(const Model& m, const Workspace& ws, double* q, const double* v,
@@ -112,7 +97,7 @@ void sliding_rows_position_jacobian(const Model& m, const Workspace& ws, double*
         const int col = 3 * b + dof;
         const double h = dof == 2 ? h_pos / arms[side] : h_pos;
         double fp = 0.0, fm = 0.0;
-        const double span = central_difference(q, col, h, [&](int sign) {
+        const double span = detail::central_difference(q, col, h, [&](int sign) {
           (sign > 0 ? fp : fm) = sliding_row_residual(m, ws, k, q, v, a);
           return true;
         });
@@ -152,7 +137,7 @@ int add_film_force_jacobian(const Model& m, Workspace& ws, double* q, double* v,
           double* x = which == 0 ? q : v;
           double h = which == 0 ? h_pos : h_vel;
           if (dof == 2) h /= arms[side];  // a rotation moves the point by |s| δφ
-          const double span = central_difference(x, col, h, [&](int sign) {
+          const double span = detail::central_difference(x, col, h, [&](int sign) {
             return film_generalised_force(m, ws, k, q, v, sliding, sign > 0 ? plus : minus);
           });
           if (span == 0.0) {

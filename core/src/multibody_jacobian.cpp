@@ -41,6 +41,7 @@
 #include <cfloat>
 #include <cmath>
 
+#include "central_difference.hpp"
 #include "multibody_system.hpp"
 
 namespace lub {
@@ -191,21 +192,18 @@ int MultibodySystem::dae_jacobian(double t, double cj, const double* Y, const do
   const auto lam = s.lam_rows.head(nr), mu = s.mu_rows.head(nr);
   auto Dq = s.Dq.topRows(nr);
   for (int j = 0; j < nq; ++j) {
-    const double x0 = q[j];
-    q[j] = x0 + h;
-    const double hp = q[j] - x0;
-    constraint_residual(m_, ws_, t, q, v);
-    s.Lq.col(j).noalias() = Phq.transpose().lazyProduct(lam);
-    s.Uq.col(j).noalias() = Phq.transpose().lazyProduct(mu);
-    Dq.col(j) = ws_.Phi_dot.head(nr);
-    q[j] = x0 - h;
-    const double hm = x0 - q[j];
-    constraint_residual(m_, ws_, t, q, v);
-    s.Lq.col(j).noalias() -= Phq.transpose().lazyProduct(lam);
-    s.Uq.col(j).noalias() -= Phq.transpose().lazyProduct(mu);
-    Dq.col(j) -= ws_.Phi_dot.head(nr);
-    q[j] = x0;
-    const double inv = 1.0 / (hp + hm);
+    // f(±1) adds ± the terms at q ± h e_j: the columns hold the difference.
+    s.Lq.col(j).setZero();
+    s.Uq.col(j).setZero();
+    Dq.col(j).setZero();
+    const double span = detail::central_difference(q, j, h, [&](int sign) {
+      constraint_residual(m_, ws_, t, q, v);
+      s.Lq.col(j).noalias() += double(sign) * Phq.transpose().lazyProduct(lam);
+      s.Uq.col(j).noalias() += double(sign) * Phq.transpose().lazyProduct(mu);
+      Dq.col(j) += double(sign) * ws_.Phi_dot.head(nr);
+      return true;
+    });
+    const double inv = 1.0 / span;
     s.Lq.col(j) *= inv;
     s.Uq.col(j) *= inv;
     Dq.col(j) *= inv;
