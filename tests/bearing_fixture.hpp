@@ -1,5 +1,5 @@
-// The bearing the force-law tests share: the paper's slider-crank joint, R_J = 10 mm,
-// c = 0.5 mm, L = 40 mm, μ = 400 cP, and the two force scales of the closed forms.
+// The bearings the force-law tests share: R_J = 10 mm, c = 0.5 mm, L = 40 mm, μ = 400 cP
+// (with the two force scales of the closed forms), the scenes' paper bearing, and states.
 #pragma once
 
 #include <cmath>
@@ -16,6 +16,15 @@ inline lub::BearingGeometry test_geometry() {
   return g;
 }
 constexpr double kMu = 0.4;
+
+/// The paper's slider-crank joint as the scenes have it: R_J = 9.5 mm, R_B = 10 mm, L = 40 mm.
+inline lub::BearingGeometry paper_bearing() {
+  lub::BearingGeometry g;
+  g.journal_radius_m = 0.0095;
+  g.bearing_radius_m = 0.0100;
+  g.length_m = 0.040;
+  return g;
+}
 
 inline double long_coef(const lub::BearingGeometry& g) {  // C = μ L R_J³ / c²
   const double c = g.clearance_m();

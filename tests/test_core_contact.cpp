@@ -10,8 +10,11 @@
 
 #include "lub/contact.hpp"
 #include "lub/model.hpp"
+#include "bearing_fixture.hpp"
 
 namespace {
+
+using bearing_fixture::state;
 
 using lub::BearingState;
 using lub::ContactLaw;
@@ -26,14 +29,6 @@ ContactLaw test_law() {
   c.eps_start = 0.96;
   c.eps_end = 0.99;
   return c;
-}
-
-BearingState state(double eps, double eps_dot, double wedge) {
-  BearingState s;
-  s.eps = eps;
-  s.eps_dot = eps_dot;
-  s.wedge = wedge;
-  return s;
 }
 
 TEST(Contact, ConformalCylinderStiffness) {

@@ -23,8 +23,12 @@
 
 #include "lub/force_laws.hpp"
 #include "lub/reynolds.hpp"
+#include "bearing_fixture.hpp"
 
 namespace {
+
+using bearing_fixture::kMu;
+using bearing_fixture::paper_bearing;
 
 using lub::BearingState;
 using lub::Cavitation;
@@ -32,15 +36,6 @@ using lub::FilmForce;
 using lub::ForceLaw;
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kMu = 0.4;
-
-lub::BearingGeometry paper_bearing() {
-  lub::BearingGeometry g;
-  g.journal_radius_m = 0.0095;
-  g.bearing_radius_m = 0.0100;
-  g.length_m = 0.040;
-  return g;
-}
 
 struct Range {
   double lo = 1e300, hi = -1e300, angle_deg = 0.0;

@@ -16,8 +16,12 @@
 #include "film_quadrature.hpp"
 #include "lub/force_laws.hpp"
 #include "lub/reynolds.hpp"
+#include "bearing_fixture.hpp"
 
 namespace {
+
+using bearing_fixture::kMu;
+using bearing_fixture::state;
 
 using filmquad::kPi;
 using lub::BearingGeometry;
@@ -28,8 +32,6 @@ using lub::FiniteBearingOptions;
 using lub::FiniteBearingSolver;
 using lub::ForceLaw;
 
-constexpr double kMu = 0.4;
-
 // A bearing of journal radius 10 mm, clearance 0.5 mm and L/D = ld.
 BearingGeometry geometry(double ld) {
   BearingGeometry g;
@@ -37,14 +39,6 @@ BearingGeometry geometry(double ld) {
   g.bearing_radius_m = 0.0105;
   g.length_m = ld * 2.0 * g.journal_radius_m;
   return g;
-}
-
-BearingState state(double eps, double eps_dot, double wedge) {
-  BearingState s;
-  s.eps = eps;
-  s.eps_dot = eps_dot;
-  s.wedge = wedge;
-  return s;
 }
 
 FilmForce finite(const BearingGeometry& g, const BearingState& s, Cavitation cav, int n_theta, int n_z,

@@ -15,17 +15,12 @@
 
 #include "lub/force_laws.hpp"
 #include "lub/reynolds.hpp"
+#include "../bearing_fixture.hpp"
 
 namespace {
 
-lub::BearingGeometry paper_bearing() {
-  lub::BearingGeometry g;
-  g.journal_radius_m = 0.0095;
-  g.bearing_radius_m = 0.0100;
-  g.length_m = 0.040;
-  return g;
-}
-constexpr double kMu = 0.4;
+using bearing_fixture::kMu;
+using bearing_fixture::paper_bearing;
 
 std::vector<lub::BearingState> spread_states() {
   std::vector<lub::BearingState> v;
