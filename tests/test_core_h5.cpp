@@ -329,6 +329,13 @@ TEST_F(H5Test, TableAppendAndReadColumns) {
   EXPECT_EQ(t.attribute_strings("units"), (std::vector<std::string>{"", "", "m", "m"}));
   t.set_attribute("description", "one row per finished case");
 
+  // netCDF-4 style: one dataset per column, the first the dimension scale of the others.
+  EXPECT_TRUE(t.column("case_id").is_scale());
+  EXPECT_EQ(t.column("case_id").attribute_string("NAME"), "case_id");
+  EXPECT_TRUE(t.column("hash").has_attribute("DIMENSION_LIST"));
+  EXPECT_EQ(t.column("clearance_m").units(), "m");
+  EXPECT_FALSE(t.column("hash").has_attribute("units"));  // strings have no unit
+
   // Bad rows append nothing.
   EXPECT_THROW(t.append(Row{std::int64_t{3}, std::string("h3"), 1.0}), std::runtime_error);
   EXPECT_THROW(t.append(Row{3.0, std::string("h3"), 1.0, 1.0}), std::runtime_error);

@@ -35,7 +35,7 @@ resume)
   rc=$?
   set -e
   [ "$rc" -ne 0 ] || fail "the killed sweep exited 0"
-  rows=$(h5ls killed.h5/cases | sed -E 's/.*\{([0-9]+)\/.*/\1/')
+  rows=$(h5ls killed.h5/cases/case | sed -E 's/.*\{([0-9]+)\/.*/\1/')
   [ "$rows" = "3" ] || fail "the killed file holds $rows rows, expected 3"
   run 2 killed.h5 2> resumed.log
   grep -q "holds 3 of them (7 to run)" resumed.log || { cat resumed.log >&2; fail "the resumed sweep did not skip the 3 cases done"; }
@@ -70,7 +70,7 @@ abort)
   set -e
   [ "$rc" -eq 3 ] || { cat abort.log >&2; fail "an aborted sweep exited $rc, expected 3"; }
   grep -q "on_failure = abort: stopping" abort.log || { cat abort.log >&2; fail "no abort message"; }
-  rows=$(h5ls a.h5/cases | sed -E 's/.*\{([0-9]+)\/.*/\1/')
+  rows=$(h5ls a.h5/cases/case | sed -E 's/.*\{([0-9]+)\/.*/\1/')
   [ "$rows" -lt 8 ] || fail "the aborted sweep ran every case"
   [ "$(h5dump -A -a /complete a.h5 | grep -Eo '\(0\): [0-9]+')" = "(0): 0" ] || fail "the aborted file is marked complete"
   "$mpiexec" -np 2 "$lubsweep" "$here/abort_grid.json" -o a.h5 --no-summary 2> again.log \
