@@ -16,7 +16,9 @@
 
 #include "lub/json_reader.hpp"
 #include "lub/sweep/case_result.hpp"
+#include "lub/output_path.hpp"
 #include "lub/sweep/grid.hpp"
+#include "lub/sweep/output_lock.hpp"
 #include "lub/sweep/progress.hpp"
 #include "lub/sweep/sweep.hpp"
 
@@ -438,4 +440,34 @@ TEST(SweepOptions, CommandLine) {
   Options r;
   EXPECT_EQ(*parse_options({"g.json", "-o", "x", "--restart", "--retry-failed"}, r, help, text),
             "--restart and --retry-failed exclude each other");
+}
+
+TEST_F(StudyFile, OutputLockRefusesASecondHolderNamingTheFirst) {
+  const std::string path = file("s.h5");
+  {
+    lub::sweep::OutputLock first(path);
+    EXPECT_TRUE(first.held());
+    try {
+      lub::sweep::OutputLock second(path);
+      FAIL() << "a second lock was granted";
+    } catch (const lub::InputError& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find("the file is in use by another sweep (pid " + std::to_string(::getpid())), std::string::npos)
+          << msg;
+    }
+    EXPECT_TRUE(fs::exists(path + ".lock"));
+  }
+  EXPECT_FALSE(fs::exists(path + ".lock"));  // removed when released
+  { std::ofstream stale(path + ".lock"); stale << "pid 1 on host gone\n"; }  // a killed sweep's
+  lub::sweep::OutputLock again(path);  // not locked by anyone: taken over
+  EXPECT_TRUE(again.held());
+}
+
+TEST(OutputPath, RefusedWithTheRule) {
+  EXPECT_EQ(lub::output_path_problem("x/"), std::optional<std::string>("-o x/: must name a file, not a directory (the path ends in '/')"));
+  EXPECT_NE(lub::output_path_problem("/")->find("must name a file"), std::string::npos);
+  EXPECT_NE(lub::output_path_problem(".")->find("existing directory"), std::string::npos);
+  EXPECT_NE(lub::output_path_problem("/no/such/dir/s.h5")->find("its directory /no/such/dir does not exist"), std::string::npos);
+  EXPECT_NE(lub::output_path_problem("")->find("empty"), std::string::npos);
+  EXPECT_FALSE(lub::output_path_problem(::testing::TempDir() + "/fine.h5").has_value());
 }
