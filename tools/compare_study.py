@@ -13,7 +13,7 @@ below_safe_film, ...) must be equal unless given a tolerance. --tol METRIC=RTOL 
 METRIC=RTOL:ATOL sets one metric's; --tol METRIC=skip ignores it. --steps-rtol R also
 flags a solver cost (steps) grown by more than the fraction R.
 Cases only in the study are reported, not regressions. Exit 0: no regression; 1: a
-regression; other: bad input. Reads through xarray/pandas (tools/study_io.py).
+regression; 2: bad input. Reads through xarray/pandas (tools/study_io.py).
 """
 import argparse
 import math
@@ -97,4 +97,10 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    try:
+        sys.exit(main())
+    except SystemExit as e:  # a message: bad input, exit 2 (1 means a regression)
+        if isinstance(e.code, str):
+            print(e.code, file=sys.stderr)
+            sys.exit(2)
+        raise
