@@ -38,28 +38,31 @@ KEY = ["clearance_m", "viscosity_Pa_s", "speed_rpm", "force_law"]
 # tolerance must absorb is a change that moves the integrator's step sequence without
 # changing its accuracy target (a refactoring's round-off, another compiler or libm). That
 # was measured by running the paper grid with /solver/initial_step_s = 1e-7 and 1e-9
-# instead of the integrator's estimate; each tolerance is ~4x the largest deviation of an
-# ok case there, and the film-thickness ones stay well below 1 %, so that a 1 % change of
-# a film thickness is a regression.
+# instead of the integrator's estimate (numbers below: the default numerics of the
+# merged main, partitioned formulation). Each tolerance is a few times the largest
+# deviation of an ok case there, except the film thickness: it must also catch a 1 %
+# change, and the near-wall 50 rpm case (h = 2.3 um, eps = 0.9954) moves by 0.43 % under
+# the perturbation alone, so its tolerance sits between the two.
 TOLERANCES = {
     # Minimum film thickness h = c (1 - eps), the paper's headline result: largest
-    # deviation 0.075 % (frene_long); 0.3 % is 4x that and 3x below 1 %.
-    "min_film_thickness_m": (3e-3, 0.0),
-    # eps at the minimum film: the same quantity as 1 - h/c, so the same 0.3 % of 1 - eps
-    # (a 1 % change of h is 0.01 (1 - eps) in eps). Largest deviation 0.075 % of 1 - eps.
-    "max_eps": (3e-3, 0.0),
+    # deviation 0.43 % (50 rpm, near the wall), every other case at most 0.15 %; 0.6 % is
+    # 1.4x the former and 1.7x below the 1 % that must be caught.
+    "min_film_thickness_m": (6e-3, 0.0),
+    # eps at the minimum film: the same quantity as 1 - h/c, so the same 0.6 % of 1 - eps
+    # (a 1 % change of h is 0.01 (1 - eps) in eps).
+    "max_eps": (6e-3, 0.0),
     # Peak joint force and slider acceleration: extremes of impact peaks, sampled at the
-    # integrator's steps and 120 points a cycle. Largest deviations 0.08 %, 0.03 %: 0.5 %.
+    # integrator's steps and 120 points a cycle. Largest deviations 0.14 %, 0.11 %: 0.5 %.
     "peak_reaction_N": (5e-3, 0.0),
     "peak_acceleration_m_s2": (5e-3, 0.0),
-    # Crank angles of the extremes: on a flat extreme the angle moves much more than the
-    # value (largest 0.03 rad); 0.1 rad (5.7 degrees) flags a moved event, not a flat
-    # extreme's drift.
+    # Crank angles of the extremes, compared modulo 2 pi: on a flat extreme the angle moves
+    # much more than the value (largest 0.027 rad); 0.1 rad (5.7 degrees) flags a moved
+    # event, not a flat extreme's drift.
     "crank_angle_at_min_film_rad": (0.0, 0.1),
     "crank_angle_at_peak_reaction_rad": (0.0, 0.1),
     # Periodicity (orbit distance between cycles / c): a small difference of large numbers
-    # for the steady cases (largest change 3.6e-4, at a case whose transient ran 12 cycles
-    # instead of 6), of order 1 for the cases that never settle: 20 % plus 1e-3, the steady
+    # for the steady cases (largest change 3.9e-4), of order 1 for the cases that never
+    # settle: 20 % plus 1e-3, the steady
     # tolerance itself (two values below it both mean "repeats").
     "periodicity": (0.2, 1e-3),
     # Geometry only: the same to round-off.
@@ -70,8 +73,9 @@ TOLERANCES = {
     "below_safe_film": (0.0, 0.0),
 }
 # Reported when they change, not compared: how many cycles a transient needs moved from 6
-# to 12 for one case (5e-5 m clearance) under the step-sequence perturbation, its metrics
-# staying within the tolerances above. Cost is not a result either.
+# to 12 for one case (5e-5 m clearance) under the step-sequence perturbation with the
+# former default numerics, its metrics staying within the tolerances above. Cost is not a
+# result either.
 NOTES = ["cycles_to_steady", "cycles_run"]
 INFO = NOTES + ["steps", "wall_time_s"]  # recorded and reported, not compared
 
@@ -200,6 +204,9 @@ def compare(study, baseline, report_dir, accepted):
     now, base = study_rows(study), read_baseline(baseline)
     if report_dir:
         os.makedirs(report_dir, exist_ok=True)
+        for old in os.listdir(report_dir):  # figures of an earlier comparison
+            if old.startswith("case_") and old.endswith(".png"):
+                os.remove(os.path.join(report_dir, old))
     regressions, notes, changed, worst = [], [], {}, {}
     for k, b in base.items():
         name = f"{key_text(k)} ({b['case']})"
@@ -219,9 +226,12 @@ def compare(study, baseline, report_dir, accepted):
                 continue
             scale = abs(1.0 - vb) if m == "max_eps" else abs(vb)
             dev, lim = abs(vn - vb), atol + rtol * scale
+            if m.startswith("crank_angle_"):  # in [0, 2 pi): 6.2824 and 0 are 0.0008 rad apart
+                dev = min(dev, 2 * math.pi - dev)
             rel = dev / scale if scale else (0.0 if dev == 0 else math.inf)
-            if dev > worst.get(m, (-1.0,))[0]:
-                worst[m] = (dev, rel, lim, n["case"])
+            ratio = dev / lim if lim else (0.0 if dev == 0 else math.inf)
+            if ratio > worst.get(m, (-1.0,))[0]:
+                worst[m] = (ratio, dev, rel, lim, n["case"])
             if not dev <= lim:
                 regressions.append(f"{name}: {m} = {vn:.9g}, baseline {vb:.9g} "
                                    f"(change {vn - vb:+.3g}, {rel:.2%} relative; tolerance {lim:.3g})")
@@ -253,10 +263,11 @@ def compare(study, baseline, report_dir, accepted):
                     lines += [f"![{c}]({os.path.basename(png)})", ""]
                 except Exception as e:  # a figure is a help, not the verdict
                     lines += [f"(no figure: {e})", ""]
-    lines += ["## Largest deviation per metric", "", "| metric | abs. deviation | relative (max_eps: of 1 - eps) | tolerance | case |",
-              "|---|---|---|---|---|"]
-    for m, (dev, rel, lim, c) in worst.items():
-        lines.append(f"| {m} | {dev:.3g} | {rel:.3g} | {lim:.3g} | {c} |")
+    lines += ["## Largest deviation per metric (against its tolerance)", "",
+              "| metric | deviation / tolerance | abs. deviation | relative (max_eps: of 1 - eps) | tolerance | case |",
+              "|---|---|---|---|---|---|"]
+    for m, (ratio, dev, rel, lim, c) in worst.items():
+        lines.append(f"| {m} | {ratio:.3g} | {dev:.3g} | {rel:.3g} | {lim:.3g} | {c} |")
     steps_now = sum(n["steps"] for n in now.values() if math.isfinite(n["steps"]))
     steps_base = sum(b["steps"] for b in base.values() if math.isfinite(b["steps"]))
     lines += ["", f"Cost (not compared): {steps_now:.0f} integrator steps in all, baseline {steps_base:.0f}."]
