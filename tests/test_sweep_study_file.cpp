@@ -442,6 +442,20 @@ TEST(SweepOptions, CommandLine) {
   Options r;
   EXPECT_EQ(*parse_options({"g.json", "-o", "x", "--restart", "--retry-failed"}, r, help, text),
             "--restart and --retry-failed exclude each other");
+  EXPECT_FALSE(help) << "help is reset by every parse";
+  Options two;
+  EXPECT_EQ(*parse_options({"a.json", "-o", "x", "b.json"}, two, help, text), "more than one grid given (a.json, b.json)");
+  Options missing;
+  EXPECT_NE(parse_options({"g.json", "-o"}, missing, help, text)->find("--output"), std::string::npos);
+  Options forms;
+  EXPECT_FALSE(parse_options({"--output=s.h5", "g.json", "--no-summary", "--quiet"}, forms, help, text));
+  EXPECT_EQ(forms.output, "s.h5");
+  EXPECT_FALSE(forms.summary);
+  EXPECT_TRUE(forms.quiet);
+  Options v;
+  EXPECT_FALSE(parse_options({"--version"}, v, help, text));
+  EXPECT_TRUE(help);
+  EXPECT_EQ(text.substr(0, 9), "lubsweep ");
 }
 
 TEST_F(StudyFile, OutputLockRefusesASecondHolderNamingTheFirst) {

@@ -2,6 +2,8 @@
 
 #include <mpi.h>
 
+#include <CLI/CLI.hpp>
+
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -53,46 +55,33 @@ const char* const kUsage =
 
 std::optional<std::string> parse_options(const std::vector<std::string>& args, Options& o, bool& help,
                                          std::string& help_text) {
+  CLI::App app("lubsweep");
+  app.set_help_flag();  // -h prints kUsage, not CLI11's generated text
   help = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&]() -> std::optional<std::string> {
-      if (i + 1 >= args.size()) return std::nullopt;
-      return args[++i];
-    };
-    if (a == "-h" || a == "--help") {
-      help = true;
-      help_text = kUsage;
-      return std::nullopt;
-    } else if (a == "--version") {
-      help = true;
-      help_text = "lubsweep " + program_version() + " (" + build_revision() + ")\n";
-      return std::nullopt;
-    } else if (a == "-o" || a == "--output") {
-      auto v = value();
-      if (!v) return a + " needs a file name";
-      o.output = *v;
-    } else if (a == "--summary") {
-      auto v = value();
-      if (!v) return a + " needs a study file";
-      o.summary_of = *v;
-    } else if (a == "--restart") {
-      o.restart = true;
-    } else if (a == "--retry-failed") {
-      o.retry_failed = true;
-    } else if (a == "--check") {
-      o.check = true;
-    } else if (a == "--no-summary") {
-      o.summary = false;
-    } else if (a == "-q" || a == "--quiet") {
-      o.quiet = true;
-    } else if (!a.empty() && a[0] == '-') {
-      return "unknown option " + a;
-    } else if (o.grid.empty()) {
-      o.grid = a;
-    } else {
-      return "more than one grid given (" + o.grid + ", " + a + ")";
-    }
+  bool version = false;
+  app.add_flag("-h,--help", help);
+  app.add_flag("--version", version);
+  app.add_option("grid", o.grid);
+  app.add_option("-o,--output", o.output);
+  app.add_option("--summary", o.summary_of);
+  app.add_flag("--restart", o.restart);
+  app.add_flag("--retry-failed", o.retry_failed);
+  app.add_flag("--check", o.check);
+  app.add_flag("--no-summary{false}", o.summary);
+  app.add_flag("-q,--quiet", o.quiet);
+  try {
+    app.parse(std::vector<std::string>(args.rbegin(), args.rend()));  // CLI11 wants them last first
+  } catch (const CLI::ExtrasError&) {
+    const std::string extra = app.remaining().front();
+    if (!extra.empty() && extra[0] == '-') return "unknown option " + extra;
+    return "more than one grid given (" + o.grid + ", " + extra + ")";
+  } catch (const CLI::ParseError& e) {
+    return std::string(e.what());
+  }
+  if (help || version) {
+    help = true;
+    help_text = version ? "lubsweep " + program_version() + " (" + build_revision() + ")\n" : kUsage;
+    return std::nullopt;
   }
   if (!o.summary_of.empty()) {
     if (!o.grid.empty() || !o.output.empty()) return "--summary takes only a study file";
