@@ -1,7 +1,6 @@
 #include "lub/sweep/grid.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -455,7 +454,7 @@ class Expander {
     c.parsed = std::make_shared<const Scene>(std::move(*parsed));
     by_hash_[c.hash] = c.id;
     std::map<int, json>& columns = given_.emplace_back();
-    for (const Given& g : given) columns.emplace(g.axis, g.value);
+    for (const Given& g : given) columns[g.axis] = g.value;  // two keys of one axis: the last, as applied
     g_.cases.push_back(std::move(c));
     return g_.cases.back().id;
   }
