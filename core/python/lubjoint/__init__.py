@@ -32,7 +32,7 @@ import numpy as np
 from . import _lubjoint
 from ._lubjoint import InputError
 
-__all__ = ["simulate", "force", "steady_bearing", "load_study", "FilmForce", "Study",
+__all__ = ["simulate", "force", "steady_bearing", "load_study", "study_format", "FilmForce", "Study",
            "InputError", "SceneError", "StudyFormatError", "FORCE_LAWS", "__version__"]
 
 #: Bad input (scene, override, argument): the message names the path, the value and the rule.
