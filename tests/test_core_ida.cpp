@@ -36,16 +36,18 @@ TEST(IdaGgl, KeepsTheConstraintsWhereBaumgarteDrifts) {
   // GGL enforces Φ = 0 and Φ̇ = 0 in every step's Newton solve. The observers also look
   // between steps, at the interpolating polynomial, so what remains is the local error
   // the error test allows: rtol × the scale of the state, 0.2 m for positions and the
-  // slider's 26 m/s for velocities (factor 10 for the interpolation).
+  // slider's 26 m/s for velocities (factor 10 for the interpolation). Baumgarte's position
+  // drift accumulates; its velocity drift is damped by α and sits at that same
+  // interpolation level (2.9e-7 m/s here against GGL's 6.4e-7 m/s with the per-state
+  // tolerances), so only the position drift is compared between the two.
   const double rtol = 1e-8;
-  const RunResult b = run("frene_long", "cvode_bdf", "", rtol, 3);
+  const RunResult b = run("frene_long", "cvode_bdf", "baumgarte", rtol, 3);
   const RunResult g = run("frene_long", "ida", "", rtol, 3);
   ASSERT_EQ(b.status, RunStatus::ok) << b.message;
   ASSERT_EQ(g.status, RunStatus::ok) << g.message;
   EXPECT_LT(g.stats.max_position_drift, 10 * rtol * 0.2);
   EXPECT_LT(g.stats.max_velocity_drift, 10 * rtol * 26.0);
   EXPECT_LT(g.stats.max_position_drift, 1e-2 * b.stats.max_position_drift);
-  EXPECT_LT(g.stats.max_velocity_drift, 1e-1 * b.stats.max_velocity_drift);
 }
 
 TEST(IdaGgl, AgreesWithThePartitionedReferenceForEachPaperLaw) {

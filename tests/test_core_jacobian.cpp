@@ -157,6 +157,7 @@ lub::RunResult run(const std::string& method, const std::string& jacobian, const
   doc["solver"]["method"] = method;
   doc["solver"]["rtol"] = rtol;
   doc["solver"]["jacobian"] = jacobian;
+  doc["solver"]["formulation"] = "baumgarte";  // the structured Jacobian is baumgarte's
   doc["joints"][3]["force_law"] = law;
   doc["simulation"]["max_cycles"] = cycles;
   return lub::run_scene(lub::parse_scene(doc));

@@ -57,6 +57,7 @@ class ArkodeIntegrator final : public Integrator {
     if (s.max_step > 0) check(ARKStepSetMaxStep(mem_, s.max_step), "ARKStepSetMaxStep");
     if (s.initial_step > 0) check(ARKStepSetInitStep(mem_, s.initial_step), "ARKStepSetInitStep");
     t_stop_ = s.t_stop;
+    rtol_ = s.rtol;
     check(ARKStepSetStopTime(mem_, t_stop_), "ARKStepSetStopTime");
     if (sys.num_roots() > 0) {
       check(ARKStepRootInit(mem_, sys.num_roots(), detail::root_cb), "ARKStepRootInit");
@@ -75,7 +76,8 @@ class ArkodeIntegrator final : public Integrator {
 
   StepOutcome step(double& t) override {
     sunrealtype tret = 0;
-    const int flag = ARKStepEvolve(mem_, 1e300, y_, &tret, ARK_ONE_STEP);
+    // tout = the stop time: ARKODE's initial-step estimate after a (re)start uses it.
+    const int flag = ARKStepEvolve(mem_, t_stop_, y_, &tret, ARK_ONE_STEP);
     t = tret;
     if (flag == ARK_ROOT_RETURN) return StepOutcome::root;
     if (flag < 0) {
@@ -140,6 +142,16 @@ class ArkodeIntegrator final : public Integrator {
     check(ARKStepSetStopTime(mem_, t_stop_), "ARKStepSetStopTime");
   }
 
+  void set_stop_time(double t_stop) override {
+    t_stop_ = t_stop;
+    check(ARKStepSetStopTime(mem_, t_stop_), "ARKStepSetStopTime");
+  }
+
+  void set_abs_tolerances(const std::vector<double>& atol) override {
+    for (int i = 0; i < data_.n; ++i) NV_Ith_S(atol_, i) = atol[static_cast<size_t>(i)];
+    check(ARKStepSVtolerances(mem_, rtol_, atol_), "ARKStepSVtolerances");
+  }
+
  private:
   void check(int flag, const char* what) {
     if (flag != 0) throw std::runtime_error(std::string(what) + " failed: " + data_.error);
@@ -147,6 +159,7 @@ class ArkodeIntegrator final : public Integrator {
 
   bool implicit_;
   double t_stop_ = 0.0;
+  double rtol_ = 0.0;
   SolverStats base_;
   CallbackData data_;
   SUNContext ctx_ = nullptr;

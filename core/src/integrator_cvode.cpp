@@ -49,6 +49,7 @@ class CvodeIntegrator final : public Integrator {
     if (s.initial_step > 0) check(CVodeSetInitStep(mem_, s.initial_step), "CVodeSetInitStep");
     if (s.max_order > 0) check(CVodeSetMaxOrd(mem_, s.max_order), "CVodeSetMaxOrd");
     t_stop_ = s.t_stop;
+    rtol_ = s.rtol;
     check(CVodeSetStopTime(mem_, s.t_stop), "CVodeSetStopTime");
     if (s.method == Method::cvode_adams) {
       nls_ = SUNNonlinSol_FixedPoint(y_, 0, ctx_);
@@ -88,7 +89,8 @@ class CvodeIntegrator final : public Integrator {
 
   StepOutcome step(double& t) override {
     sunrealtype tret = 0;
-    const int flag = CVode(mem_, 1e300, y_, &tret, CV_ONE_STEP);
+    // tout = the stop time: CVODE's initial-step estimate after a (re)start uses it.
+    const int flag = CVode(mem_, t_stop_, y_, &tret, CV_ONE_STEP);
     t = tret;
     if (flag == CV_ROOT_RETURN) return StepOutcome::root;
     if (flag < 0) {
@@ -165,6 +167,16 @@ class CvodeIntegrator final : public Integrator {
     check(CVodeSetStopTime(mem_, t_stop_), "CVodeSetStopTime");
   }
 
+  void set_stop_time(double t_stop) override {
+    t_stop_ = t_stop;
+    check(CVodeSetStopTime(mem_, t_stop_), "CVodeSetStopTime");
+  }
+
+  void set_abs_tolerances(const std::vector<double>& atol) override {
+    for (sunindextype i = 0; i < N_VGetLength(atol_); ++i) NV_Ith_S(atol_, i) = atol[static_cast<size_t>(i)];
+    check(CVodeSVtolerances(mem_, rtol_, atol_), "CVodeSVtolerances");
+  }
+
  private:
   void check(int flag, const char* what) {
     if (flag != 0) throw std::runtime_error(std::string(what) + " failed: " + data_.error);
@@ -172,6 +184,7 @@ class CvodeIntegrator final : public Integrator {
 
   Method method_;
   double t_stop_ = 0.0;
+  double rtol_ = 0.0;
   SolverStats base_;  // counters accumulated before the last reinit
   CallbackData data_;
   SUNContext ctx_ = nullptr;

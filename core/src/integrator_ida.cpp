@@ -90,6 +90,7 @@ class IdaIntegrator final : public Integrator {
     if (s.initial_step > 0) check(IDASetInitStep(mem_, s.initial_step), "IDASetInitStep");
     if (s.max_order > 0) check(IDASetMaxOrd(mem_, s.max_order), "IDASetMaxOrd");
     t_stop_ = s.t_stop;
+    rtol_ = s.rtol;
     check(IDASetStopTime(mem_, s.t_stop), "IDASetStopTime");
     A_ = SUNDenseMatrix(n, n, ctx_);
     ls_ = SUNLinSol_Dense(Y_, A_, ctx_);
@@ -186,6 +187,16 @@ class IdaIntegrator final : public Integrator {
     check(IDASetStopTime(mem_, t_stop_), "IDASetStopTime");
   }
 
+  void set_stop_time(double t_stop) override {
+    t_stop_ = t_stop;
+    check(IDASetStopTime(mem_, t_stop_), "IDASetStopTime");
+  }
+
+  void set_abs_tolerances(const std::vector<double>& atol) override {
+    for (int i = 0; i < data_.n; ++i) NV_Ith_S(atol_, i) = atol[static_cast<size_t>(i)];
+    check(IDASVtolerances(mem_, rtol_, atol_), "IDASVtolerances");
+  }
+
  private:
   // (Y, Y') from the state: the multipliers and derivatives that go with it (after a
   // mode switch the set of active constraints has changed).
@@ -201,6 +212,7 @@ class IdaIntegrator final : public Integrator {
   }
 
   double t_stop_ = 0.0;
+  double rtol_ = 0.0;
   SolverStats base_;  // counters accumulated before the last reinit
   CallbackData data_;
   SUNContext ctx_ = nullptr;

@@ -657,6 +657,31 @@ Eigen::Vector2d joint_force(const Model& m, const Workspace& ws, int joint) {
   return on_j ? F : Vector2d(-F);
 }
 
+Eigen::VectorXd state_scales(const Model& m, double length_m, double rate_rad_s) {
+  std::vector<double> size(static_cast<size_t>(m.nb), 0.0);
+  auto reach = [&](int body, const Vector2d& s) {
+    if (body != kGround) size[static_cast<size_t>(body)] = std::max(size[static_cast<size_t>(body)], s.norm());
+  };
+  for (const Constraint& c : m.constraints) {
+    if (c.kind != Constraint::Kind::revolute && c.kind != Constraint::Kind::translational) continue;
+    reach(c.body_i, c.s_i);
+    reach(c.body_j, c.s_j);
+  }
+  for (const FilmElement& f : m.films) {
+    reach(f.bearing, f.s_bearing);
+    reach(f.journal, f.s_journal);
+  }
+  Eigen::VectorXd s(2 * m.nq);
+  for (int b = 0; b < m.nb; ++b) {
+    const double gyration = std::sqrt(m.mass_diag(3 * b + 2) / m.mass_diag(3 * b));
+    const double r = std::max(size[static_cast<size_t>(b)], gyration);
+    const double angle = r > 0.0 ? length_m / r : length_m;  // a point mass: 1 m
+    s.segment<3>(3 * b) << length_m, length_m, angle;
+    s.segment<3>(m.nq + 3 * b) = rate_rad_s * s.segment<3>(3 * b);
+  }
+  return s;
+}
+
 double mechanical_energy(const Model& m, const double* q, const double* v) {
   double E = 0.0;
   for (int i = 0; i < m.nq; ++i) E += 0.5 * m.mass_diag(i) * v[i] * v[i];

@@ -14,23 +14,27 @@ namespace lub {
 MultibodySystem::MultibodySystem(const Model& m, Workspace& ws, double eps_limit, bool energy, Formulation f)
     : m_(m), ws_(ws), eps_limit_(eps_limit), energy_(energy), form_(f),
       nz_(f == Formulation::partitioned ? m.nq - m.nc : m.nq) {
-  qv_.assign(2 * m.nq, 0.0);
   acc_.assign(m.nq, 0.0);
   scratch_.assign(2 * m.nq, 0.0);
   int next_slot = m.nc;
   for (const FilmElement& film : m.films) slot_of_switching_.push_back(film.switching ? next_slot++ : -1);
-  if (f == Formulation::partitioned) {
-    lu_.assign(static_cast<size_t>(m.nc) * m.nc, 0.0);
-    block_ = lu_;
-    piv_.assign(static_cast<size_t>(m.nc), 0);
-    r_.assign(static_cast<size_t>(m.nc), 0.0);
-    last_y_.assign(static_cast<size_t>(2 * nz_), 0.0);
+  for (Recovery* rc : {&integ_rec_, &obs_rec_}) {
+    rc->qv.assign(2 * m.nq, 0.0);
+    if (f != Formulation::partitioned) continue;
+    rc->lu.assign(static_cast<size_t>(m.nc) * m.nc, 0.0);
+    rc->block = rc->lu;
+    rc->piv.assign(static_cast<size_t>(m.nc), 0);
+    rc->last_y.assign(static_cast<size_t>(2 * nz_), 0.0);
   }
+  if (f == Formulation::partitioned) r_.assign(static_cast<size_t>(m.nc), 0.0);
 }
 
 void MultibodySystem::partition(double t, const double* qv) {
-  std::copy(qv, qv + 2 * m_.nq, qv_.begin());
-  have_last_ = false;
+  for (Recovery* rc : {&integ_rec_, &obs_rec_}) {
+    std::copy(qv, qv + 2 * m_.nq, rc->qv.begin());
+    rc->have_last = false;
+    rc->lu_valid = false;
+  }
   if (form_ != Formulation::partitioned) return;
   ind_.clear();
   dep_.clear();
@@ -47,42 +51,50 @@ void MultibodySystem::partition(double t, const double* qv) {
   std::sort(dep_.begin(), dep_.end());
   std::sort(ind_.begin(), ind_.end());
   degraded_ = false;
-  lu_valid_ = false;
 }
 
-void MultibodySystem::factor_dependent_block() {
+void MultibodySystem::factor_dependent_block(Recovery& rc) {
   // The block already factored (e.g. the integrator's difference quotients that perturb
   // only velocities): nothing to do, the factors are exact for it.
   const int nc = m_.nc;
-  bool same = lu_valid_;
+  bool same = rc.lu_valid;
   for (int j = 0; j < nc; ++j)
     for (int i = 0; i < nc; ++i) {
       const double a = ws_.Phi_q(i, dep_[j]);
-      double& b = block_[static_cast<size_t>(j) * nc + i];
+      double& b = rc.block[static_cast<size_t>(j) * nc + i];
       if (a != b) same = false, b = a;
     }
   if (same) return;
-  std::copy(block_.begin(), block_.end(), lu_.begin());
-  dense::lu(lu_.data(), nc, nc, piv_.data());
+  std::copy(rc.block.begin(), rc.block.end(), rc.lu.begin());
+  dense::lu(rc.lu.data(), nc, nc, rc.piv.data());
 }
 
-int MultibodySystem::expand(double t, const double* y, double* qv) {
+int MultibodySystem::expand(double t, const double* y, double* qv, Context who) {
   const int nq = m_.nq;
   if (form_ != Formulation::partitioned) {
     std::copy(y, y + 2 * nq, qv);
     return 0;
   }
+  Recovery& rc = who == Context::integrator ? integ_rec_ : obs_rec_;
   const int nd = static_cast<int>(ind_.size());
+  if (who == Context::observer) {
+    // Start from the integrator's last recovered state with fresh factors, every time:
+    // an observation then depends on (t, y) and the integration alone, not on which
+    // other observations were made before it.
+    std::copy(integ_rec_.qv.begin(), integ_rec_.qv.end(), rc.qv.begin());
+    rc.lu_valid = false;
+    rc.have_last = false;
+  }
   // The integrator often asks again for the state it just had (roots, quadratures,
   // observers at a step end): reuse it.
-  if (have_last_ && t == last_t_ && std::equal(y, y + 2 * nd, last_y_.begin())) {
-    std::copy(qv_.begin(), qv_.end(), qv);
+  if (rc.have_last && t == rc.last_t && std::equal(y, y + 2 * nd, rc.last_y.begin())) {
+    std::copy(rc.qv.begin(), rc.qv.end(), qv);
     return 0;
   }
-  have_last_ = false;
+  rc.have_last = false;
   // Warm start from the last recovered state; the independent coordinates from y.
-  double* q = qv_.data();
-  double* v = qv_.data() + nq;
+  double* q = rc.qv.data();
+  double* v = rc.qv.data() + nq;
   for (int i = 0; i < nd; ++i) q[ind_[i]] = y[i];
   if (m_.nc > 0) {
     const double tol = 1e-13;  // m or rad: far below any clearance and DQ perturbation
@@ -104,44 +116,46 @@ int MultibodySystem::expand(double t, const double* y, double* qv) {
         converged = true;
         break;
       }
-      if (!lu_valid_ || res > 0.25 * last) {
-        factor_dependent_block();
-        lu_valid_ = true;
+      if (!rc.lu_valid || res > 0.25 * last) {
+        factor_dependent_block(rc);
+        rc.lu_valid = true;
       }
       last = res;
       std::copy(Phi, Phi + nc, r_.begin());
-      dense::lu_solve(lu_.data(), nc, nc, piv_.data(), r_.data());
+      dense::lu_solve(rc.lu.data(), nc, nc, rc.piv.data(), r_.data());
       for (int i = 0; i < nc; ++i) q[dep_[i]] -= r_[i];
     }
     if (!converged) {
-      lu_valid_ = false;
+      rc.lu_valid = false;
       return 1;
     }
     // Velocities: Φ_q,dep v_dep = −(Φ_q,ind ż + Φ_t), with Φ_t = Φ̇ at v = 0. Exact only
     // with the dependent block at the solution: factor it (this is also the next chord).
-    factor_dependent_block();
-    lu_valid_ = true;
-    double dmin = std::numeric_limits<double>::infinity(), dmax = 0.0;
-    for (int i = 0; i < nc; ++i) {
-      const double d = std::abs(lu_[static_cast<size_t>(i) * nc + i]);
-      dmin = std::min(dmin, d);
-      dmax = std::max(dmax, d);
+    factor_dependent_block(rc);
+    rc.lu_valid = true;
+    if (who == Context::integrator) {
+      double dmin = std::numeric_limits<double>::infinity(), dmax = 0.0;
+      for (int i = 0; i < nc; ++i) {
+        const double d = std::abs(rc.lu[static_cast<size_t>(i) * nc + i]);
+        dmin = std::min(dmin, d);
+        dmax = std::max(dmax, d);
+      }
+      degraded_ = dmin < 1e-4 * dmax;
     }
-    degraded_ = dmin < 1e-4 * dmax;
     std::copy(ws_.Phi_dot.data(), ws_.Phi_dot.data() + nc, r_.begin());
     for (int i = 0; i < nd; ++i) {
       v[ind_[i]] = y[nd + i];
       for (int r = 0; r < nc; ++r) r_[r] += ws_.Phi_q(r, ind_[i]) * y[nd + i];
     }
-    dense::lu_solve(lu_.data(), nc, nc, piv_.data(), r_.data());
+    dense::lu_solve(rc.lu.data(), nc, nc, rc.piv.data(), r_.data());
     for (int i = 0; i < nc; ++i) v[dep_[i]] = -r_[i];
   } else {
     for (int i = 0; i < nd; ++i) v[ind_[i]] = y[nd + i];
   }
-  std::copy(qv_.begin(), qv_.end(), qv);
-  last_t_ = t;
-  std::copy(y, y + 2 * nd, last_y_.begin());
-  have_last_ = true;
+  std::copy(rc.qv.begin(), rc.qv.end(), qv);
+  rc.last_t = t;
+  std::copy(y, y + 2 * nd, rc.last_y.begin());
+  rc.have_last = true;
   return 0;
 }
 

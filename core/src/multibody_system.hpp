@@ -63,9 +63,16 @@ class MultibodySystem final : public OdeSystem {
   /// ODE formulations.
   int dae_jacobian(double t, double cj, const double* Y, const double* Yp, double* J) override;
 
+  /// Who asks for an expansion. The partitioned recovery is a Newton iteration warm-started
+  /// from the last state its context recovered: its result depends on that history at
+  /// round-off level. The integrator's callbacks and the run loop's step ends use one
+  /// context; the observers' samples and phase points use another, started afresh from the
+  /// integrator's last state each time, so how often a run samples changes neither its
+  /// trajectory nor any other observation.
+  enum class Context { integrator, observer };
   /// Integrator state → full (q, v) (2 nq). Returns 0, or 1 if the dependent
   /// coordinates cannot be recovered (partitioned).
-  int expand(double t, const double* y, double* qv);
+  int expand(double t, const double* y, double* qv, Context who = Context::integrator);
   /// Full (q, v) → integrator state.
   void reduce(const double* qv, double* y) const;
   /// Chooses the independent coordinates at the consistent state (q, v).
@@ -89,25 +96,30 @@ class MultibodySystem final : public OdeSystem {
   Formulation form_;
   int nz_;  // integrated coordinates
   double projection_tol_ = 1e-12;
-  std::vector<double> scratch_, qv_, acc_;
+  std::vector<double> scratch_, acc_;
   // partitioned
   std::vector<int> ind_, dep_;
-  // Φ_q restricted to the dependent columns when last factored, its LU factors (dense::lu)
-  // and pivots
-  std::vector<double> block_, lu_;
-  std::vector<int> piv_;
+  /// One context of the partitioned recovery (see Context).
+  struct Recovery {
+    std::vector<double> qv;  // the last recovered (q, v): the next warm start
+    // Φ_q restricted to the dependent columns when last factored, its LU factors
+    // (dense::lu) and pivots
+    std::vector<double> block, lu;
+    std::vector<int> piv;
+    bool lu_valid = false;   // lu holds a factorisation of a recent dependent block
+    bool have_last = false;  // cache of the last expansion
+    double last_t = 0.0;
+    std::vector<double> last_y;
+  };
+  Recovery integ_rec_, obs_rec_;
   std::vector<double> r_;
-  bool degraded_ = false;
-  bool lu_valid_ = false;  // lu_ holds a factorisation of a recent dependent block
-  bool have_last_ = false;  // cache of the last expansion
-  double last_t_ = 0.0;
-  std::vector<double> last_y_;
+  bool degraded_ = false;  // set by the integrator context's expansions only
   // ggl: multiplier slot of each row of ws_.Phi (constraints, then the sliding rows in
   // film order) — a switching film's sliding row keeps one slot whether active or not.
   std::vector<int> slot_of_switching_;  // per film: nc + its index among switching films, or −1
   JacobianScratch jac_{m_};
 
-  void factor_dependent_block();
+  void factor_dependent_block(Recovery& rc);
 };
 
 }  // namespace lub

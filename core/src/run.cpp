@@ -76,10 +76,21 @@ double channel_value(const Scene& scene, const Model& m, const Workspace& ws, co
   return 0.0;
 }
 
+// The rate that scales the velocity tolerances [rad/s]: the fastest driver's speed, or
+// 2π over the cycle period or the duration when no driver gives one.
+double characteristic_rate(const Scene& scene) {
+  double w = 0.0;
+  for (const DriverSpec& d : scene.drivers) w = std::max(w, std::abs(d.speed_rad_s));
+  if (w > 0.0) return w;
+  if (const auto T = scene.cycle_period_s()) return kTwoPi / *T;
+  if (scene.simulation.duration_s) return kTwoPi / *scene.simulation.duration_s;
+  return 1.0;
+}
+
 class Runner {
  public:
   explicit Runner(const Scene& scene)
-      : scene_(scene), m_(build_model(scene)), ws_(m_), period_(scene.cycle_period_s()) {}
+      : scene_(scene), m_(build_model(scene)), ws_(m_), obs_ws_(m_), period_(scene.cycle_period_s()) {}
 
   RunResult run();
 
@@ -96,11 +107,15 @@ class Runner {
   }
   bool steady_now() const;
   void switch_modes(MultibodySystem& sys, const std::vector<int>& flags, double t, const double* y);
-  bool resync_modes(double t, const double* y);
+  bool resync_modes(MultibodySystem& sys, double t, const double* y);
 
   const Scene& scene_;
   Model m_;
-  Workspace ws_;
+  Workspace ws_;  ///< the integrator's
+  /// The observers' own: what they evaluate (a finite-Reynolds solver's warm start, the
+  /// counters) must not reach the integrator's workspace, or how often a run samples
+  /// would change its trajectory. Film modes are copied in before each observation.
+  Workspace obs_ws_;
   std::optional<double> period_;
   double t0_ = 0.0;
   RunResult res_;
@@ -117,19 +132,22 @@ class Runner {
 void Runner::observe(double t, const double* y, bool record) {
   const double* q = y;
   const double* v = y + m_.nq;
-  if (evaluate(m_, ws_, t, q, v, qdd_.data()) != 0) return;
+  std::copy(ws_.film_mode.begin(), ws_.film_mode.end(), obs_ws_.film_mode.begin());
+  std::copy(ws_.slide_radius.begin(), ws_.slide_radius.end(), obs_ws_.slide_radius.begin());
+  const Workspace& ws = obs_ws_;
+  if (evaluate(m_, obs_ws_, t, q, v, qdd_.data()) != 0) return;
   ++res_.stats.observer_evals;
   if (record) {
     const Probe p{t, q, v, qdd_.data()};
     auto& data = res_.series.data;
     data[0].push_back(t);
     for (size_t c = 0; c < scene_.output.channels.size(); ++c)
-      data[c + 1].push_back(channel_value(scene_, m_, ws_, scene_.output.channels[c], p));
+      data[c + 1].push_back(channel_value(scene_, m_, ws, scene_.output.channels[c], p));
   }
   res_.stats.max_position_drift =
-      std::max(res_.stats.max_position_drift, m_.nc ? ws_.Phi.head(m_.nc).lpNorm<Eigen::Infinity>() : 0.0);
+      std::max(res_.stats.max_position_drift, m_.nc ? ws.Phi.head(m_.nc).lpNorm<Eigen::Infinity>() : 0.0);
   res_.stats.max_velocity_drift =
-      std::max(res_.stats.max_velocity_drift, m_.nc ? ws_.Phi_dot.head(m_.nc).lpNorm<Eigen::Infinity>() : 0.0);
+      std::max(res_.stats.max_velocity_drift, m_.nc ? ws.Phi_dot.head(m_.nc).lpNorm<Eigen::Infinity>() : 0.0);
   const double angle = phase_angle(t);
   const int mj = scene_.metrics.joint;
   if (cur_empty_) {
@@ -137,14 +155,14 @@ void Runner::observe(double t, const double* y, bool record) {
     cur_empty_ = false;
   }
   if (mj >= 0) {
-    const double R = joint_force(m_, ws_, mj).norm();
+    const double R = joint_force(m_, ws, mj).norm();
     if (R > cur_.peak_reaction_N) {
       cur_.peak_reaction_N = R;
       cur_.angle_at_peak_reaction_rad = angle;
     }
     if (scene_.joints[mj].type == JointType::lubricated_revolute) {
       const int f = m_.joint_film[mj];
-      const double eps = f >= 0 ? ws_.films[f].state.eps : 0.0;
+      const double eps = f >= 0 ? ws.films[f].state.eps : 0.0;
       // In contact (ε >= 1) the film thickness is zero: the penetration is not a film.
       const double h = std::max(0.0, scene_.joints[mj].bearing.clearance_m() * (1.0 - eps));
       cur_.max_eps = std::max(cur_.max_eps, eps);
@@ -258,14 +276,36 @@ void Runner::switch_modes(MultibodySystem& sys, const std::vector<int>& flags, d
   }
 }
 
-bool Runner::resync_modes(double /*t*/, const double* y) {
+bool Runner::resync_modes(MultibodySystem& sys, double t, const double* y) {
   // A mismatch beyond round-off: 1e-6 1/s is far below any motion the film responds to
   // (the reference case's ε̇ swings over ±1e3 1/s).
   constexpr double kTol = 1e-6;
   bool changed = false;
+  bool evaluated = false;
   for (size_t k = 0; k < m_.films.size(); ++k) {
     if (!m_.films[k].switching) continue;
     const FilmMode mode = ws_.film_mode[k];
+    if (mode == FilmMode::sliding) {
+      // A sliding motion whose force has left the jump: an exit the root finder missed
+      // (its root function was already past zero when the motion began, so no sign change
+      // ever came). Leave by the side the force points to. Margin: 1e-9 of the jump, far
+      // above the multiplier's round-off and far below any force the motion responds to.
+      if (!evaluated) {
+        if (evaluate(m_, ws_, t, y, y + m_.nq, qdd_.data()) != 0) continue;
+        evaluated = true;
+      }
+      const double F = ws_.films[k].force.radial_N;
+      const auto [F_out, F_in] = sys.sliding_limits(static_cast<int>(k), ws_.films[k].state);
+      const double margin = 1e-9 * std::abs(F_in - F_out);
+      FilmMode to = mode;
+      if (F < F_out - margin) to = FilmMode::outward;
+      if (F > F_in + margin) to = FilmMode::inward;
+      if (to == mode) continue;
+      ws_.film_mode[k] = to;
+      ++res_.stats.mode_switches;
+      changed = true;
+      continue;
+    }
     if (mode != FilmMode::outward && mode != FilmMode::inward) continue;
     const double ed = film_kinematics(m_, static_cast<int>(k), y, y + m_.nq).state.eps_dot;
     FilmMode to = mode;
@@ -311,15 +351,39 @@ RunResult Runner::run() {
   IntegratorSettings is;
   is.method = sol.method;
   is.rtol = sol.rtol;
-  const double atol = sol.atol ? *sol.atol : sol.rtol * scene_.min_clearance_m().value_or(1e-3);
+  // Absolute tolerances in each state's own units (README "Integration", tolerances):
+  // lengths from the smallest clearance, angles from it over each body's size, rates
+  // from those times the driver's speed. solver.atol overrides them all with one number.
+  const double length_scale = scene_.min_clearance_m().value_or(1e-3);
+  const Eigen::VectorXd scales = state_scales(m_, length_scale, characteristic_rate(scene_));
+  const double atol = sol.atol ? *sol.atol : sol.rtol * length_scale;
+  std::vector<double> atol_full(static_cast<size_t>(2 * m_.nq));
+  for (int i = 0; i < 2 * m_.nq; ++i) atol_full[static_cast<size_t>(i)] = sol.atol ? *sol.atol : sol.rtol * scales(i);
   is.max_step = sol.max_step_s;
   is.initial_step = sol.initial_step_s;
   is.max_order = sol.max_order;
-  is.t_stop = t_end;
+  // The stop time: the next cycle boundary (never the end of the run, which would bound
+  // SUNDIALS' initial-step estimates at every restart and so make the steps depend on
+  // max_cycles), or the end of the run in its last cycle.
+  const double eps_t = period_ ? 1e-9 * *period_ : 0.0;
+  auto next_stop = [&](double tt) {
+    if (!period_) return t_end;
+    const double k = std::floor((tt - t0_ + eps_t) / *period_) + 1.0;
+    return std::min(t0_ + k * *period_, t_end);
+  };
+  double t_stop = next_stop(t0_);
+  is.t_stop = t_stop;
   is.projection = sol.projection;
   const bool newton =
       sol.method == Method::cvode_bdf || sol.method == Method::arkode_dirk || sol.method == Method::ida;
-  is.user_jacobian = newton && sol.structured_jacobian && !sol.partitioned;
+  // A mechanism without a degree of freedom (every coordinate fixed by joints and drivers:
+  // the ideal slider-crank) leaves partitioning nothing to integrate: it runs on the
+  // baumgarte formulation, whose states are all the coordinates.
+  const bool partitioned = sol.partitioned && m_.nq > m_.nc;
+  const Formulation formulation = partitioned ? Formulation::partitioned
+                                  : sol.ggl   ? Formulation::ggl
+                                              : Formulation::baumgarte;
+  is.user_jacobian = newton && sol.structured_jacobian && !partitioned;
   // Partitioned: the integrated coordinates are the mechanism's degrees of freedom (e.g. a
   // rod's angle and the slider's x), and the squeeze film's stiff mode lies almost along
   // one of them. Its Jacobian terms (∝ the journal's whirl rate and the rod's rate) change
@@ -330,17 +394,17 @@ RunResult Runner::run() {
   // h·λ; when the rod's angular velocity crosses zero (90° and 270° of crank) its weight
   // becomes 1/atol, the step is cut to h·λ ~ 1, the component shows as a transient and the
   // error test fails until CVODE gives up. Four states: a Jacobian costs four evaluations.
-  is.jacobian_every_step = sol.partitioned;
+  is.jacobian_every_step = partitioned;
   res_.stats.rtol = sol.rtol;
   res_.stats.atol = atol;
   res_.stats.method = to_string(sol.method);
+  res_.stats.formulation = formulation == Formulation::partitioned ? "partitioned"
+                           : formulation == Formulation::ggl      ? "ggl"
+                                                                  : "baumgarte";
   res_.stats.jacobian = !newton ? "none" : is.user_jacobian ? "structured" : "difference_quotients";
 
   const bool energy = scene_.output.energy_balance;
-  MultibodySystem sys(m_, ws_, sim.eps_limit, energy,
-                      sol.partitioned ? Formulation::partitioned
-                      : sol.ggl       ? Formulation::ggl
-                                      : Formulation::baumgarte);
+  MultibodySystem sys(m_, ws_, sim.eps_limit, energy, formulation);
   sys.set_projection_tolerance(0.01 * atol);  // Newton on Φ = 0 well inside the error test
   try {
     sys.partition(t0_, qv0.data());
@@ -351,7 +415,8 @@ RunResult Runner::run() {
   }
   std::vector<double> y0(static_cast<size_t>(sys.size()));
   sys.reduce(qv0.data(), y0.data());
-  is.atol.assign(y0.size(), atol);
+  is.atol.assign(y0.size(), 0.0);
+  sys.reduce(atol_full.data(), is.atol.data());
   yint_.assign(y0.size(), 0.0);
   std::unique_ptr<Integrator> integ;
   try {
@@ -373,7 +438,8 @@ RunResult Runner::run() {
   if (period_) observe_phase(t0_, qv0.data()), phase_k = 1;
   // The state at t within the last step, as (q, v): false if it cannot be had.
   auto state_at = [&](double tt) {
-    return integ->dense(tt, 0, yint_.data()) && sys.expand(tt, yint_.data(), ytmp_.data()) == 0;
+    return integ->dense(tt, 0, yint_.data()) &&
+           sys.expand(tt, yint_.data(), ytmp_.data(), MultibodySystem::Context::observer) == 0;
   };
 
   integ->set_root_directions(sys.root_directions());
@@ -447,9 +513,11 @@ RunResult Runner::run() {
       sys.partition(t, yfull_.data());
       sys.reduce(yfull_.data(), yint_.data());
       integ->reinit(t, yint_.data());
+      sys.reduce(atol_full.data(), is.atol.data());
+      integ->set_abs_tolerances(is.atol);
       integ->set_root_directions(sys.root_directions());
       ++res_.stats.repartitions;
-    } else if (have_state && m_.n_switching > 0 && resync_modes(t, yfull_.data())) {
+    } else if (have_state && m_.n_switching > 0 && resync_modes(sys, t, yfull_.data())) {
       // A free mode that no longer matches the sign of ε̇: a crossing the root finder
       // could not see (ε̇ left zero from an exact zero at a restart). Restart on the
       // branch that applies.
@@ -480,6 +548,10 @@ RunResult Runner::run() {
       break;
     }
     if (t >= t_end * (1 - 1e-15)) stop = true;
+    if (!stop && t >= t_stop - eps_t) {
+      t_stop = next_stop(t);
+      integ->set_stop_time(t_stop);
+    }
   }
   // A run without a period keeps the whole run as its one cycle; a run that ended early
   // (collapse, failure, budget) keeps its partial cycle, so the metrics see how it ended.
@@ -487,9 +559,9 @@ RunResult Runner::run() {
 
   integ->statistics(res_.stats);
   res_.stats.final_time_s = t;
-  res_.stats.model_evals = ws_.counters.rhs;
-  res_.stats.gravity_evals = ws_.counters.gravity;
-  res_.stats.film_law_evals = ws_.counters.film;
+  res_.stats.model_evals = ws_.counters.rhs + obs_ws_.counters.rhs;
+  res_.stats.gravity_evals = ws_.counters.gravity + obs_ws_.counters.gravity;
+  res_.stats.film_law_evals = ws_.counters.film + obs_ws_.counters.film;
   res_.stats.film_law_evals_jac = ws_.counters.film_jacobian;
 
   // Steady-cycle metrics over the last metric_cycles cycles.

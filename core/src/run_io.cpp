@@ -94,6 +94,7 @@ void write_run_file(const std::string& path, const std::string& scene_text, cons
     }
     h5::Group sv = f.require_group("solver");
     sv.set_attribute("method", r.stats.method);
+    sv.set_attribute("formulation", r.stats.formulation);
     sv.set_attribute("jacobian", r.stats.jacobian);
     sv.set_attribute("rtol", r.stats.rtol);
     sv.set_attribute("atol", r.stats.atol);

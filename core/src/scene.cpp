@@ -444,7 +444,7 @@ Scene parse_scene(const json& doc) {
     s.switching_events = r.choice("switching", {"events", "none"}, std::string("events")) == "events";
     const bool ida = s.method == Method::ida;
     const std::string form =
-        r.choice("formulation", {"baumgarte", "partitioned", "ggl"}, std::string(ida ? "ggl" : "baumgarte"));
+        r.choice("formulation", {"baumgarte", "partitioned", "ggl"}, std::string(ida ? "ggl" : "partitioned"));
     s.partitioned = form == "partitioned";
     s.ggl = form == "ggl";
     if (s.ggl && !ida)
@@ -464,11 +464,13 @@ Scene parse_scene(const json& doc) {
              "applies only to the methods with a Newton iteration (cvode_bdf, arkode_dirk, ida)");
       if (s.structured_jacobian && s.partitioned)
         fail("solver.jacobian", *jac,
-             "structured requires solver.formulation = baumgarte (the partitioned formulation uses "
-             "difference quotients)");
+             "structured requires solver.formulation = baumgarte (the partitioned formulation, the "
+             "default, uses difference quotients)");
     }
     if (s.projection && s.partitioned)
-      fail("solver.projection", json(true), "does not apply to solver.formulation = partitioned (no drift to project)");
+      fail("solver.projection", json(true),
+           "does not apply to solver.formulation = partitioned, the default (no drift to project): "
+           "set solver.formulation = baumgarte to project");
     if (s.projection && s.method != Method::cvode_bdf)
       fail("solver.projection", json(true), "requires solver.method = cvode_bdf (CVODE projects only with BDF)");
     s.max_wall_time_s = r.number_or("max_wall_time_s", s.max_wall_time_s, positive, "must be > 0 s");

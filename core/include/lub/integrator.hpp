@@ -58,7 +58,11 @@ struct IntegratorSettings {
   double max_step = 0.0;     ///< 0: none
   double initial_step = 0.0; ///< 0: automatic
   int max_order = 0;         ///< 0: default
-  double t_stop = 0.0;       ///< never step past this time
+  /// Never step past this time (moved on by Integrator::set_stop_time). It also bounds
+  /// SUNDIALS' initial-step estimate after every (re)start, so the run loop keeps it at
+  /// the next cycle boundary, never at the end of the run: the steps up to any time must
+  /// not depend on how long the run is.
+  double t_stop = 0.0;
   bool projection = false;   ///< project onto the constraints after each step (cvode_bdf)
   /// Newton methods: the system's jacobian() (cvode_bdf, arkode_dirk) or dae_jacobian()
   /// (ida) instead of SUNDIALS' dense difference quotients.
@@ -92,6 +96,11 @@ class Integrator {
   /// Restart from (t, y) after a change of the right-hand side (a mode switch): the
   /// history is discarded, the quadratures keep their values.
   virtual void reinit(double t, const double* y) = 0;
+  /// Moves the stop time (ahead of the current time); it holds across reinit().
+  virtual void set_stop_time(double t_stop) = 0;
+  /// New absolute tolerances of the state (size() entries; the partitioned formulation's
+  /// integrated coordinates change at a repartition). Call after reinit().
+  virtual void set_abs_tolerances(const std::vector<double>& atol) = 0;
 };
 
 std::unique_ptr<Integrator> make_integrator(const IntegratorSettings& settings, OdeSystem& sys,

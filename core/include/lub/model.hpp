@@ -212,6 +212,18 @@ void sliding_rows_position_jacobian(const Model& m, const Workspace& ws, double*
 void constraint_gamma_velocity_jacobian(const Model& m, const Workspace& ws, const double* q, const double* v,
                                         Eigen::Ref<Eigen::MatrixXd> Gamma_v);
 
+/// Characteristic size of each state component (q, v), 2 nq entries, each in the
+/// component's own unit, for the integrators' absolute tolerances (atol_i = rtol × scale_i):
+///   x, y of every body:   ℓ                    [m]      (`length_m`: the smallest clearance)
+///   φ of body b:          ℓ / r_b              [rad]    (r_b: the body's size, below)
+///   ẋ, ẏ:                 ℓ Ω                  [m/s]    (`rate_rad_s` Ω: the driver's speed)
+///   φ̇ of body b:          ℓ Ω / r_b            [rad/s]
+/// r_b = max(the farthest joint or bearing point from the centre of mass, the radius of
+/// gyration √(J/m)): an angle error δφ moves the body's farthest point by r_b δφ, so ℓ/r_b
+/// is the angle whose effect equals a length error ℓ; the radius of gyration covers
+/// bodies whose points sit at the centre of mass (a slider).
+Eigen::VectorXd state_scales(const Model& m, double length_m, double rate_rad_s);
+
 /// Kinetic energy + gravity potential [J].
 double mechanical_energy(const Model& m, const double* q, const double* v);
 /// Power of the drivers on the system [W] (after evaluate()).

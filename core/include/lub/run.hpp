@@ -44,6 +44,9 @@ struct SolverStats {
   double max_velocity_drift = 0.0;  ///< max |Φ̇| over the run (m/s or rad/s)
   double rtol = 0.0, atol = 0.0;
   std::string method;
+  /// The formulation integrated: the scene's, except that a mechanism without a degree of
+  /// freedom runs partitioned scenes on baumgarte (nothing to partition).
+  std::string formulation;
   std::string jacobian;             ///< "structured", "difference_quotients" or "none" (no Newton)
 };
 

@@ -86,11 +86,12 @@ struct SolverSpec {
   /// Project positions and velocities onto Φ = 0, Φ̇ = 0 after every step (CVODE's
   /// projection, cvode_bdf only), on top of Baumgarte: constraint drift at round-off.
   bool projection = false;
-  /// solver.formulation: "baumgarte" (all coordinates, Baumgarte's terms: the paper) or
-  /// "partitioned" (generalised coordinate partitioning: only the mechanism's degrees of
-  /// freedom are integrated; dependent coordinates solved from Φ = 0; no drift) or "ggl"
-  /// (Gear–Gupta–Leimkuhler index-2 DAE in (q, v, λ, μ), method ida only, its default).
-  bool partitioned = false;
+  /// solver.formulation: "partitioned" (the default: generalised coordinate partitioning;
+  /// only the mechanism's degrees of freedom are integrated, dependent coordinates solved
+  /// from Φ = 0; no drift, so long runs hold) or "baumgarte" (all coordinates, Baumgarte's
+  /// terms: the paper's method; its drift ends long runs at simulation.drift_limit_m) or
+  /// "ggl" (Gear–Gupta–Leimkuhler index-2 DAE in (q, v, λ, μ), method ida only, its default).
+  bool partitioned = true;
   bool ggl = false;
   /// solver.jacobian (Newton methods: cvode_bdf, arkode_dirk, ida): "structured" (the
   /// baumgarte formulation's Jacobian, or the GGL DAE's iteration matrix, from the film
@@ -112,7 +113,13 @@ struct SimulationSpec {
   bool stop_when_steady = false;     ///< stop once `metric_cycles` cycles repeat
   double steady_tolerance = 1e-3;    ///< periodicity (orbit distance / c) below which a cycle repeats
   int metric_cycles = 2;             ///< metrics over this many last cycles
-  double eps_limit = 0.999;          ///< ε reaching it ends the run: film_collapse
+  /// ε reaching it ends the run: film_collapse. Default 1 − 1e-5: h = 1e-5 c (5 nm at the
+  /// paper's 0.5 mm), far below any surface roughness, so no physical film is cut off (the
+  /// paper's thinnest, 40 cP, has 1 − ε = 4.3e-4); closer to the wall the film's stiffness
+  /// ∝ 1/(c (1 − ε)) lets Newton iterates leave the domain and the integrator fails (1 cP:
+  /// h → 1e-22 s at 1 − ε = 4.6e-6), where this limit ends the run with a clear status.
+  /// Whether a film is thick enough to be safe is metrics.safe_film_per_diameter's call.
+  double eps_limit = 0.99999;
   /// Constraint drift max |Φ| [m or rad] beyond which the run ends as solver_failure
   /// (the answer is no longer the mechanism's). Default: 10 % of the smallest clearance
   /// when the scene has lubricated joints, none otherwise.
