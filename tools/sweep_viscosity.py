@@ -8,9 +8,9 @@ runs = [lubjoint.simulate("configs/scenes/slider_crank.json", {"/joints/3/viscos
 h = np.array([r["min_film_thickness_m"].item() for r in runs]) * 1e6  # [µm]
 ok = np.array([r.attrs["status"] == "ok" for r in runs])
 fig, ax = plt.subplots(figsize=(5, 3.5))
-ax.semilogx(mu, h, "-", color="0.7")
-ax.semilogx(mu[ok], h[ok], "o", label="completed (status ok)")
-ax.semilogx(mu[~ok], h[~ok], "rx", label="run ended early (status != ok)")
+ax.loglog(mu, h, "-", color="0.7")
+ax.loglog(mu[ok], h[ok], "o", label="completed (status ok)")
+ax.loglog(mu[~ok], h[~ok], "rx", label="run ended early (status != ok)")
 ax.set(xlabel="viscosity μ [Pa s]", ylabel="min film thickness [µm]", title="slider-crank, 5000 rpm, c = 0.5 mm")
 ax.legend()
 os.makedirs("out", exist_ok=True)

@@ -79,6 +79,7 @@ py::dict simulate(const std::optional<std::string>& scene_path, const std::optio
   out["solver"] = solver;
   py::dict solver_settings;
   solver_settings["method"] = r.stats.method;
+  solver_settings["formulation"] = r.stats.formulation;
   solver_settings["jacobian"] = r.stats.jacobian;
   solver_settings["rtol"] = r.stats.rtol;
   solver_settings["atol"] = r.stats.atol;

@@ -87,8 +87,9 @@ def simulate(scene, overrides=None, output=None):
           dimension ``cycle`` (1, 2, ...);
         - ``attrs``: ``status`` (``ok``, ``film_collapse``, ``solver_failure``,
           ``budget_exceeded``), ``message``, ``scene`` (the effective scene JSON),
-          ``program``, ``version``, ``revision``, ``solver_method``, ``solver_jacobian``,
-          ``solver_rtol``, ``solver_atol`` and ``output`` (the run file, if written).
+          ``program``, ``version``, ``revision``, ``solver_method``,
+          ``solver_formulation``, ``solver_jacobian``, ``solver_rtol``, ``solver_atol``
+          (the absolute tolerance of lengths [m]; README "Integration") and ``output`` (the run file, if written).
 
     Raises
     ------
@@ -146,6 +147,7 @@ def simulate(scene, overrides=None, output=None):
         "version": r["version"],
         "revision": r["revision"],
         "solver_method": settings["method"],
+        "solver_formulation": settings["formulation"],
         "solver_jacobian": settings["jacobian"],
         "solver_rtol": settings["rtol"],
         "solver_atol": settings["atol"],
