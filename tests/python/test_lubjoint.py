@@ -22,7 +22,7 @@ import xarray as xr
 
 import lubjoint
 
-SOURCE = Path(os.environ.get("LUB_SOURCE_DIR", Path(__file__).resolve().parents[2]))
+SOURCE = Path(os.environ.get("LUB_SOURCE_DIR") or Path(__file__).resolve().parents[2])
 BINARY = Path(os.environ.get("LUB_BUILD_DIR", SOURCE / "build"))
 LUBSIM = BINARY / "core" / "lubsim"
 LUBBEARING = BINARY / "core" / "lubbearing"
