@@ -57,7 +57,7 @@ TEST(SweepGrid, FactorialIsRowMajorFirstAxisSlowest) {
   ASSERT_EQ(g.axes.size(), 2u);
   EXPECT_EQ(g.axes[0].name, "speed_rpm");
   EXPECT_EQ(g.axes[0].pointer, "/drivers/0/speed_rpm");
-  EXPECT_EQ(g.axes[0].units, "rpm");
+  EXPECT_EQ(g.axes[0].units, "min-1");
   EXPECT_TRUE(g.axes[0].numeric);
   EXPECT_FALSE(g.axes[1].numeric);
   EXPECT_EQ(g.cases[4].axis_values[0], 50);

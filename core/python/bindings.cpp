@@ -21,6 +21,7 @@
 
 #include "lub/force_laws.hpp"
 #include "lub/json_reader.hpp"
+#include "lub/output_path.hpp"
 #include "lub/reynolds.hpp"
 #include "lub/run.hpp"
 #include "lub/run_io.hpp"
@@ -37,8 +38,8 @@ py::array_t<double> to_array(const std::vector<double>& v) {
   return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
 }
 
-// One run, as lubsim does it: scene (file or JSON text), overrides in order, validation,
-// run, and the run file only when `output` is given. Returns plain Python values.
+// One run, as lubsim does it: output path check, scene (file or JSON text), overrides in
+// order, validation, run, and the run file only when `output` is given. Returns plain Python values.
 py::dict simulate(const std::optional<std::string>& scene_path, const std::optional<std::string>& scene_text,
                   const std::string& origin, const std::vector<std::string>& assignments,
                   const std::optional<std::string>& output, const std::string& program) {
@@ -46,6 +47,9 @@ py::dict simulate(const std::optional<std::string>& scene_path, const std::optio
   std::string effective;
   {
     py::gil_scoped_release release;
+    // The output path first, as lubsim: refused before any work, nothing created.
+    if (output)
+      if (const auto problem = lub::output_path_problem(*output, "output")) throw lub::InputError(*problem);
     lub::Scene scene;
     try {
       nlohmann::json doc = scene_path ? lub::read_json_file(*scene_path) : lub::parse_json_text(*scene_text, origin);
@@ -66,15 +70,20 @@ py::dict simulate(const std::optional<std::string>& scene_path, const std::optio
   out["program"] = program;
   out["version"] = lub::program_version();
   out["revision"] = lub::build_revision();
-  py::list metrics, solver;
-  for (const auto& f : lub::metric_fields()) metrics.append(py::make_tuple(f.name, f.get(r), f.unit, f.integer));
+  py::list metrics, solver;  // (name, value, CF unit, integer, long_name)
+  for (const auto& f : lub::metric_fields())
+    metrics.append(py::make_tuple(f.name, f.get(r), f.unit, f.integer, f.long_name));
   if (r.metrics.driver_work_J != 0.0 || r.metrics.film_dissipation_J != 0.0) {  // as the run file
-    metrics.append(py::make_tuple("driver_work_J", r.metrics.driver_work_J, "J", false));
-    metrics.append(py::make_tuple("film_dissipation_J", r.metrics.film_dissipation_J, "J", false));
-    metrics.append(py::make_tuple("energy_change_J", r.metrics.energy_change_J, "J", false));
-    metrics.append(py::make_tuple("energy_residual_J", r.metrics.energy_residual_J, "J", false));
+    metrics.append(py::make_tuple("driver_work_J", r.metrics.driver_work_J, "J", false, "work of the drivers"));
+    metrics.append(py::make_tuple("film_dissipation_J", r.metrics.film_dissipation_J, "J", false,
+                                  "energy dissipated by the films"));
+    metrics.append(py::make_tuple("energy_change_J", r.metrics.energy_change_J, "J", false,
+                                  "change of kinetic and potential energy"));
+    metrics.append(py::make_tuple("energy_residual_J", r.metrics.energy_residual_J, "J", false,
+                                  "driver work - energy change - film dissipation"));
   }
-  for (const auto& f : lub::solver_fields()) solver.append(py::make_tuple(f.name, f.get(r), f.unit, f.integer));
+  for (const auto& f : lub::solver_fields())
+    solver.append(py::make_tuple(f.name, f.get(r), f.unit, f.integer, f.long_name));
   out["metrics"] = metrics;
   out["solver"] = solver;
   py::dict solver_settings;
@@ -84,24 +93,22 @@ py::dict simulate(const std::optional<std::string>& scene_path, const std::optio
   solver_settings["rtol"] = r.stats.rtol;
   solver_settings["atol"] = r.stats.atol;
   out["solver_settings"] = solver_settings;
-  py::list series;
+  // The channels as the run file's /series: CF units, long names from the scene.
+  py::list series;  // (name, CF unit, long_name, values), "t" first
+  const std::vector<std::string> long_names = lub::channel_long_names(effective, r.series.names);
   for (size_t i = 0; i < r.series.names.size(); ++i)
-    series.append(py::make_tuple(r.series.names[i], r.series.units[i], to_array(r.series.data[i])));
+    series.append(py::make_tuple(r.series.names[i], lub::cf_units(r.series.units[i]),
+                                 i < long_names.size() ? long_names[i] : std::string(),
+                                 to_array(r.series.data[i])));
   out["series"] = series;
-  // /cycles of the run file, as columns.
-  std::vector<double> c[9];
-  for (const lub::CycleMetrics& cy : r.cycles) {
-    const double row[9] = {cy.t_start_s, cy.t_end_s, cy.min_film_m, cy.angle_at_min_film_rad, cy.max_eps,
-                           cy.peak_reaction_N, cy.angle_at_peak_reaction_rad, cy.peak_acceleration_m_s2,
-                           cy.periodicity};
-    for (int k = 0; k < 9; ++k) c[k].push_back(row[k]);
-  }
-  const char* cycle_names[9] = {"t_start_s", "t_end_s", "min_film_thickness_m", "crank_angle_at_min_film_rad",
-                                "max_eps", "peak_reaction_N", "crank_angle_at_peak_reaction_rad",
-                                "peak_acceleration_m_s2", "periodicity"};
-  const char* cycle_units[9] = {"s", "s", "m", "rad", "1", "N", "rad", "m/s^2", "1"};
+  // /cycles of the run file, as columns (name, CF unit, long_name, values).
   py::list cycles;
-  for (int k = 0; k < 9; ++k) cycles.append(py::make_tuple(cycle_names[k], cycle_units[k], to_array(c[k])));
+  for (const lub::CycleField& f : lub::cycle_fields()) {
+    std::vector<double> values;
+    values.reserve(r.cycles.size());
+    for (const lub::CycleMetrics& cy : r.cycles) values.push_back(f.get(cy));
+    cycles.append(py::make_tuple(f.name, f.unit, f.long_name, to_array(values)));
+  }
   out["cycles"] = cycles;
   return out;
 }

@@ -174,12 +174,19 @@ def test_simulate_matches_lubsim(tmp_path):
             [k for k in cycles if k not in ("cycle", "row")]
         for name in names:
             np.testing.assert_array_equal(ds["cycle_" + name].values, cycles[name][()], err_msg=name)
+        for name in names:  # units and long names as the file's
+            assert ds["cycle_" + name].attrs["units"] == h5_attrs(cycles[name])["units"], name
+        for name in ref["series"]:
+            if name != "t":
+                assert ds[name].attrs.get("long_name") == h5_attrs(ref["series"][name]).get("long_name"), name
         # The run file written from Python: the C++ writer, same content but program.
         assert h5_attrs(mine)["program"] == "lubjoint"
         assert {k: v for k, v in h5_attrs(mine["metrics"]).items()} == h5_attrs(ref["metrics"])
         np.testing.assert_array_equal(mine["series/h_min"][()], ref["series/h_min"][()])
     assert ds["min_film_thickness_m"].attrs["units"] == "m"
     assert ds["eps"].dims == ("t",) and ds["h_min"].attrs["units"] == "m"
+    assert ds["slider_a"].attrs["units"] == "m s-2" and ds["h_min"].attrs["long_name"]
+    assert ds["steps"].dtype == np.int64 and ds["steps"].attrs["units"] == "1"
 
 
 def test_simulate_dict_and_overrides_as_set(tmp_path):
@@ -224,8 +231,15 @@ def test_invalid_scene_raises_lubsim_message(tmp_path):
         lubjoint.simulate(scene)
     with pytest.raises(ValueError, match=r"names no value of the scene"):
         lubjoint.simulate(SCENE, {"/nowhere/x": 1})
-    with pytest.raises(ValueError, match=r"the directory does not exist"):
-        lubjoint.simulate(SCENE, output=tmp_path / "no" / "run.h5")
+    # A bad output path: lubsim's rule and message (option `output` for `-o`), before any work.
+    missing = tmp_path / "no" / "run.h5"
+    p = run([LUBSIM, SCENE, "-o", missing])
+    assert p.returncode == 2
+    with pytest.raises(ValueError) as e:
+        lubjoint.simulate(SCENE, output=missing)
+    assert str(e.value) == p.stderr.splitlines()[0].replace("lubsim: -o ", "output ", 1)
+    with pytest.raises(ValueError, match=r"must name a file, not a directory"):
+        lubjoint.simulate(SCENE, output=tmp_path)
 
 
 def scalars(ds):
@@ -274,19 +288,8 @@ def study_file(tmp_path_factory):
     return d / "study.h5"
 
 
-def test_load_study_rejects_old_format(study_file):
-    fmt = lubjoint.study_format(study_file)
-    if fmt not in lubjoint.OLD_STUDY_FORMATS:
-        pytest.skip(f"study format {fmt}: the xarray layout (issue 15), tested by test_load_study")
-    with pytest.raises(lubjoint.StudyFormatError, match="predates the xarray layout"):
-        lubjoint.load_study(study_file)
-
-
 def test_load_study(study_file):
-    fmt = lubjoint.study_format(study_file)
-    if fmt in lubjoint.OLD_STUDY_FORMATS:
-        pytest.skip(f"lubsweep writes study format {fmt} (/cases one compound table): load_study reads "
-                    f"the xarray layout of issue 15 (/grids/<name>, /cases as columns); runs once it lands")
+    assert lubjoint.study_format(study_file) == "lubsweep-study-2"  # the xarray layout (issue 15)
     s = lubjoint.load_study(study_file)
     assert list(s) == ["grid"]
     g = s["grid"]

@@ -76,12 +76,13 @@ def simulate(scene, overrides=None, output=None):
     -------
     xarray.Dataset
         - one variable per recorded channel over the dimension ``t`` [s], each with its
-          ``units`` (the scene's ``outputs.channels``; none if it lists none);
+          ``units`` (CF style, as the run file: ``m s-2``) and ``long_name`` (the scene's
+          ``outputs.channels``; none if it lists none);
         - the steady-cycle metrics (``min_film_thickness_m``, ``max_eps``,
           ``peak_reaction_N``, ...) and solver statistics (``steps``, ``rhs_evals``,
-          ``wall_time_s``, ``max_position_drift``, ...) as 0-d variables with ``units``
-          (counts and flags are int64 without units) and ``kind`` = ``metric`` or
-          ``solver``; a name already taken by a channel gets the prefix ``metric_`` or
+          ``wall_time_s``, ``max_position_drift``, ...) as 0-d variables with ``units``,
+          ``long_name`` and ``kind`` = ``metric`` or ``solver`` (counts and flags are
+          int64, units ``1``); a name already taken by a channel gets the prefix ``metric_`` or
           ``solver_``;
         - the per-cycle extremes (the run file's /cycles) as ``cycle_<name>`` over the
           dimension ``cycle`` (1, 2, ...);
@@ -94,7 +95,8 @@ def simulate(scene, overrides=None, output=None):
     Raises
     ------
     InputError
-        (a ``ValueError``) for a bad scene, override or output path, with lubsim's message
+        (a ``ValueError``) for a bad scene, override or output path (lubsim's rules: a
+        file in an existing, writable directory), with lubsim's message
         (``SCENE: joints[3].viscosity_Pa_s = -0.4: must be > 0 Pa s``). Nothing is run or
         written then.
 
@@ -110,34 +112,34 @@ def simulate(scene, overrides=None, output=None):
     else:
         raise InputError(f"scene: {type(scene).__name__}: must be a dict or the path of a scene file")
     assignments = [_assignment(p, v) for p, v in (overrides or {}).items()]
-    out_path = None
-    if output is not None:
-        out_path = os.fspath(output)
-        directory = os.path.dirname(out_path) or "."
-        if not (os.path.isdir(directory) and os.access(directory, os.W_OK)):
-            raise InputError(f"output = {out_path}: the directory does not exist or is not writable")
+    out_path = None if output is None else os.fspath(output)
 
     r = _lubjoint.simulate(scene_path, scene_text, origin, assignments, out_path)
+
+    def attrs_of(unit, long_name, **more):
+        a = {"units": unit} if unit else {}
+        if long_name:
+            a["long_name"] = long_name
+        return {**a, **more}
 
     coords, data_vars = {}, {}
     series = r["series"]
     if series:
-        name, unit, t = series[0]  # "t" first
-        coords["t"] = ("t", t, {"units": unit, "long_name": "time"})
-        for name, unit, values in series[1:]:
-            data_vars[name] = ("t", values, {"units": unit})
+        name, unit, long_name, t = series[0]  # "t" first
+        coords["t"] = ("t", t, attrs_of(unit, long_name or "time"))
+        for name, unit, long_name, values in series[1:]:
+            data_vars[name] = ("t", values, attrs_of(unit, long_name))
     cycles = r["cycles"]
-    n_cycles = len(cycles[0][2]) if cycles else 0
-    coords["cycle"] = ("cycle", np.arange(1, n_cycles + 1, dtype=np.int64), {"long_name": "crank cycle"})
-    for name, unit, values in cycles:
-        data_vars["cycle_" + name] = ("cycle", values, {"units": unit})
+    n_cycles = len(cycles[0][3]) if cycles else 0
+    coords["cycle"] = ("cycle", np.arange(1, n_cycles + 1, dtype=np.int64),
+                       {"units": "1", "long_name": "crank cycle number (1: the first)"})
+    for name, unit, long_name, values in cycles:
+        data_vars["cycle_" + name] = ("cycle", values, attrs_of(unit, long_name))
     for kind, fields in (("metric", r["metrics"]), ("solver", r["solver"])):
-        for name, value, unit, integer in fields:
+        for name, value, unit, integer, long_name in fields:
             key = name if name not in data_vars and name not in coords else f"{kind}_{name}"
-            attrs = {"kind": kind}
-            if unit:
-                attrs["units"] = unit
-            data_vars[key] = ((), np.int64(value) if integer else np.float64(value), attrs)
+            data_vars[key] = ((), np.int64(value) if integer else np.float64(value),
+                              attrs_of(unit, long_name, kind=kind))
     settings = r["solver_settings"]
     attrs = {
         "status": r["status"],
