@@ -10,7 +10,7 @@
 // by film_collapse or, once ε is past 0.99, by solver_failure: the printed law
 // is not smooth where both ε̇ and the wedge speed vanish (q = hypot(εw/2, ε̇) in Eq. 14), the
 // sinking journal sits there, and near the wall its damping makes that kink a wall for the
-// corrector (README "Hard cases", D6). Issue "Steady cycles that are really steady" is to
+// corrector (README "Hard cases", D7). Issue "Steady cycles that are really steady" is to
 // classify such a case as drifting and stop it before the integrator gives up.
 #include <gtest/gtest.h>
 
