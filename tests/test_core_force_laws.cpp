@@ -1,4 +1,4 @@
-// Tests of the hydrodynamic force laws (core/src/force_laws.cpp).
+// Tests of the hydrodynamic force laws (core/src/bearing/force_laws.cpp).
 //
 // Each closed form is checked against quadrature of its own pressure field, transcribed
 // again here directly from the paper (Eqs. 3 and 5) so that a slip in the library's
@@ -10,7 +10,7 @@
 
 #include "film_quadrature.hpp"
 #include "bearing_fixture.hpp"
-#include "lub/force_laws.hpp"
+#include "lub/bearing/force_laws.hpp"
 
 #include <gtest/gtest.h>
 

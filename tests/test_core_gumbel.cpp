@@ -1,4 +1,4 @@
-// Tests of the laws added beyond the paper (core/src/force_laws.cpp): the Gümbel
+// Tests of the laws added beyond the paper (core/src/bearing/force_laws.cpp): the Gümbel
 // (half-Sommerfeld) long and short bearings and the exact Pinkus–Sternlicht π film
 // (`pinkus_sternlicht_continuous`), each against quadrature of its own pressure field
 // transcribed here from the paper (Eqs. 3 and 5), plus their limits, continuity and the
@@ -15,7 +15,7 @@
 
 #include "film_quadrature.hpp"
 #include "bearing_fixture.hpp"
-#include "lub/force_laws.hpp"
+#include "lub/bearing/force_laws.hpp"
 
 namespace {
 

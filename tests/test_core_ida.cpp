@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <string>
 
-#include "lub/run.hpp"
+#include "lub/run/run.hpp"
 #include "near_wall_state.hpp"
 
 namespace {

@@ -21,8 +21,8 @@
 #include <string>
 #include <vector>
 
-#include "lub/force_laws.hpp"
-#include "lub/reynolds.hpp"
+#include "lub/bearing/force_laws.hpp"
+#include "lub/bearing/reynolds.hpp"
 #include "bearing_fixture.hpp"
 
 namespace {

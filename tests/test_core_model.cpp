@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "lub/model.hpp"
+#include "lub/mechanism/model.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// Tests of the finite-length bearing (core/src/reynolds.cpp, law `finite_reynolds`):
+// Tests of the finite-length bearing (core/src/bearing/reynolds.cpp, law `finite_reynolds`):
 //  - its limits L/D → ∞ and L/D → 0 against the long and short closed forms (full film,
 //    Gümbel and Reynolds cavitation), with the expected rate of approach;
 //  - second-order convergence under grid refinement, for each cavitation condition;
@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "film_quadrature.hpp"
-#include "lub/force_laws.hpp"
-#include "lub/reynolds.hpp"
+#include "lub/bearing/force_laws.hpp"
+#include "lub/bearing/reynolds.hpp"
 #include "bearing_fixture.hpp"
 
 namespace {

@@ -1,4 +1,4 @@
-// Tests of the steadily loaded bearing (core/src/steady_bearing.cpp): for each law, the
+// Tests of the steadily loaded bearing (core/src/bearing/steady_bearing.cpp): for each law, the
 // equilibrium eccentricity and attitude angle under a static load against the classical
 // results, and the finite bearing against Raimondi & Boyd's table through the same solver.
 //
@@ -12,8 +12,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "lub/force_laws.hpp"
-#include "lub/steady_bearing.hpp"
+#include "lub/bearing/force_laws.hpp"
+#include "lub/bearing/steady_bearing.hpp"
 
 namespace {
 

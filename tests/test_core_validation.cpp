@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "lub/force_laws.hpp"
-#include "lub/run.hpp"
+#include "lub/bearing/force_laws.hpp"
+#include "lub/run/run.hpp"
 
 namespace {
 

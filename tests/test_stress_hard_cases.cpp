@@ -22,9 +22,9 @@
 #include <utility>
 #include <vector>
 
-#include "lub/force_laws.hpp"
-#include "lub/run.hpp"
-#include "lub/scene.hpp"
+#include "lub/bearing/force_laws.hpp"
+#include "lub/run/run.hpp"
+#include "lub/scene/scene.hpp"
 
 namespace {
 

@@ -14,7 +14,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "lub/json_reader.hpp"
+#include "lub/io/json_reader.hpp"
 #include "lub/sweep/case_result.hpp"
 #include "lub/sweep/grid.hpp"
 #include "lub/sweep/progress.hpp"

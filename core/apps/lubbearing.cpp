@@ -22,9 +22,9 @@
 #include <string>
 #include <vector>
 
-#include "lub/force_laws.hpp"
-#include "lub/reynolds.hpp"
-#include "lub/steady_bearing.hpp"
+#include "lub/bearing/force_laws.hpp"
+#include "lub/bearing/reynolds.hpp"
+#include "lub/bearing/steady_bearing.hpp"
 
 namespace {
 

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "lub/run.hpp"
-#include "lub/run_io.hpp"
-#include "lub/scene.hpp"
+#include "lub/run/run.hpp"
+#include "lub/run/run_io.hpp"
+#include "lub/scene/scene.hpp"
 
 namespace {
 

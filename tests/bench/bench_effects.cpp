@@ -13,8 +13,8 @@
 
 #include <string>
 
-#include "lub/model.hpp"
-#include "lub/run.hpp"
+#include "lub/mechanism/model.hpp"
+#include "lub/run/run.hpp"
 
 namespace {
 

@@ -5,7 +5,7 @@
 //   build/tests/bench/bench_rhs
 #include <benchmark/benchmark.h>
 
-#include "lub/model.hpp"
+#include "lub/mechanism/model.hpp"
 
 namespace {
 

@@ -1,0 +1,769 @@
+#include "lub/mechanism/model.hpp"
+
+#include <Eigen/QR>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "common/small_dense.hpp"
+
+namespace lub {
+
+namespace {
+
+using Eigen::Vector2d;
+
+inline Vector2d perp(const Vector2d& v) { return {-v.y(), v.x()}; }  // R90 v
+inline double cross(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// Pose and velocity of a body (the ground is fixed at the origin), with cos φ and sin φ.
+struct BodyState {
+  Vector2d r{0, 0}, rd{0, 0};
+  double phi = 0.0, phid = 0.0;
+  double c = 1.0, s = 0.0;
+  /// A body-frame vector in the global frame.
+  Vector2d rot(const Vector2d& p) const { return {c * p.x() - s * p.y(), s * p.x() + c * p.y()}; }
+};
+// The trigonometric functions are most of the cost of the kinematics: an evaluation
+// computes them once per body (body_trig) and every constraint and film reads the table.
+inline void body_trig(int nb, const double* q, double* cphi, double* sphi) {
+  for (int b = 0; b < nb; ++b) {
+    const double phi = q[3 * b + 2];  // one local argument: the compiler fuses sin and cos
+    cphi[b] = std::cos(phi);
+    sphi[b] = std::sin(phi);
+  }
+}
+inline BodyState body_state(int b, const double* q, const double* v, const double* cphi, const double* sphi) {
+  BodyState s;
+  if (b == kGround) return s;
+  const int o = 3 * b;
+  s.r = {q[o], q[o + 1]};
+  s.phi = q[o + 2];
+  s.c = cphi[b];
+  s.s = sphi[b];
+  if (v) {
+    s.rd = {v[o], v[o + 1]};
+    s.phid = v[o + 2];
+  }
+  return s;
+}
+// The same without a table (one-off kinematics of a single film).
+inline BodyState body_state(int b, const double* q, const double* v) {
+  BodyState s;
+  if (b == kGround) return s;
+  const int o = 3 * b;
+  s.r = {q[o], q[o + 1]};
+  s.phi = q[o + 2];
+  s.c = std::cos(s.phi);
+  s.s = std::sin(s.phi);
+  if (v) {
+    s.rd = {v[o], v[o + 1]};
+    s.phid = v[o + 2];
+  }
+  return s;
+}
+
+// Driver angle f(t) and its derivatives.
+inline void driver_motion(const Constraint& c, double t, double& f, double& fd, double& fdd) {
+  if (c.driver_type == DriverType::constant_speed) {
+    f = c.phi0 + c.omega * t;
+    fd = c.omega;
+    fdd = 0.0;
+  } else {
+    const double s = std::sin(c.Omega * t), co = std::cos(c.Omega * t);
+    f = c.phi0 + (c.omega / c.Omega) * s;
+    fd = c.omega * co;
+    fdd = -c.omega * c.Omega * s;
+  }
+}
+
+// Fills rows of Phi_q, Phi, Phi_dot, gamma for every constraint; cphi, sphi: body_trig().
+void fill_constraints(const std::vector<Constraint>& cons, double t, const double* q,
+                      const double* v, const double* cphi, const double* sphi, Eigen::MatrixXd& J,
+                      Eigen::VectorXd& Phi, Eigen::VectorXd& Phid, Eigen::VectorXd* gamma) {
+  J.setZero();
+  for (const Constraint& c : cons) {
+    const int row = c.row;
+    switch (c.kind) {
+      case Constraint::Kind::revolute: {
+        const BodyState bi = body_state(c.body_i, q, v, cphi, sphi), bj = body_state(c.body_j, q, v, cphi, sphi);
+        const Vector2d ai = bi.rot(c.s_i), aj = bj.rot(c.s_j);
+        Phi.segment<2>(row) = bi.r + ai + c.offset - bj.r - aj;
+        Phid.segment<2>(row) = bi.rd + bi.phid * perp(ai) - bj.rd - bj.phid * perp(aj);
+        if (gamma) gamma->segment<2>(row) = bi.phid * bi.phid * ai - bj.phid * bj.phid * aj;
+        if (c.body_i != kGround) {
+          const int o = 3 * c.body_i;
+          J(row, o) = 1.0;
+          J(row + 1, o + 1) = 1.0;
+          J.block<2, 1>(row, o + 2) = perp(ai);
+        }
+        if (c.body_j != kGround) {
+          const int o = 3 * c.body_j;
+          J(row, o) = -1.0;
+          J(row + 1, o + 1) = -1.0;
+          J.block<2, 1>(row, o + 2) = -perp(aj);
+        }
+        break;
+      }
+      case Constraint::Kind::translational: {
+        const BodyState bi = body_state(c.body_i, q, v, cphi, sphi), bj = body_state(c.body_j, q, v, cphi, sphi);
+        const Vector2d ai = bi.rot(c.s_i), aj = bj.rot(c.s_j);
+        const Vector2d n = bi.rot(c.n_i), pn = perp(n);
+        const Vector2d d = bj.r + aj - bi.r - ai;
+        const Vector2d dd = bj.rd + bj.phid * perp(aj) - bi.rd - bi.phid * perp(ai);
+        Phi(row) = bj.phi - bi.phi - c.phi0;
+        Phid(row) = bj.phid - bi.phid;
+        Phi(row + 1) = n.dot(d);
+        Phid(row + 1) = n.dot(dd) + bi.phid * pn.dot(d);
+        if (gamma) {
+          (*gamma)(row) = 0.0;
+          (*gamma)(row + 1) = bi.phid * bi.phid * n.dot(d) - 2.0 * bi.phid * pn.dot(dd) +
+                              bj.phid * bj.phid * n.dot(aj) - bi.phid * bi.phid * n.dot(ai);
+        }
+        if (c.body_i != kGround) {
+          const int o = 3 * c.body_i;
+          J(row, o + 2) = -1.0;
+          J(row + 1, o) = -n.x();
+          J(row + 1, o + 1) = -n.y();
+          J(row + 1, o + 2) = pn.dot(d) - n.dot(perp(ai));
+        }
+        if (c.body_j != kGround) {
+          const int o = 3 * c.body_j;
+          J(row, o + 2) = 1.0;
+          J(row + 1, o) = n.x();
+          J(row + 1, o + 1) = n.y();
+          J(row + 1, o + 2) = n.dot(perp(aj));
+        }
+        break;
+      }
+      case Constraint::Kind::ground: {
+        const int o = 3 * c.body_j;
+        for (int k = 0; k < 3; ++k) {
+          Phi(row + k) = q[o + k] - c.q0(k);
+          Phid(row + k) = v ? v[o + k] : 0.0;
+          if (gamma) (*gamma)(row + k) = 0.0;
+          J(row + k, o + k) = 1.0;
+        }
+        break;
+      }
+      case Constraint::Kind::driver: {
+        const int o = 3 * c.body_j;
+        double f, fd, fdd;
+        driver_motion(c, t, f, fd, fdd);
+        Phi(row) = q[o + 2] - f;
+        Phid(row) = (v ? v[o + 2] : 0.0) - fd;
+        if (gamma) (*gamma)(row) = fdd;
+        J(row, o + 2) = 1.0;
+        break;
+      }
+    }
+  }
+}
+
+// Φ_t of every row (only drivers depend on time explicitly).
+void fill_phi_t(const std::vector<Constraint>& cons, double t, Eigen::VectorXd& Phi_t) {
+  Phi_t.setZero();
+  for (const Constraint& c : cons) {
+    if (c.kind != Constraint::Kind::driver) continue;
+    double f, fd, fdd;
+    driver_motion(c, t, f, fd, fdd);
+    Phi_t(c.row) = -fd;
+  }
+}
+
+int count_rows(std::vector<Constraint>& cons) {
+  int row = 0;
+  for (Constraint& c : cons) {
+    c.row = row;
+    row += c.rows;
+  }
+  return row;
+}
+
+Constraint revolute_block(int joint, int bi, int bj, const Vector2d& si, const Vector2d& sj,
+                          const Vector2d& offset) {
+  Constraint c;
+  c.kind = Constraint::Kind::revolute;
+  c.joint = joint;
+  c.body_i = bi;
+  c.body_j = bj;
+  c.s_i = si;
+  c.s_j = sj;
+  c.offset = offset;
+  c.rows = 2;
+  return c;
+}
+
+}  // namespace
+
+Workspace::Workspace(const Model& m)
+    : Phi_q(Eigen::MatrixXd::Zero(m.nc + m.n_switching, m.nq)),
+      Phi(Eigen::VectorXd::Zero(m.nc + m.n_switching)),
+      Phi_dot(Eigen::VectorXd::Zero(m.nc + m.n_switching)),
+      gamma(Eigen::VectorXd::Zero(m.nc + m.n_switching)),
+      g(Eigen::VectorXd::Zero(m.nq)),
+      rhs(Eigen::VectorXd::Zero(m.nc + m.n_switching)),
+      lambda(Eigen::VectorXd::Zero(m.nc + m.n_switching)),
+      qdd(Eigen::VectorXd::Zero(m.nq)),
+      S(Eigen::MatrixXd::Zero(m.nc + m.n_switching, m.nc + m.n_switching)),
+      row_bodies(static_cast<size_t>(m.nc + m.n_switching), {kGround, kGround}),
+      cos_phi(static_cast<size_t>(m.nb), 1.0),
+      sin_phi(static_cast<size_t>(m.nb), 0.0),
+      films(m.films.size()),
+      film_mode(m.films.size(), FilmMode::natural),
+      slide_radius(m.films.size(), 0.0),
+      slide_row(m.films.size(), -1),
+      nc_active(m.nc),
+      film_solvers(m.films.size()),
+      contact_N(m.films.size(), 0.0) {
+  for (size_t k = 0; k < m.films.size(); ++k) {
+    if (m.films[k].switching) film_mode[k] = FilmMode::outward;  // ε̇ >= 0 at a centred start
+    if (m.films[k].law == ForceLaw::finite_reynolds) film_solvers[k].emplace(m.films[k].finite);
+  }
+  for (const Constraint& c : m.constraints)
+    for (int r = c.row; r < c.row + c.rows; ++r)
+      row_bodies[r] = {c.body_i, c.body_j == c.body_i ? kGround : c.body_j};
+  for (int r = 0; r < m.nc; ++r)
+    for (int s = 0; s <= r; ++s)
+      for (const int b : row_bodies[r])
+        if (b != kGround && (b == row_bodies[s][0] || b == row_bodies[s][1])) schur_pairs.push_back({r, s, b});
+}
+
+Model build_model(const Scene& scene) {
+  Model m;
+  m.nb = static_cast<int>(scene.bodies.size());
+  m.nq = 3 * m.nb;
+  m.mass_diag.resize(m.nq);
+  for (int b = 0; b < m.nb; ++b) {
+    m.mass_diag(3 * b) = m.mass_diag(3 * b + 1) = scene.bodies[b].mass_kg;
+    m.mass_diag(3 * b + 2) = scene.bodies[b].inertia_kg_m2;
+  }
+  m.inv_mass_diag = m.mass_diag.cwiseInverse();
+  m.gravity = scene.gravity_m_s2;
+  m.alpha = scene.solver.baumgarte_alpha;
+  m.beta = scene.solver.baumgarte_beta;
+  m.joint_constraint.assign(scene.joints.size(), -1);
+  m.joint_film.assign(scene.joints.size(), -1);
+
+  for (size_t k = 0; k < scene.joints.size(); ++k) {
+    const JointSpec& s = scene.joints[k];
+    const int jk = static_cast<int>(k);
+    switch (s.type) {
+      case JointType::revolute:
+        m.joint_constraint[k] = static_cast<int>(m.constraints.size());
+        m.constraints.push_back(revolute_block(jk, s.body_i, s.body_j, s.point_i_m, s.point_j_m, {0, 0}));
+        break;
+      case JointType::translational: {
+        Constraint c;
+        c.kind = Constraint::Kind::translational;
+        c.joint = jk;
+        c.body_i = s.body_i;
+        c.body_j = s.body_j;
+        c.s_i = s.point_i_m;
+        c.s_j = s.point_j_m;
+        c.n_i = perp(s.axis_i);
+        const double phi_i = s.body_i == kGround ? 0.0 : scene.bodies[s.body_i].angle_rad;
+        const double phi_j = s.body_j == kGround ? 0.0 : scene.bodies[s.body_j].angle_rad;
+        c.phi0 = phi_j - phi_i;
+        c.rows = 2;
+        m.joint_constraint[k] = static_cast<int>(m.constraints.size());
+        m.constraints.push_back(c);
+        break;
+      }
+      case JointType::ground: {
+        Constraint c;
+        c.kind = Constraint::Kind::ground;
+        c.joint = jk;
+        c.body_j = s.body_j;
+        const BodySpec& b = scene.bodies[s.body_j];
+        c.q0 = {b.position_m.x(), b.position_m.y(), b.angle_rad};
+        c.rows = 3;
+        m.joint_constraint[k] = static_cast<int>(m.constraints.size());
+        m.constraints.push_back(c);
+        break;
+      }
+      case JointType::lubricated_revolute:
+        if (s.ideal) {
+          m.joint_constraint[k] = static_cast<int>(m.constraints.size());
+          m.constraints.push_back(revolute_block(jk, s.body_i, s.body_j, s.point_i_m, s.point_j_m,
+                                                 s.initial_eccentricity_m));
+        } else {
+          FilmElement f;
+          f.joint = jk;
+          f.bearing = s.body_i;
+          f.journal = s.body_j;
+          f.s_bearing = s.point_i_m;
+          f.s_journal = s.point_j_m;
+          f.geometry = s.bearing;
+          f.clearance = s.bearing.clearance_m();
+          f.viscosity = s.viscosity_Pa_s;
+          f.law = s.law;
+          f.finite = s.finite;
+          if (scene.contact && (scene.contact->joints.empty() ||
+                                std::find(scene.contact->joints.begin(), scene.contact->joints.end(),
+                                          jk) != scene.contact->joints.end()))
+            f.contact = resolve_contact(*scene.contact, s.bearing);
+          f.switching = s.law == ForceLaw::pinkus_sternlicht && scene.solver.switching_events;
+          if (f.switching) ++m.n_switching;
+          m.joint_film[k] = static_cast<int>(m.films.size());
+          m.films.push_back(f);
+        }
+        break;
+    }
+  }
+  for (size_t d = 0; d < scene.drivers.size(); ++d) {
+    const DriverSpec& s = scene.drivers[d];
+    Constraint c;
+    c.kind = Constraint::Kind::driver;
+    c.joint = static_cast<int>(d);
+    c.body_j = s.body;
+    c.driver_type = s.type;
+    c.omega = s.speed_rad_s;
+    c.Omega = s.reversal_frequency_rad_s;
+    c.phi0 = s.initial_angle_rad.value_or(scene.bodies[s.body].angle_rad);
+    c.rows = 1;
+    m.constraints.push_back(c);
+  }
+  m.nc = count_rows(m.constraints);
+  return m;
+}
+
+namespace {
+// Kinematics of film f between bearing body bi and journal body bj; ai, aj: the bearing
+// and journal points from their bodies' centres, global.
+FilmKinematics film_kinematics(const FilmElement& f, const BodyState& bi, const BodyState& bj, Vector2d& ai,
+                               Vector2d& aj) {
+  ai = bi.rot(f.s_bearing);
+  aj = bj.rot(f.s_journal);
+  FilmKinematics k_out;
+  k_out.e = bj.r + aj - bi.r - ai;
+  k_out.e_dot = bj.rd + bj.phid * perp(aj) - bi.rd - bi.phid * perp(ai);
+  const double c = f.clearance;
+  const double e = k_out.e.norm();
+  if (e > 1e-12 * c) {
+    k_out.r = k_out.e / e;
+    k_out.state.eps = e / c;
+    k_out.state.eps_dot = k_out.r.dot(k_out.e_dot) / c;
+    k_out.gamma_dot = cross(k_out.e, k_out.e_dot) / (e * e);
+  } else {
+    // Centred journal: the line of centres is undefined. Take it along the journal's
+    // relative velocity (the direction it is about to move in), so ε̇ = |ė|/c and γ̇ = 0;
+    // this is the limit e → 0 along the trajectory, and the Sommerfeld laws reduce to
+    // the isotropic squeeze damping −(K/c) ė whatever the choice.
+    const double ed = k_out.e_dot.norm();
+    k_out.r = ed > 0.0 ? Vector2d(k_out.e_dot / ed) : Vector2d(1.0, 0.0);
+    k_out.state.eps = 0.0;
+    k_out.state.eps_dot = ed / c;
+    k_out.gamma_dot = 0.0;
+  }
+  k_out.state.wedge = bj.phid + bi.phid - 2.0 * k_out.gamma_dot;
+  return k_out;
+}
+}  // namespace
+
+FilmKinematics film_kinematics(const Model& m, int k, const double* q, const double* v) {
+  const FilmElement& f = m.films[k];
+  Vector2d ai, aj;
+  return film_kinematics(f, body_state(f.bearing, q, v), body_state(f.journal, q, v), ai, aj);
+}
+
+namespace {
+inline void add_body_force(Eigen::VectorXd& g, int b, const Vector2d& F, double moment) {
+  if (b == kGround) return;
+  g(3 * b) += F.x();
+  g(3 * b + 1) += F.y();
+  g(3 * b + 2) += moment;
+}
+}  // namespace
+
+namespace {
+// Sliding on ε̇ = 0 (ws.cos_phi, sin_phi at q): the row Φ = |e| − e_s (e_s the |e| held since the switch), with
+// Φ̇ = r·ė and γ = r·(φ̇_j² a_j − φ̇_i² a_i) − |ė⊥|²/|e|.
+void fill_sliding_rows(const Model& m, Workspace& ws, const double* q, const double* v) {
+  for (size_t k = 0; k < m.films.size(); ++k) {
+    const FilmKinematics& fk = ws.films[k];
+    if (!fk.sliding) continue;
+    const FilmElement& f = m.films[k];
+    const int row = ws.slide_row[k];
+    const BodyState bi = body_state(f.bearing, q, v, ws.cos_phi.data(), ws.sin_phi.data());
+    const BodyState bj = body_state(f.journal, q, v, ws.cos_phi.data(), ws.sin_phi.data());
+    const Vector2d ai = bi.rot(f.s_bearing), aj = bj.rot(f.s_journal);
+    const double e = fk.e.norm();
+    const double erd = fk.r.dot(fk.e_dot);
+    const Vector2d ed_perp = fk.e_dot - erd * fk.r;
+    ws.Phi(row) = e - ws.slide_radius[k];
+    ws.Phi_dot(row) = erd;
+    ws.gamma(row) = fk.r.dot(bj.phid * bj.phid * aj - bi.phid * bi.phid * ai) - ed_perp.squaredNorm() / e;
+    if (f.journal != kGround) {
+      const int o = 3 * f.journal;
+      ws.Phi_q(row, o) = fk.r.x();
+      ws.Phi_q(row, o + 1) = fk.r.y();
+      ws.Phi_q(row, o + 2) = fk.r.dot(perp(aj));
+    }
+    if (f.bearing != kGround) {
+      const int o = 3 * f.bearing;
+      ws.Phi_q(row, o) = -fk.r.x();
+      ws.Phi_q(row, o + 1) = -fk.r.y();
+      ws.Phi_q(row, o + 2) = -fk.r.dot(perp(ai));
+    }
+  }
+}
+}  // namespace
+
+FilmForce film_element_force(const Model& m, Workspace& ws, int k, const BearingState& state, FilmMode mode,
+                             long long* law_calls) {
+  const FilmElement& f = m.films[k];
+  BearingState st = state;
+  switch (mode) {
+    case FilmMode::natural: break;
+    case FilmMode::outward: st.eps_dot = std::max(st.eps_dot, 0.0); break;
+    case FilmMode::inward: st.eps_dot = std::min(st.eps_dot, -std::numeric_limits<double>::min()); break;
+    case FilmMode::sliding: st.eps_dot = 0.0; break;
+  }
+  FiniteBearingSolver* solver = ws.film_solvers[k] ? &*ws.film_solvers[k] : nullptr;
+  const auto film = [&](const BearingState&) {
+    if (law_calls) ++*law_calls;
+    return film_force(f.law, f.geometry, f.viscosity, st, solver);
+  };
+  // With contact: film weighted over the hand-over band (not evaluated above it) plus the
+  // dry-contact force, whose damping sees the true ε̇.
+  return f.contact ? force_with_contact(*f.contact, f.clearance, state, film, &ws.contact_N[k]) : film(st);
+}
+
+namespace {
+// The rows of Φ_q are sparse (a constraint block touches at most two bodies, see
+// Workspace::row_bodies): the products below visit those columns only. Raw column-major
+// access (leading dimension ld): these loops are most of an evaluation's arithmetic.
+
+// Φ_q,r · x.
+inline double row_dot(const Workspace& ws, int r, const double* x) {
+  const double* J = ws.Phi_q.data();
+  const long ld = ws.Phi_q.rows();
+  double s = 0.0;
+  for (const int b : ws.row_bodies[r]) {
+    if (b == kGround) continue;
+    for (int i = 3 * b; i < 3 * b + 3; ++i) s += J[i * ld + r] * x[i];
+  }
+  return s;
+}
+
+// x −= Φ_qᵀ λ over the first nc rows.
+inline void subtract_transpose(const Workspace& ws, int nc, const double* lambda, double* x) {
+  const double* J = ws.Phi_q.data();
+  const long ld = ws.Phi_q.rows();
+  for (int r = 0; r < nc; ++r) {
+    const double l = lambda[r];
+    for (const int b : ws.row_bodies[r]) {
+      if (b == kGround) continue;
+      const double* Jr = J + 3 * b * ld + r;
+      double* xb = x + 3 * b;
+      xb[0] -= Jr[0] * l;
+      xb[1] -= Jr[ld] * l;
+      xb[2] -= Jr[2 * ld] * l;
+    }
+  }
+}
+
+// S = Φ_q M⁻¹ Φ_qᵀ over the first nc rows into ws.S (lower triangle), factored in place
+// (Cholesky). Rows r and s couple only through a body both touch. False if S is not
+// positive definite (redundant or singular constraints).
+bool factor_schur(const Model& m, Workspace& ws, int nc) {
+  const double* w = m.inv_mass_diag.data();
+  const double* J = ws.Phi_q.data();
+  const long ld = ws.Phi_q.rows();
+  const std::array<int, 2>* rb = ws.row_bodies.data();
+  double* S = ws.S.data();
+  const long lds = ws.S.rows();
+  std::fill(S, S + lds * nc, 0.0);
+  for (const auto& [r, s, b] : ws.schur_pairs) {
+    const double* Jr = J + 3 * b * ld + r;
+    const double* Js = J + 3 * b * ld + s;
+    const double* wb = w + 3 * b;
+    double sum = Jr[0] * wb[0] * Js[0];
+    sum += Jr[ld] * wb[1] * Js[ld];
+    sum += Jr[2 * ld] * wb[2] * Js[2 * ld];
+    S[s * lds + r] += sum;
+  }
+  // The sliding rows change with the films' modes: found on the fly.
+  for (int r = m.nc; r < nc; ++r) {
+    for (int s = 0; s <= r; ++s) {
+      double sum = 0.0;
+      for (const int b : rb[r]) {
+        if (b == kGround || (b != rb[s][0] && b != rb[s][1])) continue;
+        for (int i = 3 * b; i < 3 * b + 3; ++i) sum += J[i * ld + r] * w[i] * J[i * ld + s];
+      }
+      S[s * lds + r] = sum;
+    }
+  }
+  return dense::cholesky(S, static_cast<int>(lds), nc);
+}
+}  // namespace
+
+int evaluate_forces(const Model& m, Workspace& ws, double t, const double* q, const double* v) {
+  ++ws.counters.rhs;
+  const double* cphi = ws.cos_phi.data();
+  const double* sphi = ws.sin_phi.data();
+  body_trig(m.nb, q, ws.cos_phi.data(), ws.sin_phi.data());
+  ws.g.setZero();
+  if (m.gravity) {
+    ++ws.counters.gravity;
+    for (int b = 0; b < m.nb; ++b) {
+      ws.g(3 * b) += m.mass_diag(3 * b) * m.gravity->x();
+      ws.g(3 * b + 1) += m.mass_diag(3 * b) * m.gravity->y();
+    }
+  }
+  int n_sliding = 0;
+  for (size_t k = 0; k < m.films.size(); ++k) {
+    const FilmElement& f = m.films[k];
+    FilmKinematics& fk = ws.films[k];
+    Vector2d ai, aj;
+    fk = film_kinematics(f, body_state(f.bearing, q, v, cphi, sphi), body_state(f.journal, q, v, cphi, sphi), ai,
+                         aj);
+    // Journal through the wall: outside the model, unless the contact effect takes over.
+    if (!f.contact && !(fk.state.eps < 1.0)) return 1;
+    fk.force = film_element_force(m, ws, static_cast<int>(k), fk.state, ws.film_mode[k], &ws.counters.film);
+    fk.sliding = ws.film_mode[k] == FilmMode::sliding;
+    if (fk.sliding) {
+      fk.force.radial_N = 0.0;  // the sliding constraint's multiplier, after the solve
+      ws.slide_row[k] = m.nc + n_sliding++;
+      ws.row_bodies[ws.slide_row[k]] = {f.bearing, f.journal};
+    }
+    const Vector2d t_dir = perp(fk.r);
+    fk.F = fk.force.radial_N * fk.r + fk.force.tangential_N * t_dir;
+    if (!std::isfinite(fk.F.x()) || !std::isfinite(fk.F.y())) return 1;
+    add_body_force(ws.g, f.journal, fk.F, cross(aj, fk.F));
+    add_body_force(ws.g, f.bearing, -fk.F, -cross(ai, fk.F));
+  }
+  ws.nc_active = m.nc + n_sliding;
+  if (ws.nc_active == 0) return 0;
+  fill_constraints(m.constraints, t, q, v, cphi, sphi, ws.Phi_q, ws.Phi, ws.Phi_dot, &ws.gamma);
+  if (n_sliding > 0) fill_sliding_rows(m, ws, q, v);
+  return 0;
+}
+
+int evaluate(const Model& m, Workspace& ws, double t, const double* q, const double* v,
+             double* qdd) {
+  if (const int rc = evaluate_forces(m, ws, t, q, v); rc != 0) return rc;
+  const double* w = m.inv_mass_diag.data();
+  const int nc = ws.nc_active;
+  if (nc == 0) {
+    for (int i = 0; i < m.nq; ++i) qdd[i] = w[i] * ws.g(i);
+    return 0;
+  }
+  const bool any_sliding = nc > m.nc;
+  // (Φ_q M⁻¹ Φ_qᵀ) λ = Φ_q M⁻¹ g − γ̂,  γ̂ = γ − 2α Φ̇ − β² Φ  (qdd holds M⁻¹ g meanwhile)
+  for (int i = 0; i < m.nq; ++i) qdd[i] = w[i] * ws.g(i);
+  for (int r = 0; r < nc; ++r)
+    ws.rhs(r) = row_dot(ws, r, qdd) - (ws.gamma(r) - 2.0 * m.alpha * ws.Phi_dot(r) - (m.beta * m.beta) * ws.Phi(r));
+  if (!factor_schur(m, ws, nc)) return -1;
+  ws.lambda.head(nc) = ws.rhs.head(nc);
+  dense::cholesky_solve(ws.S.data(), static_cast<int>(ws.S.rows()), nc, ws.lambda.data());
+  // q̈ = M⁻¹ (g − Φ_qᵀ λ)
+  ws.qdd = ws.g;
+  subtract_transpose(ws, nc, ws.lambda.data(), ws.qdd.data());
+  for (int i = 0; i < m.nq; ++i) qdd[i] = w[i] * ws.qdd(i);
+  if (any_sliding) {
+    for (size_t k = 0; k < m.films.size(); ++k) {
+      FilmKinematics& fk = ws.films[k];
+      if (!fk.sliding) continue;
+      // The constraint's force on the journal is −λ r: that is the radial film force.
+      fk.force.radial_N = -ws.lambda(ws.slide_row[k]);
+      fk.F = fk.force.radial_N * fk.r + fk.force.tangential_N * perp(fk.r);
+    }
+  }
+  return 0;
+}
+
+void constraint_residual(const Model& m, Workspace& ws, double t, const double* q, const double* v) {
+  const double* cphi = ws.cos_phi.data();
+  const double* sphi = ws.sin_phi.data();
+  body_trig(m.nb, q, ws.cos_phi.data(), ws.sin_phi.data());
+  fill_constraints(m.constraints, t, q, v, cphi, sphi, ws.Phi_q, ws.Phi, ws.Phi_dot, nullptr);
+  int n_sliding = 0;
+  for (size_t k = 0; k < m.films.size(); ++k) {
+    FilmKinematics& fk = ws.films[k];
+    fk.sliding = ws.film_mode[k] == FilmMode::sliding;
+    if (!fk.sliding) continue;
+    const FilmElement& f = m.films[k];
+    Vector2d ai, aj;
+    const FilmKinematics kin =
+        film_kinematics(f, body_state(f.bearing, q, v, cphi, sphi), body_state(f.journal, q, v, cphi, sphi), ai, aj);
+    fk.e = kin.e;
+    fk.e_dot = kin.e_dot;
+    fk.r = kin.r;
+    ws.slide_row[k] = m.nc + n_sliding++;
+    ws.row_bodies[ws.slide_row[k]] = {f.bearing, f.journal};
+  }
+  if (n_sliding > 0) fill_sliding_rows(m, ws, q, v);
+  ws.nc_active = m.nc + n_sliding;
+}
+
+int project_state(const Model& m, Workspace& ws, double t, double* q, double* v, double* dq, double* dv,
+                  double tol, double* err) {
+  // M-weighted least corrections: Δ = −M⁻¹ Jᵀ (J M⁻¹ Jᵀ)⁻¹ r, for r = Φ (Newton on the
+  // positions) and then r = Φ̇ (one linear step on the velocities). Scratch: ws.rhs (r),
+  // ws.qdd (Δ).
+  Eigen::Map<Eigen::VectorXd> Q(q, m.nq), V(v, m.nq), DQ(dq, m.nq), DV(dv, m.nq);
+  DQ.setZero();
+  DV.setZero();
+  // ws.qdd = Δ for r = ws.rhs; false if J M⁻¹ Jᵀ is singular.
+  auto solve = [&](int nc) {
+    if (!factor_schur(m, ws, nc)) return false;
+    dense::cholesky_solve(ws.S.data(), static_cast<int>(ws.S.rows()), nc, ws.rhs.data());
+    ws.qdd.setZero();
+    subtract_transpose(ws, nc, ws.rhs.data(), ws.qdd.data());
+    ws.qdd.array() *= m.inv_mass_diag.array();
+    return true;
+  };
+  for (int it = 0; it < 8; ++it) {
+    constraint_residual(m, ws, t, q, v);
+    const int nc = ws.nc_active;
+    if (nc == 0) return 0;
+    if (ws.Phi.head(nc).lpNorm<Eigen::Infinity>() <= tol) break;
+    ws.rhs.head(nc) = ws.Phi.head(nc);
+    if (!solve(nc)) return -1;
+    Q += ws.qdd;
+    DQ += ws.qdd;
+    if (it == 7) return 1;  // did not converge: let the integrator retry smaller
+  }
+  constraint_residual(m, ws, t, q, v);
+  const int nc = ws.nc_active;
+  ws.rhs.head(nc) = ws.Phi_dot.head(nc);
+  if (!solve(nc)) return -1;
+  V += ws.qdd;
+  DV = ws.qdd;
+  if (err) {
+    // The error estimate loses its components normal to the constraint manifold.
+    for (double* e : {err, err + m.nq}) {
+      for (int r = 0; r < nc; ++r) ws.rhs(r) = row_dot(ws, r, e);
+      if (!solve(nc)) return -1;
+      Eigen::Map<Eigen::VectorXd>(e, m.nq) += ws.qdd;
+    }
+  }
+  return 0;
+}
+
+Eigen::Vector2d joint_force(const Model& m, const Workspace& ws, int joint) {
+  if (const int f = m.joint_film[joint]; f >= 0) return ws.films[f].F;
+  const int ci = m.joint_constraint[joint];
+  if (ci < 0) return {0, 0};
+  const Constraint& c = m.constraints[ci];
+  // Generalised constraint force on a body: −Φ_qᵀ λ restricted to its (x, y) columns.
+  const bool on_j = c.body_j != kGround;
+  const int b = on_j ? c.body_j : c.body_i;
+  Vector2d F = -ws.Phi_q.block(c.row, 3 * b, c.rows, 2).transpose() * ws.lambda.segment(c.row, c.rows);
+  return on_j ? F : Vector2d(-F);
+}
+
+Eigen::VectorXd state_scales(const Model& m, double length_m, double rate_rad_s) {
+  std::vector<double> size(static_cast<size_t>(m.nb), 0.0);
+  auto reach = [&](int body, const Vector2d& s) {
+    if (body != kGround) size[static_cast<size_t>(body)] = std::max(size[static_cast<size_t>(body)], s.norm());
+  };
+  for (const Constraint& c : m.constraints) {
+    if (c.kind != Constraint::Kind::revolute && c.kind != Constraint::Kind::translational) continue;
+    reach(c.body_i, c.s_i);
+    reach(c.body_j, c.s_j);
+  }
+  for (const FilmElement& f : m.films) {
+    reach(f.bearing, f.s_bearing);
+    reach(f.journal, f.s_journal);
+  }
+  Eigen::VectorXd s(2 * m.nq);
+  for (int b = 0; b < m.nb; ++b) {
+    const double gyration = std::sqrt(m.mass_diag(3 * b + 2) / m.mass_diag(3 * b));
+    const double r = std::max(size[static_cast<size_t>(b)], gyration);
+    const double angle = r > 0.0 ? length_m / r : length_m;  // a point mass: 1 m
+    s.segment<3>(3 * b) << length_m, length_m, angle;
+    s.segment<3>(m.nq + 3 * b) = rate_rad_s * s.segment<3>(3 * b);
+  }
+  return s;
+}
+
+double mechanical_energy(const Model& m, const double* q, const double* v) {
+  double E = 0.0;
+  for (int i = 0; i < m.nq; ++i) E += 0.5 * m.mass_diag(i) * v[i] * v[i];
+  if (m.gravity)
+    for (int b = 0; b < m.nb; ++b)
+      E -= m.mass_diag(3 * b) * (m.gravity->x() * q[3 * b] + m.gravity->y() * q[3 * b + 1]);
+  return E;
+}
+
+double driver_power(const Model& m, const Workspace& ws, const double* v) {
+  double P = 0.0;
+  for (const Constraint& c : m.constraints)
+    if (c.kind == Constraint::Kind::driver) P += -ws.lambda(c.row) * v[3 * c.body_j + 2];
+  return P;
+}
+
+double film_power(const Workspace& ws) {
+  double P = 0.0;
+  for (const FilmKinematics& fk : ws.films) P += fk.F.dot(fk.e_dot);
+  return P;
+}
+
+void assemble_initial_state(const Model& m, const Scene& scene, double t0, Eigen::VectorXd& q,
+                            Eigen::VectorXd& v) {
+  // All joints ideal: each film element closes as a revolute at its initial eccentricity.
+  std::vector<Constraint> cons = m.constraints;
+  for (const FilmElement& f : m.films)
+    cons.push_back(revolute_block(f.joint, f.bearing, f.journal, f.s_bearing, f.s_journal,
+                                  scene.joints[f.joint].initial_eccentricity_m));
+  const int nc = count_rows(cons);
+  q.resize(m.nq);
+  v = Eigen::VectorXd::Zero(m.nq);
+  double length_scale = 0.0;
+  for (int b = 0; b < m.nb; ++b) {
+    q.segment<2>(3 * b) = scene.bodies[b].position_m;
+    q(3 * b + 2) = scene.bodies[b].angle_rad;
+    length_scale = std::max(length_scale, scene.bodies[b].position_m.norm());
+  }
+  for (const auto& jt : scene.joints)
+    length_scale = std::max({length_scale, jt.point_i_m.norm(), jt.point_j_m.norm()});
+  length_scale = std::max(length_scale, 1e-3);
+  if (nc == 0) return;
+
+  Eigen::MatrixXd J(nc, m.nq);
+  Eigen::VectorXd Phi(nc), Phid(nc);
+  std::vector<double> cphi(static_cast<size_t>(m.nb)), sphi(static_cast<size_t>(m.nb));
+  const double tol = 1e-13 * length_scale;
+  double res = 0.0;
+  for (int it = 0; it < 100; ++it) {
+    body_trig(m.nb, q.data(), cphi.data(), sphi.data());
+    fill_constraints(cons, t0, q.data(), nullptr, cphi.data(), sphi.data(), J, Phi, Phid, nullptr);
+    res = Phi.lpNorm<Eigen::Infinity>();
+    if (res <= tol) break;
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(J);
+    Eigen::VectorXd dq = cod.solve(Phi);
+    // Damped step: never move a coordinate by more than the mechanism's size at once.
+    const double n = dq.lpNorm<Eigen::Infinity>();
+    if (n > length_scale) dq *= length_scale / n;
+    q -= dq;
+  }
+  if (!(res <= tol)) {
+    std::ostringstream msg;
+    msg << "assembly: the kinematic analysis with all joints ideal cannot close the mechanism "
+           "(constraint residual "
+        << res << " m after 100 Newton-Raphson iterations): check the joint points, the "
+                  "bodies' initial poses and the lengths";
+    throw InputError(msg.str());
+  }
+  body_trig(m.nb, q.data(), cphi.data(), sphi.data());
+  fill_constraints(cons, t0, q.data(), nullptr, cphi.data(), sphi.data(), J, Phi, Phid, nullptr);
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(J);
+  cod.setThreshold(1e-10);
+  if (cod.rank() < nc) {
+    std::ostringstream msg;
+    msg << "assembly: the " << nc << " constraint equations have rank " << cod.rank()
+        << " at the initial configuration: some joints are redundant or the mechanism "
+           "starts in a singular position";
+    throw InputError(msg.str());
+  }
+  Eigen::VectorXd Phi_t(nc);
+  fill_phi_t(cons, t0, Phi_t);
+  v = cod.solve(-Phi_t);
+}
+
+}  // namespace lub

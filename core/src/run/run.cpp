@@ -1,0 +1,629 @@
+#include "lub/run/run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "lub/integrators/integrator.hpp"
+#include "lub/mechanism/model.hpp"
+#include "lub/formulation/multibody_system.hpp"
+
+namespace lub {
+
+std::string to_string(RunStatus s) {
+  switch (s) {
+    case RunStatus::ok: return "ok";
+    case RunStatus::film_collapse: return "film_collapse";
+    case RunStatus::solver_failure: return "solver_failure";
+    case RunStatus::budget_exceeded: return "budget_exceeded";
+  }
+  return "?";
+}
+
+namespace {
+
+constexpr double kTwoPi = 6.28318530717958647692;
+constexpr int kPhasePoints = 120;  // orbit samples per cycle (every 3°) for the periodicity measure
+
+// Everything measured at one instant.
+struct Probe {
+  double t = 0.0;
+  const double* q = nullptr;
+  const double* v = nullptr;
+  const double* a = nullptr;
+};
+
+double channel_value(const Scene& scene, const Model& m, const Workspace& ws, const ChannelSpec& c,
+                     const Probe& p) {
+  if (c.source == ChannelSource::time) return p.t;
+  if (c.source == ChannelSource::body) {
+    const int o = 3 * c.index;
+    const std::string& qn = c.quantity;
+    if (qn == "x") return p.q[o];
+    if (qn == "y") return p.q[o + 1];
+    if (qn == "angle") return p.q[o + 2];
+    if (qn == "vx") return p.v[o];
+    if (qn == "vy") return p.v[o + 1];
+    if (qn == "omega") return p.v[o + 2];
+    if (qn == "ax") return p.a[o];
+    if (qn == "ay") return p.a[o + 1];
+    if (qn == "alpha") return p.a[o + 2];
+    return 0.0;
+  }
+  const std::string& qn = c.quantity;
+  if (qn == "reaction") return joint_force(m, ws, c.index).norm();
+  if (qn == "reaction_x") return joint_force(m, ws, c.index).x();
+  if (qn == "reaction_y") return joint_force(m, ws, c.index).y();
+  const int f = m.joint_film[c.index];
+  const double clearance = scene.joints[c.index].bearing.clearance_m();
+  if (f < 0) {  // a lubricated joint run as ideal: centred
+    if (qn == "h_min") return clearance;
+    return 0.0;
+  }
+  const FilmKinematics& k = ws.films[f];
+  if (qn == "e_x") return k.e.x();
+  if (qn == "e_y") return k.e.y();
+  if (qn == "eps") return k.state.eps;
+  if (qn == "eps_dot") return k.state.eps_dot;
+  if (qn == "gamma") return k.gamma();
+  if (qn == "gamma_dot") return k.gamma_dot;
+  if (qn == "wedge") return k.state.wedge;
+  if (qn == "h_min") return clearance * (1.0 - k.state.eps);
+  if (qn == "film_radial") return k.force.radial_N;
+  if (qn == "film_tangential") return k.force.tangential_N;
+  return 0.0;
+}
+
+// The rate that scales the velocity tolerances [rad/s]: the fastest driver's speed, or
+// 2π over the cycle period or the duration when no driver gives one.
+double characteristic_rate(const Scene& scene) {
+  double w = 0.0;
+  for (const DriverSpec& d : scene.drivers) w = std::max(w, std::abs(d.speed_rad_s));
+  if (w > 0.0) return w;
+  if (const auto T = scene.cycle_period_s()) return kTwoPi / *T;
+  if (scene.simulation.duration_s) return kTwoPi / *scene.simulation.duration_s;
+  return 1.0;
+}
+
+class Runner {
+ public:
+  explicit Runner(const Scene& scene)
+      : scene_(scene), m_(build_model(scene)), ws_(m_), obs_ws_(m_), period_(scene.cycle_period_s()) {}
+
+  RunResult run();
+
+ private:
+  // Evaluates the model at (t, y) once: constraint drift and the cycle's extremes, and
+  // with `record` the series channels.
+  void observe(double t, const double* y, bool record);
+  void observe_phase(double t, const double* y);
+  void close_cycle(double t_end);
+  double phase_angle(double t) const {
+    if (!period_) return 0.0;
+    const double x = (t - t0_) / *period_;
+    return kTwoPi * (x - std::floor(x));
+  }
+  bool steady_now() const;
+  void switch_modes(MultibodySystem& sys, const std::vector<int>& flags, double t, const double* y);
+  bool resync_modes(MultibodySystem& sys, double t, const double* y);
+
+  const Scene& scene_;
+  Model m_;
+  Workspace ws_;  ///< the integrator's
+  /// The observers' own: what they evaluate (a finite-Reynolds solver's warm start, the
+  /// counters) must not reach the integrator's workspace, or how often a run samples
+  /// would change its trajectory. Film modes are copied in before each observation.
+  Workspace obs_ws_;
+  std::optional<double> period_;
+  double t0_ = 0.0;
+  RunResult res_;
+  std::vector<double> qdd_, ytmp_, yfull_, yint_;
+  CycleMetrics cur_;
+  bool cur_empty_ = true;
+  // orbit of every film at the phase points: current and previous cycle
+  std::vector<double> orbit_cur_, orbit_prev_;
+  int phase_index_ = 0;
+  std::vector<size_t> cycle_first_sample_;  // samples recorded (ever) before each cycle end
+  size_t dropped_samples_ = 0;
+};
+
+void Runner::observe(double t, const double* y, bool record) {
+  const double* q = y;
+  const double* v = y + m_.nq;
+  std::copy(ws_.film_mode.begin(), ws_.film_mode.end(), obs_ws_.film_mode.begin());
+  std::copy(ws_.slide_radius.begin(), ws_.slide_radius.end(), obs_ws_.slide_radius.begin());
+  const Workspace& ws = obs_ws_;
+  if (evaluate(m_, obs_ws_, t, q, v, qdd_.data()) != 0) return;
+  ++res_.stats.observer_evals;
+  if (record) {
+    const Probe p{t, q, v, qdd_.data()};
+    auto& data = res_.series.data;
+    data[0].push_back(t);
+    for (size_t c = 0; c < scene_.output.channels.size(); ++c)
+      data[c + 1].push_back(channel_value(scene_, m_, ws, scene_.output.channels[c], p));
+  }
+  res_.stats.max_position_drift =
+      std::max(res_.stats.max_position_drift, m_.nc ? ws.Phi.head(m_.nc).lpNorm<Eigen::Infinity>() : 0.0);
+  res_.stats.max_velocity_drift =
+      std::max(res_.stats.max_velocity_drift, m_.nc ? ws.Phi_dot.head(m_.nc).lpNorm<Eigen::Infinity>() : 0.0);
+  const double angle = phase_angle(t);
+  const int mj = scene_.metrics.joint;
+  if (cur_empty_) {
+    cur_.min_film_m = std::numeric_limits<double>::infinity();
+    cur_empty_ = false;
+  }
+  if (mj >= 0) {
+    const double R = joint_force(m_, ws, mj).norm();
+    if (R > cur_.peak_reaction_N) {
+      cur_.peak_reaction_N = R;
+      cur_.angle_at_peak_reaction_rad = angle;
+    }
+    if (scene_.joints[mj].type == JointType::lubricated_revolute) {
+      const int f = m_.joint_film[mj];
+      const double eps = f >= 0 ? ws.films[f].state.eps : 0.0;
+      // In contact (ε >= 1) the film thickness is zero: the penetration is not a film.
+      const double h = std::max(0.0, scene_.joints[mj].bearing.clearance_m() * (1.0 - eps));
+      cur_.max_eps = std::max(cur_.max_eps, eps);
+      if (h < cur_.min_film_m) {
+        cur_.min_film_m = h;
+        cur_.angle_at_min_film_rad = angle;
+      }
+    }
+  }
+  if (const int b = scene_.metrics.body; b >= 0) {
+    const double a = std::hypot(qdd_[3 * b], qdd_[3 * b + 1]);
+    cur_.peak_acceleration_m_s2 = std::max(cur_.peak_acceleration_m_s2, a);
+  }
+}
+
+void Runner::observe_phase(double /*t*/, const double* y) {
+  const double* q = y;
+  const double* v = y + m_.nq;
+  double* out = orbit_cur_.data() + static_cast<size_t>(phase_index_) * 2 * std::max<size_t>(1, m_.films.size());
+  if (m_.films.empty()) {
+    // No film: the periodicity of the mechanism itself, from the first body's position.
+    out[0] = q[0];
+    out[1] = q[1];
+  } else {
+    for (size_t k = 0; k < m_.films.size(); ++k) {
+      const FilmKinematics fk = film_kinematics(m_, static_cast<int>(k), q, v);
+      out[2 * k] = fk.e.x() / m_.films[k].clearance;
+      out[2 * k + 1] = fk.e.y() / m_.films[k].clearance;
+    }
+  }
+  ++phase_index_;
+}
+
+void Runner::close_cycle(double t_end) {
+  cur_.t_end_s = t_end;
+  if (cur_empty_) cur_.min_film_m = 0.0;
+  if (!res_.cycles.empty() && phase_index_ == kPhasePoints) {
+    double d = 0.0;
+    const size_t nf = std::max<size_t>(1, m_.films.size());
+    for (int i = 0; i < kPhasePoints; ++i)
+      for (size_t k = 0; k < nf; ++k) {
+        const size_t o = (static_cast<size_t>(i) * nf + k) * 2;
+        d = std::max(d, std::hypot(orbit_cur_[o] - orbit_prev_[o], orbit_cur_[o + 1] - orbit_prev_[o + 1]));
+      }
+    cur_.periodicity = d;
+  }
+  res_.cycles.push_back(cur_);
+  // outputs.last_cycles: drop the samples of cycles older than the last N.
+  if (!res_.series.data.empty()) {
+    cycle_first_sample_.push_back(res_.series.data[0].size() + dropped_samples_);
+    const int keep = scene_.output.last_cycles;
+    if (keep > 0 && static_cast<int>(cycle_first_sample_.size()) > keep) {
+      const size_t drop = cycle_first_sample_[cycle_first_sample_.size() - 1 - keep] - dropped_samples_;
+      for (auto& ch : res_.series.data) ch.erase(ch.begin(), ch.begin() + static_cast<std::ptrdiff_t>(drop));
+      dropped_samples_ += drop;
+    }
+  }
+  std::swap(orbit_cur_, orbit_prev_);
+  phase_index_ = 0;
+  cur_ = CycleMetrics{};
+  cur_.t_start_s = t_end;
+  cur_empty_ = true;
+}
+
+bool Runner::steady_now() const {
+  const int M = scene_.simulation.metric_cycles;
+  if (static_cast<int>(res_.cycles.size()) < M + 1) return false;
+  for (int i = 0; i < M; ++i) {
+    const CycleMetrics& c = res_.cycles[res_.cycles.size() - 1 - i];
+    if (c.periodicity < 0 || c.periodicity >= scene_.simulation.steady_tolerance) return false;
+  }
+  return true;
+}
+
+void Runner::switch_modes(MultibodySystem& sys, const std::vector<int>& flags, double t, const double* y) {
+  const int nf = static_cast<int>(m_.films.size());
+  int j = nf;
+  for (int k = 0; k < nf; ++k) {
+    if (!m_.films[k].switching) continue;
+    const bool fired_a = flags[j] != 0, fired_b = flags[j + 1] != 0;
+    j += 2;
+    if (!fired_a && !fired_b) continue;
+    const FilmMode from = ws_.film_mode[k];
+    FilmMode to = from;
+    if (from == FilmMode::sliding) {
+      to = fired_a ? FilmMode::outward : FilmMode::inward;
+    } else {
+      // ε̇ reached 0. Would a sliding motion hold? Evaluate with |e| held: its multiplier
+      // is the radial film force that keeps ε̇ = 0; it must lie within the jump.
+      const FilmKinematics fk = film_kinematics(m_, k, y, y + m_.nq);
+      const bool can_slide = fk.state.eps > 1e-9;
+      if (can_slide) {
+        ws_.film_mode[k] = FilmMode::sliding;
+        ws_.slide_radius[k] = fk.e.norm();
+        if (evaluate(m_, ws_, t, y, y + m_.nq, qdd_.data()) != 0) {
+          ws_.film_mode[k] = from;
+          continue;
+        }
+        const double F = ws_.films[k].force.radial_N;
+        const auto [F_out, F_in] = sys.sliding_limits(k, fk.state);
+        if (from == FilmMode::outward)
+          to = F <= F_in ? FilmMode::sliding : FilmMode::inward;
+        else
+          to = F >= F_out ? FilmMode::sliding : FilmMode::outward;
+      } else {
+        to = from == FilmMode::outward ? FilmMode::inward : FilmMode::outward;
+      }
+    }
+    ws_.film_mode[k] = to;  // sliding: slide_radius was set to |e| when the decision was made
+    ++res_.stats.mode_switches;
+  }
+}
+
+bool Runner::resync_modes(MultibodySystem& sys, double t, const double* y) {
+  // A mismatch beyond round-off: 1e-6 1/s is far below any motion the film responds to
+  // (the reference case's ε̇ swings over ±1e3 1/s).
+  constexpr double kTol = 1e-6;
+  bool changed = false;
+  bool evaluated = false;
+  for (size_t k = 0; k < m_.films.size(); ++k) {
+    if (!m_.films[k].switching) continue;
+    const FilmMode mode = ws_.film_mode[k];
+    if (mode == FilmMode::sliding) {
+      // A sliding motion whose force has left the jump: an exit the root finder missed
+      // (its root function was already past zero when the motion began, so no sign change
+      // ever came). Leave by the side the force points to. Margin: 1e-9 of the jump, far
+      // above the multiplier's round-off and far below any force the motion responds to.
+      if (!evaluated) {
+        if (evaluate(m_, ws_, t, y, y + m_.nq, qdd_.data()) != 0) continue;
+        evaluated = true;
+      }
+      const double F = ws_.films[k].force.radial_N;
+      const auto [F_out, F_in] = sys.sliding_limits(static_cast<int>(k), ws_.films[k].state);
+      const double margin = 1e-9 * std::abs(F_in - F_out);
+      FilmMode to = mode;
+      if (F < F_out - margin) to = FilmMode::outward;
+      if (F > F_in + margin) to = FilmMode::inward;
+      if (to == mode) continue;
+      ws_.film_mode[k] = to;
+      ++res_.stats.mode_switches;
+      changed = true;
+      continue;
+    }
+    if (mode != FilmMode::outward && mode != FilmMode::inward) continue;
+    const double ed = film_kinematics(m_, static_cast<int>(k), y, y + m_.nq).state.eps_dot;
+    FilmMode to = mode;
+    if (mode == FilmMode::outward && ed < -kTol) to = FilmMode::inward;
+    if (mode == FilmMode::inward && ed > kTol) to = FilmMode::outward;
+    if (to == mode) continue;
+    ws_.film_mode[k] = to;
+    ++res_.stats.mode_switches;
+    changed = true;
+  }
+  return changed;
+}
+
+RunResult Runner::run() {
+  const auto wall0 = std::chrono::steady_clock::now();
+  const SimulationSpec& sim = scene_.simulation;
+  const SolverSpec& sol = scene_.solver;
+  qdd_.assign(m_.nq, 0.0);
+  ytmp_.assign(2 * m_.nq, 0.0);
+  yfull_.assign(2 * m_.nq, 0.0);
+  const size_t nf = std::max<size_t>(1, m_.films.size());
+  orbit_cur_.assign(static_cast<size_t>(kPhasePoints) * nf * 2, 0.0);
+  orbit_prev_ = orbit_cur_;
+
+  // Series only if channels were asked for.
+  if (!scene_.output.channels.empty()) {
+    res_.series.names.push_back("t");
+    res_.series.units.push_back("s");
+    for (const auto& c : scene_.output.channels) {
+      res_.series.names.push_back(c.name);
+      res_.series.units.push_back(channel_unit(c.source, c.quantity));
+    }
+    res_.series.data.resize(res_.series.names.size());
+  }
+
+  Eigen::VectorXd q0, v0;
+  assemble_initial_state(m_, scene_, t0_, q0, v0);
+  std::vector<double> qv0(2 * m_.nq);
+  std::copy(q0.data(), q0.data() + m_.nq, qv0.begin());
+  std::copy(v0.data(), v0.data() + m_.nq, qv0.begin() + m_.nq);
+
+  const double t_end = sim.duration_s ? *sim.duration_s : sim.max_cycles * *period_;
+  IntegratorSettings is;
+  is.method = sol.method;
+  is.rtol = sol.rtol;
+  // Absolute tolerances in each state's own units (README "Integration", tolerances):
+  // lengths from the smallest clearance, angles from it over each body's size, rates
+  // from those times the driver's speed. solver.atol overrides them all with one number.
+  const double length_scale = scene_.min_clearance_m().value_or(1e-3);
+  const Eigen::VectorXd scales = state_scales(m_, length_scale, characteristic_rate(scene_));
+  const double atol = sol.atol ? *sol.atol : sol.rtol * length_scale;
+  std::vector<double> atol_full(static_cast<size_t>(2 * m_.nq));
+  for (int i = 0; i < 2 * m_.nq; ++i) atol_full[static_cast<size_t>(i)] = sol.atol ? *sol.atol : sol.rtol * scales(i);
+  is.max_step = sol.max_step_s;
+  is.initial_step = sol.initial_step_s;
+  is.max_order = sol.max_order;
+  // The stop time: the next cycle boundary (never the end of the run, which would bound
+  // SUNDIALS' initial-step estimates at every restart and so make the steps depend on
+  // max_cycles), or the end of the run in its last cycle.
+  const double eps_t = period_ ? 1e-9 * *period_ : 0.0;
+  auto next_stop = [&](double tt) {
+    if (!period_) return t_end;
+    const double k = std::floor((tt - t0_ + eps_t) / *period_) + 1.0;
+    return std::min(t0_ + k * *period_, t_end);
+  };
+  double t_stop = next_stop(t0_);
+  is.t_stop = t_stop;
+  is.projection = sol.projection;
+  const bool newton =
+      sol.method == Method::cvode_bdf || sol.method == Method::arkode_dirk || sol.method == Method::ida;
+  // A mechanism without a degree of freedom (every coordinate fixed by joints and drivers:
+  // the ideal slider-crank) leaves partitioning nothing to integrate: it runs on the
+  // baumgarte formulation, whose states are all the coordinates.
+  const bool partitioned = sol.partitioned && m_.nq > m_.nc;
+  const Formulation formulation = partitioned ? Formulation::partitioned
+                                  : sol.ggl   ? Formulation::ggl
+                                              : Formulation::baumgarte;
+  is.user_jacobian = newton && sol.structured_jacobian && !partitioned;
+  // Partitioned: the integrated coordinates are the mechanism's degrees of freedom (e.g. a
+  // rod's angle and the slider's x), and the squeeze film's stiff mode lies almost along
+  // one of them. Its Jacobian terms (∝ the journal's whirl rate and the rod's rate) change
+  // by their own size within a few degrees of crank; with CVODE's Jacobian reuse the
+  // modified Newton stalls in that mode and its first iterate is accepted on a stale rate
+  // estimate, so accepted states carry an unconverged stiff component (f(y_n) − y'_n up to
+  // ~0.1 rad/s² in the rod's angular acceleration). The error test cannot see it at large
+  // h·λ; when the rod's angular velocity crosses zero (90° and 270° of crank) its weight
+  // becomes 1/atol, the step is cut to h·λ ~ 1, the component shows as a transient and the
+  // error test fails until CVODE gives up. Four states: a Jacobian costs four evaluations.
+  is.jacobian_every_step = partitioned;
+  res_.stats.rtol = sol.rtol;
+  res_.stats.atol = atol;
+  res_.stats.method = to_string(sol.method);
+  res_.stats.formulation = formulation == Formulation::partitioned ? "partitioned"
+                           : formulation == Formulation::ggl      ? "ggl"
+                                                                  : "baumgarte";
+  res_.stats.jacobian = !newton ? "none" : is.user_jacobian ? "structured" : "difference_quotients";
+
+  const bool energy = scene_.output.energy_balance;
+  MultibodySystem sys(m_, ws_, sim.eps_limit, energy, formulation);
+  sys.set_projection_tolerance(0.01 * atol);  // Newton on Φ = 0 well inside the error test
+  try {
+    sys.partition(t0_, qv0.data());
+  } catch (const std::exception& e) {
+    res_.status = RunStatus::solver_failure;
+    res_.message = e.what();
+    return res_;
+  }
+  std::vector<double> y0(static_cast<size_t>(sys.size()));
+  sys.reduce(qv0.data(), y0.data());
+  is.atol.assign(y0.size(), 0.0);
+  sys.reduce(atol_full.data(), is.atol.data());
+  yint_.assign(y0.size(), 0.0);
+  std::unique_ptr<Integrator> integ;
+  try {
+    integ = make_integrator(is, sys, t0_, y0);
+  } catch (const std::exception& e) {
+    res_.status = RunStatus::solver_failure;
+    res_.message = e.what();
+    return res_;
+  }
+  const double E0 = energy ? mechanical_energy(m_, q0.data(), v0.data()) : 0.0;
+
+  const double dt_sample = scene_.output.sample_interval_s;
+  long long sample_k = 0;
+  const double dt_phase = period_ ? *period_ / kPhasePoints : 0.0;
+  long long phase_k = 0;
+  int cycles_done = 0;
+  observe(t0_, qv0.data(), !res_.series.names.empty());
+  if (!res_.series.names.empty()) sample_k = 1;
+  if (period_) observe_phase(t0_, qv0.data()), phase_k = 1;
+  // The state at t within the last step, as (q, v): false if it cannot be had.
+  auto state_at = [&](double tt) {
+    return integ->dense(tt, 0, yint_.data()) &&
+           sys.expand(tt, yint_.data(), ytmp_.data(), MultibodySystem::Context::observer) == 0;
+  };
+
+  integ->set_root_directions(sys.root_directions());
+  std::vector<int> flags;
+  std::optional<double> drift_limit = sim.drift_limit_m;
+  if (!drift_limit && scene_.min_clearance_m()) drift_limit = 0.1 * *scene_.min_clearance_m();
+  double t = t0_;
+  bool stop = false;
+  const double inf = std::numeric_limits<double>::infinity();
+  while (!stop) {
+    const double t_prev = t;
+    const StepOutcome out = integ->step(t);
+    if (out == StepOutcome::failure) {
+      res_.status = RunStatus::solver_failure;
+      res_.message = "the integrator failed at t = " + std::to_string(t) + " s: " + integ->error_message();
+      break;
+    }
+    // Dense output inside (t_prev, t], in time order: series samples, orbit phase points
+    // and cycle ends.
+    const bool sampling = !res_.series.names.empty();
+    const double t_reach = t * (1 + 1e-15);
+    while (!stop) {
+      const double ts = sampling ? t0_ + sample_k * dt_sample : inf;
+      const double tp = period_ ? t0_ + phase_k * dt_phase : inf;
+      const bool sample_due = ts <= t_reach && ts <= t_end;
+      const bool phase_due = tp <= t_reach && tp <= t_end + 0.5 * dt_phase;
+      if (!sample_due && !phase_due) break;
+      if (phase_due && (!sample_due || tp <= ts)) {
+        ++phase_k;
+        if ((phase_k - 1) % kPhasePoints == 0) {
+          // A cycle ends at tp: close it before the first phase point of the next.
+          close_cycle(tp);
+          ++cycles_done;
+          if (sim.stop_when_steady && steady_now()) stop = true;
+        }
+        if (!stop && state_at(tp)) {
+          observe_phase(tp, ytmp_.data());
+          observe(tp, ytmp_.data(), sample_due && ts == tp);
+          if (sample_due && ts == tp) ++sample_k;
+        }
+      } else {
+        ++sample_k;
+        if (ts > t_prev && state_at(ts)) observe(ts, ytmp_.data(), true);
+      }
+    }
+    const bool have_state = sys.expand(t, integ->y(), yfull_.data()) == 0;
+    if (have_state) observe(t, yfull_.data(), false);
+    if (out == StepOutcome::root) {
+      integ->root_flags(flags);
+      bool collapse = false;
+      for (size_t k = 0; k < m_.films.size(); ++k) collapse = collapse || flags[k] != 0;
+      if (collapse) {
+        res_.status = RunStatus::film_collapse;
+        std::ostringstream msg;
+        msg << "the eccentricity ratio reached simulation.eps_limit = " << sim.eps_limit << " at t = " << t
+            << " s: the film cannot carry the load (no contact law in the scene)";
+        res_.message = msg.str();
+        break;
+      }
+      if (!have_state) {
+        res_.status = RunStatus::solver_failure;
+        res_.message = "coordinate partitioning: the dependent coordinates cannot be recovered at t = " +
+                       std::to_string(t) + " s";
+        break;
+      }
+      switch_modes(sys, flags, t, yfull_.data());
+      integ->reinit(t, integ->y());
+      integ->set_root_directions(sys.root_directions());
+    } else if (have_state && sys.partition_degraded()) {
+      // The dependent block is near-singular: choose the independent coordinates anew.
+      sys.partition(t, yfull_.data());
+      sys.reduce(yfull_.data(), yint_.data());
+      integ->reinit(t, yint_.data());
+      sys.reduce(atol_full.data(), is.atol.data());
+      integ->set_abs_tolerances(is.atol);
+      integ->set_root_directions(sys.root_directions());
+      ++res_.stats.repartitions;
+    } else if (have_state && m_.n_switching > 0 && resync_modes(sys, t, yfull_.data())) {
+      // A free mode that no longer matches the sign of ε̇: a crossing the root finder
+      // could not see (ε̇ left zero from an exact zero at a restart). Restart on the
+      // branch that applies.
+      integ->reinit(t, integ->y());
+      integ->set_root_directions(sys.root_directions());
+    }
+    if (drift_limit && res_.stats.max_position_drift > *drift_limit) {
+      res_.status = RunStatus::solver_failure;
+      std::ostringstream msg;
+      msg << "constraint drift " << res_.stats.max_position_drift << " m exceeds simulation.drift_limit_m = "
+          << *drift_limit << " m at t = " << t
+          << " s: tighten solver.rtol, or use solver.projection = true or solver.formulation = partitioned";
+      res_.message = msg.str();
+      break;
+    }
+    integ->statistics(res_.stats);
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    if (res_.stats.steps >= sol.max_steps) {
+      res_.status = RunStatus::budget_exceeded;
+      res_.message = "solver.max_steps = " + std::to_string(sol.max_steps) + " steps reached at t = " +
+                     std::to_string(t) + " s";
+      break;
+    }
+    if (wall >= sol.max_wall_time_s) {
+      res_.status = RunStatus::budget_exceeded;
+      res_.message = "solver.max_wall_time_s = " + std::to_string(sol.max_wall_time_s) +
+                     " s reached at t = " + std::to_string(t) + " s";
+      break;
+    }
+    if (t >= t_end * (1 - 1e-15)) stop = true;
+    if (!stop && t >= t_stop - eps_t) {
+      t_stop = next_stop(t);
+      integ->set_stop_time(t_stop);
+    }
+  }
+  // A run without a period keeps the whole run as its one cycle; a run that ended early
+  // (collapse, failure, budget) keeps its partial cycle, so the metrics see how it ended.
+  if (!period_ || (!cur_empty_ && (res_.cycles.empty() || res_.status != RunStatus::ok))) close_cycle(t);
+
+  integ->statistics(res_.stats);
+  res_.stats.final_time_s = t;
+  res_.stats.model_evals = ws_.counters.rhs + obs_ws_.counters.rhs;
+  res_.stats.gravity_evals = ws_.counters.gravity + obs_ws_.counters.gravity;
+  res_.stats.film_law_evals = ws_.counters.film + obs_ws_.counters.film;
+  res_.stats.film_law_evals_jac = ws_.counters.film_jacobian;
+
+  // Steady-cycle metrics over the last metric_cycles cycles.
+  Metrics& mt = res_.metrics;
+  mt.cycles_run = cycles_done;
+  const int M = std::min<int>(sim.metric_cycles, static_cast<int>(res_.cycles.size()));
+  mt.min_film_thickness_m = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < M; ++i) {
+    const CycleMetrics& c = res_.cycles[res_.cycles.size() - 1 - i];
+    if (c.min_film_m < mt.min_film_thickness_m) {
+      mt.min_film_thickness_m = c.min_film_m;
+      mt.angle_at_min_film_rad = c.angle_at_min_film_rad;
+    }
+    mt.max_eps = std::max(mt.max_eps, c.max_eps);
+    if (c.peak_reaction_N > mt.peak_reaction_N) {
+      mt.peak_reaction_N = c.peak_reaction_N;
+      mt.angle_at_peak_reaction_rad = c.angle_at_peak_reaction_rad;
+    }
+    mt.peak_acceleration_m_s2 = std::max(mt.peak_acceleration_m_s2, c.peak_acceleration_m_s2);
+    mt.periodicity = std::max(mt.periodicity, c.periodicity);
+  }
+  const int mj = scene_.metrics.joint;
+  mt.has_film = mj >= 0 && scene_.joints[mj].type == JointType::lubricated_revolute;
+  if (!mt.has_film || !std::isfinite(mt.min_film_thickness_m)) mt.min_film_thickness_m = 0.0;
+  if (mt.has_film) {
+    mt.safe_film_m = scene_.metrics.safe_film_per_diameter * 2.0 * scene_.joints[mj].bearing.bearing_radius_m;
+    mt.below_safe_film = mt.min_film_thickness_m < mt.safe_film_m;
+  }
+  for (size_t k = 0; k < res_.cycles.size(); ++k) {
+    // cycles_to_steady: the first time the last metric_cycles cycles all repeated
+    const int n = static_cast<int>(k) + 1;
+    if (n < sim.metric_cycles + 1) continue;
+    bool ok = true;
+    for (int i = 0; i < sim.metric_cycles; ++i) {
+      const double p = res_.cycles[k - i].periodicity;
+      ok = ok && p >= 0 && p < sim.steady_tolerance;
+    }
+    if (ok) {
+      mt.steady = true;
+      mt.cycles_to_steady = n;
+      break;
+    }
+  }
+  if (energy) {
+    double Q[2] = {0, 0};
+    integ->quadratures(Q);
+    sys.expand(t, integ->y(), yfull_.data());
+    const double* y = yfull_.data();
+    mt.driver_work_J = Q[0];
+    mt.film_dissipation_J = -Q[1];
+    mt.energy_change_J = mechanical_energy(m_, y, y + m_.nq) - E0;
+    mt.energy_residual_J = mt.driver_work_J - mt.energy_change_J - mt.film_dissipation_J;
+  }
+  res_.stats.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return res_;
+}
+
+}  // namespace
+
+RunResult run_scene(const Scene& scene) {
+  Runner r(scene);
+  return r.run();
+}
+
+}  // namespace lub

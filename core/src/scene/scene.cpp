@@ -1,0 +1,691 @@
+#include "lub/scene/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <vector>
+
+namespace lub {
+
+using nlohmann::json;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+int resolve_body(const Scene& scene, ObjectReader& r, const std::string& key, bool allow_ground) {
+  const std::string name = r.string(key);
+  const int idx = scene.body_index(name);
+  if (idx == -2) {
+    std::string names = "ground";
+    for (const auto& b : scene.bodies) names += ", " + b.name;
+    fail(r.child(key), json(name), "names no body (bodies: " + names + ")");
+  }
+  if (idx == kGround && !allow_ground) fail(r.child(key), json(name), "must be a moving body, not the ground");
+  return idx;
+}
+
+int resolve_joint(const Scene& scene, ObjectReader& r, const std::string& key) {
+  const std::string name = r.string(key);
+  const int idx = scene.joint_index(name);
+  if (idx < 0) {
+    std::string names;
+    for (const auto& jt : scene.joints) names += (names.empty() ? "" : ", ") + jt.name;
+    fail(r.child(key), json(name), "names no joint (joints: " + (names.empty() ? "none" : names) + ")");
+  }
+  return idx;
+}
+
+std::string joint_type_name(JointType t) {
+  switch (t) {
+    case JointType::revolute: return "revolute";
+    case JointType::translational: return "translational";
+    case JointType::ground: return "ground";
+    case JointType::lubricated_revolute: return "lubricated_revolute";
+  }
+  return "?";
+}
+
+// Constraint equations a joint adds to the kinematic analysis that assembles the initial
+// state, where every joint is ideal: a lubricated joint (a force element while running)
+// is closed there as a revolute at its initial eccentricity.
+int constraint_rows(const JointSpec& s) {
+  switch (s.type) {
+    case JointType::revolute: return 2;
+    case JointType::translational: return 2;
+    case JointType::ground: return 3;
+    case JointType::lubricated_revolute: return 2;
+  }
+  return 0;
+}
+
+BodySpec parse_body(const json& j, const std::string& path) {
+  ObjectReader r(j, path);
+  BodySpec b;
+  b.name = r.string("name");
+  if (b.name.empty()) fail(r.child("name"), j["name"], "must not be empty");
+  if (b.name == "ground") fail(r.child("name"), j["name"], "\"ground\" is reserved for the fixed frame");
+  b.mass_kg = r.number("mass_kg", positive, "must be > 0 kg");
+  b.inertia_kg_m2 = r.number("inertia_kg_m2", positive, "must be > 0 kg m^2");
+  b.position_m = r.vec2_or("position_m", {0.0, 0.0});
+  b.angle_rad = r.number_or("angle_rad", 0.0);
+  r.finish();
+  return b;
+}
+
+JointSpec parse_joint(const Scene& scene, const json& j, const std::string& path) {
+  ObjectReader r(j, path);
+  JointSpec s;
+  s.name = r.string("name");
+  if (s.name.empty()) fail(r.child("name"), j["name"], "must not be empty");
+  const std::string type =
+      r.choice("type", {"revolute", "translational", "ground", "lubricated_revolute"});
+  if (type == "revolute" || type == "translational") {
+    s.type = type == "revolute" ? JointType::revolute : JointType::translational;
+    s.body_i = resolve_body(scene, r, "body_i", true);
+    s.body_j = resolve_body(scene, r, "body_j", true);
+    if (s.body_i == s.body_j) fail(r.child("body_j"), j["body_j"], "must differ from body_i");
+    s.point_i_m = r.vec2_or("point_i_m", {0.0, 0.0});
+    s.point_j_m = r.vec2_or("point_j_m", {0.0, 0.0});
+    if (s.type == JointType::translational) {
+      const Eigen::Vector2d a = r.vec2("axis_i");
+      if (a.norm() < 1e-12) fail(r.child("axis_i"), j["axis_i"], "must be a non-zero direction");
+      s.axis_i = a.normalized();
+    }
+  } else if (type == "ground") {
+    s.type = JointType::ground;
+    s.body_i = kGround;
+    s.body_j = resolve_body(scene, r, "body", false);
+  } else {
+    s.type = JointType::lubricated_revolute;
+    s.body_i = resolve_body(scene, r, "bearing_body", true);
+    s.body_j = resolve_body(scene, r, "journal_body", true);
+    if (s.body_i == s.body_j)
+      fail(r.child("journal_body"), j["journal_body"], "must differ from bearing_body");
+    s.point_i_m = r.vec2_or("bearing_point_m", {0.0, 0.0});
+    s.point_j_m = r.vec2_or("journal_point_m", {0.0, 0.0});
+    s.bearing.bearing_radius_m = r.number("bearing_radius_m", positive, "must be > 0 m");
+    s.bearing.journal_radius_m = r.number("journal_radius_m", positive, "must be > 0 m");
+    if (s.bearing.journal_radius_m >= s.bearing.bearing_radius_m) {
+      std::ostringstream rule;
+      rule.precision(17);
+      rule << "must be < bearing_radius_m = " << s.bearing.bearing_radius_m
+           << " m (the radial clearance must be > 0)";
+      fail(r.child("journal_radius_m"), j["journal_radius_m"], rule.str());
+    }
+    s.bearing.length_m = r.number("length_m", positive, "must be > 0 m");
+    s.viscosity_Pa_s = r.number("viscosity_Pa_s", positive, "must be > 0 Pa s");
+    const std::string law = r.string("force_law");
+    if (law == "ideal") {
+      s.ideal = true;
+    } else if (!parse_force_law(law, s.law)) {
+      fail(r.child("force_law"), j["force_law"], "must be one of ideal, " + force_law_names());
+    }
+    // Options of finite_reynolds (accepted with any law, so that a sweep can vary force_law
+    // with them in the base scene; only finite_reynolds reads them).
+    FiniteBearingOptions& fo = s.finite;
+    if (r.has("cavitation")) {
+      const std::string cav = r.string("cavitation");
+      if (!parse_cavitation(cav, fo.cavitation))
+        fail(r.child("cavitation"), j["cavitation"], "must be one of " + cavitation_names());
+    }
+    fo.n_theta = static_cast<int>(r.integer_or("reynolds_n_theta", fo.n_theta, 8, 4096));
+    fo.n_z = static_cast<int>(r.integer_or("reynolds_n_z", fo.n_z, 1, 1024));
+    fo.groove_at_max_film = r.boolean_or("reynolds_groove_at_max_film", fo.groove_at_max_film);
+    s.initial_eccentricity_m = r.vec2_or("initial_eccentricity_m", {0.0, 0.0});
+  }
+  r.finish();
+  return s;
+}
+
+// effects.contact (lub/bearing/contact.hpp). Joints must already be parsed.
+ContactSpec parse_contact(const Scene& scene, const json& j) {
+  const std::string path = "effects.contact";
+  ObjectReader r(j, path);
+  ContactSpec c;
+  if (r.has("model")) {
+    const std::string m = r.choice("model", {"lankarani_nikravesh", "hunt_crossley"});
+    parse_contact_model(m, c.model);
+  }
+  const bool given_k = r.has("stiffness_N_per_m_n");
+  const bool given_mat = r.has("materials");
+  if (given_k == given_mat)
+    fail(path, j, "must give exactly one of \"stiffness_N_per_m_n\" or \"materials\"");
+  if (given_k) {
+    c.stiffness = r.number("stiffness_N_per_m_n", positive, "must be > 0 N/m^n");
+  } else {
+    ObjectReader mr(r.raw("materials"), path + ".materials");
+    const auto material = [&](const std::string& key) {
+      ObjectReader br(mr.raw(key), mr.child(key));
+      ContactMaterial m;
+      m.youngs_modulus_Pa = br.number("youngs_modulus_Pa", positive, "must be > 0 Pa");
+      m.poisson_ratio = br.number("poisson_ratio", [](double v) { return v >= 0.0 && v < 0.5; },
+                                  "must be in [0, 0.5)");
+      br.finish();
+      return m;
+    };
+    c.journal_material = material("journal");
+    c.bearing_material = material("bearing");
+    mr.finish();
+  }
+  c.exponent = r.number_or("exponent", c.exponent, [](double v) { return v >= 1.0 && v <= 3.0; },
+                           "must be in [1, 3]");
+  c.restitution = r.number("restitution", [](double v) { return v > 0.0 && v <= 1.0; },
+                           "must be in (0, 1]");
+  c.reference_impact_speed_m_s = r.number_or("reference_impact_speed_m_s", c.reference_impact_speed_m_s,
+                                             positive, "must be > 0 m/s");
+  const json& band = r.raw("handover_eps");
+  if (!band.is_array() || band.size() != 2 || !band[0].is_number() || !band[1].is_number())
+    fail(r.child("handover_eps"), band, "must be [eps_start, eps_end], two numbers");
+  c.handover_start_eps = band[0].get<double>();
+  c.handover_end_eps = band[1].get<double>();
+  if (!(c.handover_start_eps > 0.0 && c.handover_start_eps < c.handover_end_eps &&
+        c.handover_end_eps < 1.0))
+    fail(r.child("handover_eps"), band, "must satisfy 0 < eps_start < eps_end < 1");
+  if (const json* js = r.raw_optional("joints")) {
+    require_array(*js, r.child("joints"));
+    for (size_t i = 0; i < js->size(); ++i) {
+      const std::string jp = r.child("joints") + "[" + std::to_string(i) + "]";
+      if (!(*js)[i].is_string()) fail(jp, (*js)[i], "must be a joint name");
+      const std::string name = (*js)[i].get<std::string>();
+      const int k = scene.joint_index(name);
+      if (k < 0) fail(jp, (*js)[i], "names no joint");
+      const JointSpec& jt = scene.joints[k];
+      if (jt.type != JointType::lubricated_revolute || jt.ideal)
+        fail(jp, (*js)[i], "must name a lubricated_revolute joint with a film force law (not ideal)");
+      c.joints.push_back(k);
+    }
+    if (c.joints.empty()) fail(r.child("joints"), *js, "must name at least one joint (omit it for all)");
+  }
+  r.finish();
+  return c;
+}
+
+DriverSpec parse_driver(const Scene& scene, const json& j, const std::string& path) {
+  ObjectReader r(j, path);
+  DriverSpec d;
+  d.name = r.string("name");
+  if (d.name.empty()) fail(r.child("name"), j["name"], "must not be empty");
+  const std::string type = r.choice("type", {"constant_speed", "reversing"});
+  d.type = type == "constant_speed" ? DriverType::constant_speed : DriverType::reversing;
+  d.body = resolve_body(scene, r, "body", false);
+  d.speed_rad_s = r.number("speed_rpm") * 2.0 * kPi / 60.0;
+  if (d.type == DriverType::reversing) {
+    const double period = r.number("reversal_period_s", positive, "must be > 0 s");
+    d.reversal_frequency_rad_s = 2.0 * kPi / period;
+    if (!std::isfinite(d.reversal_frequency_rad_s))
+      fail(r.child("reversal_period_s"), j["reversal_period_s"], "must be > 0 s and 2π/period finite");
+  }
+  d.initial_angle_rad = r.number_optional("initial_angle_rad");
+  r.finish();
+  return d;
+}
+
+// Rules that involve several parts of the scene (each part is valid on its own).
+void check_whole_scene(const Scene& scene, const json& doc) {
+  // More constraint equations than coordinates: over-constrained (the kinematic analysis
+  // would refuse it as redundant; say so before any work, and in terms of the scene).
+  int rows = static_cast<int>(scene.drivers.size());
+  for (const JointSpec& s : scene.joints) rows += constraint_rows(s);
+  const int coords = 3 * static_cast<int>(scene.bodies.size());
+  if (rows > coords) {
+    std::ostringstream msg;
+    msg << "joints + drivers = " << rows << " constraint equations (" << scene.joints.size()
+        << " joints, " << scene.drivers.size() << " drivers): must be <= " << coords
+        << ", 3 per moving body: the mechanism is over-constrained (the initial state is assembled "
+           "with every joint ideal)";
+    throw InputError(msg.str());
+  }
+
+  const SimulationSpec& sim = scene.simulation;
+  const std::optional<double> period = scene.cycle_period_s();
+  if (period && !std::isfinite(*period))  // 2π/|ω| of a speed like 1e-320 rpm
+    fail("drivers[0].speed_rpm", doc.at("drivers").at(0).at("speed_rpm"),
+         "gives a cycle period 2π/|ω| that is not finite (give simulation.cycle_period_s or a larger speed)");
+  const double t_end = sim.duration_s ? *sim.duration_s : sim.max_cycles * period.value_or(0.0);
+  if (!std::isfinite(t_end)) {
+    std::ostringstream rule;
+    rule << "gives an end time max_cycles × cycle period = " << sim.max_cycles << " × " << *period
+         << " s that is not finite";
+    fail("simulation.max_cycles", json(sim.max_cycles), rule.str());
+  }
+  if (sim.stop_when_steady) {
+    // Steady means the last metric_cycles cycles each repeat the one before.
+    const json& value = doc.at("simulation").at("stop_when_steady");
+    if (!period)
+      fail("simulation.stop_when_steady", value,
+           "needs a cycle: simulation.cycle_period_s or a driver with non-zero speed");
+    const double cycles = sim.duration_s ? std::floor(*sim.duration_s / *period * (1 + 1e-12))
+                                         : static_cast<double>(sim.max_cycles);
+    if (cycles < sim.metric_cycles + 1) {
+      std::ostringstream rule;
+      rule << "can never stop: the run has " << cycles << " cycles, and steadiness needs at least "
+           << "simulation.metric_cycles + 1 = " << sim.metric_cycles + 1;
+      fail("simulation.stop_when_steady", value, rule.str());
+    }
+  }
+
+  // Series memory: refuse a run that would record more than kMaxSeriesValues numbers.
+  const OutputSpec& out = scene.output;
+  if (!out.channels.empty()) {
+    const double span = out.last_cycles > 0 && period ? std::min(t_end, (out.last_cycles + 1) * *period) : t_end;
+    const double values = (span / out.sample_interval_s + 1.0) * static_cast<double>(out.channels.size() + 1);
+    constexpr double kMaxSeriesValues = 1e8;
+    if (values > kMaxSeriesValues) {
+      std::ostringstream rule;
+      rule << "would record " << values << " values (" << out.channels.size() + 1 << " series over "
+           << span << " s): must be <= " << kMaxSeriesValues
+           << " (raise sample_interval_s, or keep fewer channels or cycles)";
+      fail("outputs.sample_interval_s", json(out.sample_interval_s), rule.str());
+    }
+  }
+}
+
+}  // namespace
+
+const std::vector<std::string>& method_names() {
+  static const std::vector<std::string> names = {"cvode_adams", "cvode_bdf", "arkode_erk", "arkode_dirk",
+                                                     "ida"};
+  return names;
+}
+
+std::string to_string(Method m) { return method_names()[static_cast<size_t>(m)]; }
+
+bool parse_method(const std::string& name, Method& m) {
+  const auto& names = method_names();
+  for (size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) {
+      m = static_cast<Method>(i);
+      return true;
+    }
+  return false;
+}
+
+int Scene::body_index(const std::string& name) const {
+  if (name == "ground") return kGround;
+  for (size_t i = 0; i < bodies.size(); ++i)
+    if (bodies[i].name == name) return static_cast<int>(i);
+  return -2;
+}
+
+int Scene::joint_index(const std::string& name) const {
+  for (size_t i = 0; i < joints.size(); ++i)
+    if (joints[i].name == name) return static_cast<int>(i);
+  return -2;
+}
+
+std::optional<double> Scene::min_clearance_m() const {
+  std::optional<double> c;
+  for (const auto& jt : joints)
+    if (jt.type == JointType::lubricated_revolute) {
+      const double cj = jt.bearing.clearance_m();
+      if (!c || cj < *c) c = cj;
+    }
+  return c;
+}
+
+std::optional<double> Scene::cycle_period_s() const {
+  if (simulation.cycle_period_s) return simulation.cycle_period_s;
+  if (drivers.empty()) return std::nullopt;
+  const DriverSpec& d = drivers.front();
+  if (d.type == DriverType::reversing) return 2.0 * kPi / d.reversal_frequency_rad_s;
+  if (d.speed_rad_s == 0.0) return std::nullopt;
+  return 2.0 * kPi / std::fabs(d.speed_rad_s);
+}
+
+const std::vector<std::string>& body_quantities() {
+  static const std::vector<std::string> q = {"x", "y", "angle", "vx", "vy", "omega",
+                                             "ax", "ay", "alpha"};
+  return q;
+}
+
+const std::vector<std::string>& joint_quantities() {
+  static const std::vector<std::string> q = {
+      "reaction", "reaction_x", "reaction_y", "e_x", "e_y", "eps", "eps_dot",
+      "gamma", "gamma_dot", "wedge", "h_min", "film_radial", "film_tangential"};
+  return q;
+}
+
+bool is_film_quantity(const std::string& quantity) {
+  return quantity != "reaction" && quantity != "reaction_x" && quantity != "reaction_y" &&
+         std::find(joint_quantities().begin(), joint_quantities().end(), quantity) !=
+             joint_quantities().end();
+}
+
+std::string channel_unit(ChannelSource source, const std::string& q) {
+  if (source == ChannelSource::time) return "s";
+  if (source == ChannelSource::body) {
+    if (q == "x" || q == "y") return "m";
+    if (q == "angle") return "rad";
+    if (q == "vx" || q == "vy") return "m/s";
+    if (q == "omega") return "rad/s";
+    if (q == "ax" || q == "ay") return "m/s^2";
+    if (q == "alpha") return "rad/s^2";
+  } else {
+    if (q == "reaction" || q == "reaction_x" || q == "reaction_y" || q == "film_radial" ||
+        q == "film_tangential")
+      return "N";
+    if (q == "e_x" || q == "e_y" || q == "h_min") return "m";
+    if (q == "eps") return "1";
+    if (q == "eps_dot") return "1/s";
+    if (q == "gamma") return "rad";
+    if (q == "gamma_dot" || q == "wedge") return "rad/s";
+  }
+  return "?";
+}
+
+Scene parse_scene(const json& doc) {
+  Scene scene;
+  ObjectReader top(doc, "");
+  if (const json* schema = top.raw_optional("$schema"); schema && !schema->is_string())
+    fail("$schema", *schema, "must be a string (the URI or path of configs/scene.schema.json, for editors)");
+  scene.description = top.string_or("description", "");
+
+  const json& bodies = require_array(top.raw("bodies"), "bodies");
+  if (bodies.empty()) fail("bodies", bodies, "must list at least one body");
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    const std::string path = "bodies[" + std::to_string(i) + "]";
+    BodySpec b = parse_body(bodies[i], path);
+    if (scene.body_index(b.name) != -2) fail(path + ".name", json(b.name), "must be unique");
+    scene.bodies.push_back(std::move(b));
+  }
+
+  const json& joints = require_array(top.raw("joints"), "joints");
+  for (size_t i = 0; i < joints.size(); ++i) {
+    const std::string path = "joints[" + std::to_string(i) + "]";
+    JointSpec s = parse_joint(scene, joints[i], path);
+    if (scene.joint_index(s.name) != -2) fail(path + ".name", json(s.name), "must be unique");
+    scene.joints.push_back(std::move(s));
+  }
+
+  if (const json* drivers = top.raw_optional("drivers")) {
+    require_array(*drivers, "drivers");
+    for (size_t i = 0; i < drivers->size(); ++i) {
+      const std::string path = "drivers[" + std::to_string(i) + "]";
+      DriverSpec d = parse_driver(scene, (*drivers)[i], path);
+      for (const DriverSpec& other : scene.drivers) {
+        if (other.name == d.name) fail(path + ".name", json(d.name), "must be unique");
+        if (other.body == d.body)
+          fail(path + ".body", json(scene.bodies[d.body].name),
+               "names a body another driver (\"" + other.name + "\") already drives: one driver per body");
+      }
+      for (const JointSpec& jt : scene.joints)
+        if (jt.type == JointType::ground && jt.body_j == d.body)
+          fail(path + ".body", json(scene.bodies[d.body].name),
+               "names a body that joint \"" + jt.name + "\" (type ground) fixes: a fixed body cannot be driven");
+      scene.drivers.push_back(std::move(d));
+    }
+  }
+
+  if (const json* effects = top.raw_optional("effects")) {
+    ObjectReader r(*effects, "effects");
+    if (r.has("gravity_m_s2")) scene.gravity_m_s2 = r.vec2("gravity_m_s2");
+    if (const json* contact = r.raw_optional("contact")) scene.contact = parse_contact(scene, *contact);
+    r.finish();
+  }
+
+  if (const json* solver = top.raw_optional("solver")) {
+    ObjectReader r(*solver, "solver");
+    SolverSpec& s = scene.solver;
+    parse_method(r.choice("method", method_names(), std::string("cvode_bdf")), s.method);
+    s.rtol = r.number_or("rtol", s.rtol, [](double v) { return v >= 1e-14 && v < 1.0; },
+                         "must be in [1e-14, 1)");
+    s.atol = r.number_optional("atol", positive, "must be > 0 (SI units of each state)");
+    s.max_step_s = r.number_or("max_step_s", 0.0, non_negative, "must be >= 0 s (0: no limit)");
+    s.initial_step_s =
+        r.number_or("initial_step_s", 0.0, non_negative, "must be >= 0 s (0: automatic)");
+    s.max_order = static_cast<int>(r.integer_or("max_order", 0, 0, 12));
+    s.baumgarte_alpha = r.number_or("baumgarte_alpha", 5.0, non_negative, "must be >= 0 1/s");
+    s.baumgarte_beta = r.number_or("baumgarte_beta", 5.0, non_negative, "must be >= 0 1/s");
+    s.max_steps = r.integer_or("max_steps", s.max_steps, 1, 1'000'000'000'000LL);
+    s.switching_events = r.choice("switching", {"events", "none"}, std::string("events")) == "events";
+    const bool ida = s.method == Method::ida;
+    const std::string form =
+        r.choice("formulation", {"baumgarte", "partitioned", "ggl"}, std::string(ida ? "ggl" : "partitioned"));
+    s.partitioned = form == "partitioned";
+    s.ggl = form == "ggl";
+    if (s.ggl && !ida)
+      fail("solver.formulation", json(form), "ggl is a DAE: it requires solver.method = ida");
+    if (ida && !s.ggl)
+      fail("solver.formulation", json(form),
+           "solver.method = ida integrates the GGL index-2 DAE: the formulation must be ggl (or absent)");
+    s.projection = r.boolean_or("projection", false);
+    // IDA: the structured iteration matrix by default (README "Integration", Jacobian).
+    s.structured_jacobian = ida;
+    if (const json* jac = r.raw_optional("jacobian")) {
+      const std::string name =
+          r.choice("jacobian", {"structured", "difference_quotients"}, std::string("difference_quotients"));
+      s.structured_jacobian = name == "structured";
+      if (s.method != Method::cvode_bdf && s.method != Method::arkode_dirk && !ida)
+        fail("solver.jacobian", *jac,
+             "applies only to the methods with a Newton iteration (cvode_bdf, arkode_dirk, ida)");
+      if (s.structured_jacobian && s.partitioned)
+        fail("solver.jacobian", *jac,
+             "structured requires solver.formulation = baumgarte (the partitioned formulation, the "
+             "default, uses difference quotients)");
+    }
+    if (s.projection && s.partitioned)
+      fail("solver.projection", json(true),
+           "does not apply to solver.formulation = partitioned, the default (no drift to project): "
+           "set solver.formulation = baumgarte to project");
+    if (s.projection && s.method != Method::cvode_bdf)
+      fail("solver.projection", json(true), "requires solver.method = cvode_bdf (CVODE projects only with BDF)");
+    s.max_wall_time_s = r.number_or("max_wall_time_s", s.max_wall_time_s, positive, "must be > 0 s");
+    r.finish();
+  }
+  if ((scene.solver.method == Method::cvode_bdf || scene.solver.method == Method::ida) &&
+      scene.solver.max_order > 5)
+    fail("solver.max_order", json(scene.solver.max_order),
+         "must be <= 5 for " + to_string(scene.solver.method) + " (BDF orders 1 to 5)");
+
+  if (const json* sim = top.raw_optional("simulation")) {
+    ObjectReader r(*sim, "simulation");
+    SimulationSpec& s = scene.simulation;
+    s.duration_s = r.number_optional("duration_s", positive, "must be > 0 s");
+    s.max_cycles = static_cast<int>(r.integer_or("max_cycles", s.max_cycles, 1, 1'000'000));
+    s.cycle_period_s = r.number_optional("cycle_period_s", positive, "must be > 0 s");
+    s.stop_when_steady = r.boolean_or("stop_when_steady", s.stop_when_steady);
+    s.steady_tolerance = r.number_or("steady_tolerance", s.steady_tolerance, positive, "must be > 0");
+    const bool metric_cycles_given = r.has("metric_cycles");
+    s.metric_cycles = static_cast<int>(r.integer_or("metric_cycles", s.metric_cycles, 1, 1'000'000));
+    s.eps_limit = r.number_or("eps_limit", s.eps_limit,
+                              [](double v) { return v > 0.0 && v < 1.0; }, "must be in (0, 1)");
+    s.drift_limit_m = r.number_optional("drift_limit_m", positive, "must be > 0 m");
+    r.finish();
+    if (s.duration_s && r.has("max_cycles"))
+      fail("simulation.max_cycles", (*sim)["max_cycles"],
+           "must not be given together with simulation.duration_s (the run ends at duration_s)");
+    if (!metric_cycles_given) s.metric_cycles = std::min(s.metric_cycles, s.max_cycles);
+    if (!s.duration_s && s.metric_cycles > s.max_cycles)
+      fail("simulation.metric_cycles", json(s.metric_cycles),
+           "must be <= simulation.max_cycles = " + std::to_string(s.max_cycles));
+  }
+
+  if (const json* out = top.raw_optional("outputs")) {
+    ObjectReader r(*out, "outputs");
+    OutputSpec& o = scene.output;
+    o.sample_interval_s = r.number_or("sample_interval_s", o.sample_interval_s, positive, "must be > 0 s");
+    o.energy_balance = r.boolean_or("energy_balance", false);
+    o.last_cycles = static_cast<int>(r.integer_or("last_cycles", 0, 0, 1'000'000));
+    if (const json* chans = r.raw_optional("channels")) {
+      require_array(*chans, "outputs.channels");
+      for (size_t i = 0; i < chans->size(); ++i) {
+        const std::string path = "outputs.channels[" + std::to_string(i) + "]";
+        ObjectReader cr((*chans)[i], path);
+        ChannelSpec c;
+        c.name = cr.string("name");
+        if (c.name.empty() || c.name == "t" || c.name.find('/') != std::string::npos)
+          fail(cr.child("name"), json(c.name), "must be a non-empty name without '/', other than \"t\"");
+        for (const auto& other : o.channels)
+          if (other.name == c.name) fail(cr.child("name"), json(c.name), "must be unique");
+        const bool by_body = cr.has("body"), by_joint = cr.has("joint");
+        if (by_body == by_joint) fail(path, (*chans)[i], "must name exactly one of \"body\" or \"joint\"");
+        if (by_body) {
+          c.source = ChannelSource::body;
+          c.index = resolve_body(scene, cr, "body", false);
+          c.quantity = cr.choice("quantity", body_quantities());
+        } else {
+          c.source = ChannelSource::joint;
+          c.index = resolve_joint(scene, cr, "joint");
+          c.quantity = cr.choice("quantity", joint_quantities());
+          const JointSpec& jt = scene.joints[static_cast<size_t>(c.index)];
+          if (is_film_quantity(c.quantity) && jt.type != JointType::lubricated_revolute)
+            fail(cr.child("quantity"), json(c.quantity),
+                 "is a film quantity, but joint \"" + jt.name + "\" is " + joint_type_name(jt.type) +
+                     ", not lubricated_revolute (its quantities: reaction, reaction_x, reaction_y)");
+        }
+        cr.finish();
+        o.channels.push_back(std::move(c));
+      }
+    }
+    r.finish();
+  }
+
+  if (const json* met = top.raw_optional("metrics")) {
+    ObjectReader r(*met, "metrics");
+    if (r.has("joint")) scene.metrics.joint = resolve_joint(scene, r, "joint");
+    if (r.has("body")) scene.metrics.body = resolve_body(scene, r, "body", false);
+    r.finish();
+  }
+  top.finish();
+
+  // Whole-scene rules.
+  for (size_t i = 0; i < scene.joints.size(); ++i) {
+    const JointSpec& s = scene.joints[i];
+    if (s.type != JointType::lubricated_revolute) continue;
+    const double c = s.bearing.clearance_m();
+    if (s.initial_eccentricity_m.norm() >= scene.simulation.eps_limit * c) {
+      std::ostringstream rule;
+      rule << "|initial_eccentricity_m| must be < simulation.eps_limit × clearance = "
+           << scene.simulation.eps_limit * c << " m";
+      fail("joints[" + std::to_string(i) + "].initial_eccentricity_m",
+           json::array({s.initial_eccentricity_m.x(), s.initial_eccentricity_m.y()}), rule.str());
+    }
+  }
+  if (!scene.simulation.duration_s && !scene.cycle_period_s())
+    fail("simulation", doc.value("simulation", json::object()),
+         "needs duration_s, or cycle_period_s, or a driver with non-zero speed to define a cycle");
+  check_whole_scene(scene, doc);
+  return scene;
+}
+
+namespace {
+
+// Refuses a key that appears twice in one object (nlohmann-json would silently keep the
+// last one: `"mass_kg": 1, "mass_kg": -1` must not pass as a typo would not). Tracks the
+// path of the current value while the parser reports its events.
+class DuplicateKeyCheck {
+ public:
+  explicit DuplicateKeyCheck(std::string origin) : origin_(std::move(origin)) {}
+  bool operator()(json::parse_event_t event, const json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+      case json::parse_event_t::array_start:
+        frames_.push_back({event == json::parse_event_t::array_start, 0, {}, {}});
+        break;
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        frames_.pop_back();
+        element_done();
+        break;
+      case json::parse_event_t::key: {
+        Frame& f = frames_.back();  // an object; the event's value is the key
+        f.key = parsed.get<std::string>();
+        if (!f.keys.insert(f.key).second)
+          throw InputError(origin_ + ": " + path() + ": duplicate key (a key may appear only once in an object)");
+        break;
+      }
+      case json::parse_event_t::value:
+        element_done();
+        break;
+    }
+    return true;
+  }
+
+ private:
+  struct Frame {
+    bool array = false;
+    size_t index = 0;
+    std::string key;
+    std::set<std::string> keys;
+  };
+  void element_done() {
+    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
+  }
+  std::string path() const {
+    std::string p;
+    for (const Frame& f : frames_) {
+      if (f.array)
+        p += "[" + std::to_string(f.index) + "]";
+      else
+        p += (p.empty() ? "" : ".") + f.key;
+    }
+    return p;
+  }
+  std::string origin_;
+  std::vector<Frame> frames_;
+};
+
+}  // namespace
+
+json parse_json_text(const std::string& text, const std::string& origin) {
+  DuplicateKeyCheck check(origin);
+  const json::parser_callback_t cb = [&check](int /*depth*/, json::parse_event_t event, json& parsed) {
+    return check(event, parsed);
+  };
+  try {
+    return json::parse(text, cb);
+  } catch (const json::parse_error& e) {
+    throw InputError(origin + ": not valid JSON: " + e.what());
+  } catch (const json::exception& e) {  // e.g. out_of_range.406: a number overflows a double
+    throw InputError(origin + ": not valid JSON for a scene: " + e.what());
+  }
+}
+
+json read_json_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open the file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in.good() && !in.eof()) throw InputError(path + ": cannot read the file");
+  return parse_json_text(text.str(), path);
+}
+
+void apply_override(json& doc, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError("--set " + assignment + ": must be POINTER=VALUE, e.g. /joints/3/viscosity_Pa_s=0.1");
+  const std::string ptr_text = assignment.substr(0, eq);
+  const std::string value_text = assignment.substr(eq + 1);
+  json::json_pointer ptr;
+  try {
+    ptr = json::json_pointer(ptr_text);
+  } catch (const json::exception& e) {
+    throw InputError("--set " + assignment + ": " + ptr_text + " is not a JSON Pointer (RFC 6901): " + e.what());
+  }
+  if (ptr.empty()) throw InputError("--set " + assignment + ": the pointer must not be empty");
+  json value;
+  try {
+    value = json::parse(value_text);
+  } catch (const json::parse_error&) {
+    value = value_text;  // a bare word is a string
+  } catch (const json::exception& e) {
+    throw InputError("--set " + assignment + ": " + value_text + " is not a usable JSON value: " + e.what());
+  }
+  try {
+    if (!doc.contains(ptr)) {
+      const json::json_pointer parent = ptr.parent_pointer();
+      if (!doc.contains(parent) || !doc.at(parent).is_object())
+        throw InputError("--set " + assignment + ": " + ptr_text +
+                         " names no value of the scene, and its parent is not an object");
+    }
+    doc[ptr] = value;
+  } catch (const json::exception& e) {  // e.g. "/joints//x": an empty token on an array
+    throw InputError("--set " + assignment + ": " + ptr_text + " names no value of the scene: " + e.what());
+  }
+}
+
+}  // namespace lub
