@@ -5,26 +5,6 @@
 
 namespace lub {
 
-std::string_view to_string(ContactModel m) {
-  switch (m) {
-    case ContactModel::lankarani_nikravesh: return "lankarani_nikravesh";
-    case ContactModel::hunt_crossley: return "hunt_crossley";
-  }
-  return "unknown";
-}
-
-bool parse_contact_model(std::string_view name, ContactModel& m) {
-  if (name == "lankarani_nikravesh") {
-    m = ContactModel::lankarani_nikravesh;
-    return true;
-  }
-  if (name == "hunt_crossley") {
-    m = ContactModel::hunt_crossley;
-    return true;
-  }
-  return false;
-}
-
 double conformal_cylinder_stiffness(double journal_radius_m, double bearing_radius_m,
                                     const ContactMaterial& journal, const ContactMaterial& bearing) {
   const double sj = (1.0 - journal.poisson_ratio * journal.poisson_ratio) / journal.youngs_modulus_Pa;

@@ -18,22 +18,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-constexpr std::array<std::pair<ForceLaw, std::string_view>, 7> kNames{{
-    {ForceLaw::pinkus_sternlicht, "pinkus_sternlicht"},
-    {ForceLaw::frene_long, "frene_long"},
-    {ForceLaw::frene_short, "frene_short"},
-    {ForceLaw::gumbel_long, "gumbel_long"},
-    {ForceLaw::gumbel_short, "gumbel_short"},
-    {ForceLaw::pinkus_sternlicht_continuous, "pinkus_sternlicht_continuous"},
-    {ForceLaw::finite_reynolds, "finite_reynolds"},
-}};
-
-constexpr std::array<std::pair<Cavitation, std::string_view>, 3> kCavitationNames{{
-    {Cavitation::gumbel, "gumbel"},
-    {Cavitation::reynolds, "reynolds"},
-    {Cavitation::sommerfeld, "sommerfeld"},
-}};
-
 using detail::kTwoPi;
 
 // Long-bearing antiderivatives in ψ (see force_laws.hpp, "Laws beyond the paper").
@@ -63,61 +47,6 @@ inline void add_long_arc(const LongCoefficients& k, double pa, double pb, double
 }
 
 }  // namespace
-
-std::string_view to_string(Cavitation c) {
-  for (const auto& [v, name] : kCavitationNames)
-    if (v == c) return name;
-  return "unknown";
-}
-
-bool parse_cavitation(std::string_view name, Cavitation& c) {
-  for (const auto& [v, n] : kCavitationNames) {
-    if (n == name) {
-      c = v;
-      return true;
-    }
-  }
-  return false;
-}
-
-std::string cavitation_names() {
-  std::string out;
-  for (const auto& entry : kCavitationNames) {
-    if (!out.empty()) out += ", ";
-    out += entry.second;
-  }
-  return out;
-}
-
-namespace {
-
-}  // namespace
-
-std::string_view to_string(ForceLaw law) {
-  for (const auto& [l, name] : kNames) {
-    if (l == law) return name;
-  }
-  return "unknown";
-}
-
-bool parse_force_law(std::string_view name, ForceLaw& law) {
-  for (const auto& [l, n] : kNames) {
-    if (n == name) {
-      law = l;
-      return true;
-    }
-  }
-  return false;
-}
-
-std::string force_law_names() {
-  std::string out;
-  for (const auto& entry : kNames) {
-    if (!out.empty()) out += ", ";
-    out += entry.second;
-  }
-  return out;
-}
 
 double long_bearing_coefficient(const BearingGeometry& g, double viscosity_Pa_s) {
   const double c = g.clearance_m();

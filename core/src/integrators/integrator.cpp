@@ -1,3 +1,5 @@
+#include <stdexcept>
+
 #include "integrators/integrator_common.hpp"
 
 namespace lub {

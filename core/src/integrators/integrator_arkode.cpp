@@ -101,7 +101,7 @@ class ArkodeIntegrator final : public Integrator {
 
   const double* y() const override { return N_VGetArrayPointer(y_); }
 
-  void statistics(SolverStats& s) const override {
+  void statistics(IntegratorStats& s) const override {
     // Counters since the last (re)initialisation, plus those from before it.
     long v = 0, w = 0;
     ARKStepGetNumSteps(mem_, &v); s.steps = v;
@@ -132,7 +132,7 @@ class ArkodeIntegrator final : public Integrator {
   }
 
   void reinit(double t, const double* y) override {
-    SolverStats total;
+    IntegratorStats total;
     statistics(total);
     base_ = total;
     for (int i = 0; i < data_.n; ++i) NV_Ith_S(y_, i) = y[i];  // quadratures carry on
@@ -160,7 +160,7 @@ class ArkodeIntegrator final : public Integrator {
   bool implicit_;
   double t_stop_ = 0.0;
   double rtol_ = 0.0;
-  SolverStats base_;
+  IntegratorStats base_;
   CallbackData data_;
   SUNContext ctx_ = nullptr;
   N_Vector y_ = nullptr, atol_ = nullptr;

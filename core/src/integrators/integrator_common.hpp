@@ -103,7 +103,7 @@ inline void err_cb(int /*code*/, const char* module, const char* function, char*
 
 /// Adds the counters of `base` (those accumulated before the last restart: SUNDIALS
 /// resets its counters at every reinit) to `s`.
-inline void add_counters(SolverStats& s, const SolverStats& base) {
+inline void add_counters(IntegratorStats& s, const IntegratorStats& base) {
   s.steps += base.steps;
   s.rhs_evals += base.rhs_evals;
   s.err_test_fails += base.err_test_fails;

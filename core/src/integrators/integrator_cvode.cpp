@@ -120,13 +120,13 @@ class CvodeIntegrator final : public Integrator {
 
   const double* y() const override { return N_VGetArrayPointer(y_); }
 
-  void statistics(SolverStats& s) const override {
+  void statistics(IntegratorStats& s) const override {
     current(s);
     detail::add_counters(s, base_);
   }
 
   // Counters since the last (re)initialisation: CVodeReInit resets them.
-  void current(SolverStats& s) const {
+  void current(IntegratorStats& s) const {
     long v = 0;
     CVodeGetNumSteps(mem_, &v); s.steps = v;
     CVodeGetNumRhsEvals(mem_, &v); s.rhs_evals = v;
@@ -155,7 +155,7 @@ class CvodeIntegrator final : public Integrator {
   }
 
   void reinit(double t, const double* y) override {
-    SolverStats total;
+    IntegratorStats total;
     statistics(total);
     base_ = total;
     // The quadratures at t (a root inside the last step): before CVodeReInit forgets
@@ -185,7 +185,7 @@ class CvodeIntegrator final : public Integrator {
   Method method_;
   double t_stop_ = 0.0;
   double rtol_ = 0.0;
-  SolverStats base_;  // counters accumulated before the last reinit
+  IntegratorStats base_;  // counters accumulated before the last reinit
   CallbackData data_;
   SUNContext ctx_ = nullptr;
   N_Vector y_ = nullptr, atol_ = nullptr, q_ = nullptr;

@@ -147,7 +147,7 @@ class IdaIntegrator final : public Integrator {
 
   const double* y() const override { return N_VGetArrayPointer(Y_); }
 
-  void statistics(SolverStats& s) const override {
+  void statistics(IntegratorStats& s) const override {
     long v = 0;
     IDAGetNumSteps(mem_, &v); s.steps = v;
     IDAGetNumResEvals(mem_, &v); s.rhs_evals = v;
@@ -175,7 +175,7 @@ class IdaIntegrator final : public Integrator {
   }
 
   void reinit(double t, const double* y) override {
-    SolverStats total;
+    IntegratorStats total;
     statistics(total);
     base_ = total;
     if (q_) check(IDAGetQuadDky(mem_, t, 0, q_), "IDAGetQuadDky");
@@ -213,7 +213,7 @@ class IdaIntegrator final : public Integrator {
 
   double t_stop_ = 0.0;
   double rtol_ = 0.0;
-  SolverStats base_;  // counters accumulated before the last reinit
+  IntegratorStats base_;  // counters accumulated before the last reinit
   CallbackData data_;
   SUNContext ctx_ = nullptr;
   N_Vector Y_ = nullptr, Yp_ = nullptr, dky_ = nullptr, atol_ = nullptr, id_ = nullptr, q_ = nullptr;

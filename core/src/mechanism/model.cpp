@@ -305,7 +305,7 @@ Model build_model(const Scene& scene) {
                                 std::find(scene.contact->joints.begin(), scene.contact->joints.end(),
                                           jk) != scene.contact->joints.end()))
             f.contact = resolve_contact(*scene.contact, s.bearing);
-          f.switching = s.law == ForceLaw::pinkus_sternlicht && scene.solver.switching_events;
+          f.switching = s.law == ForceLaw::pinkus_sternlicht && scene.solver.switching == Switching::events;
           if (f.switching) ++m.n_switching;
           m.joint_film[k] = static_cast<int>(m.films.size());
           m.films.push_back(f);

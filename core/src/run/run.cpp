@@ -12,16 +12,6 @@
 
 namespace lub {
 
-std::string to_string(RunStatus s) {
-  switch (s) {
-    case RunStatus::ok: return "ok";
-    case RunStatus::film_collapse: return "film_collapse";
-    case RunStatus::solver_failure: return "solver_failure";
-    case RunStatus::budget_exceeded: return "budget_exceeded";
-  }
-  return "?";
-}
-
 namespace {
 
 constexpr double kTwoPi = 6.28318530717958647692;
@@ -40,39 +30,43 @@ double channel_value(const Scene& scene, const Model& m, const Workspace& ws, co
   if (c.source == ChannelSource::time) return p.t;
   if (c.source == ChannelSource::body) {
     const int o = 3 * c.index;
-    const std::string& qn = c.quantity;
-    if (qn == "x") return p.q[o];
-    if (qn == "y") return p.q[o + 1];
-    if (qn == "angle") return p.q[o + 2];
-    if (qn == "vx") return p.v[o];
-    if (qn == "vy") return p.v[o + 1];
-    if (qn == "omega") return p.v[o + 2];
-    if (qn == "ax") return p.a[o];
-    if (qn == "ay") return p.a[o + 1];
-    if (qn == "alpha") return p.a[o + 2];
+    switch (c.body_quantity) {
+      case BodyQuantity::x: return p.q[o];
+      case BodyQuantity::y: return p.q[o + 1];
+      case BodyQuantity::angle: return p.q[o + 2];
+      case BodyQuantity::vx: return p.v[o];
+      case BodyQuantity::vy: return p.v[o + 1];
+      case BodyQuantity::omega: return p.v[o + 2];
+      case BodyQuantity::ax: return p.a[o];
+      case BodyQuantity::ay: return p.a[o + 1];
+      case BodyQuantity::alpha: return p.a[o + 2];
+    }
     return 0.0;
   }
-  const std::string& qn = c.quantity;
-  if (qn == "reaction") return joint_force(m, ws, c.index).norm();
-  if (qn == "reaction_x") return joint_force(m, ws, c.index).x();
-  if (qn == "reaction_y") return joint_force(m, ws, c.index).y();
+  const JointQuantity qn = c.joint_quantity;
+  if (qn == JointQuantity::reaction) return joint_force(m, ws, c.index).norm();
+  if (qn == JointQuantity::reaction_x) return joint_force(m, ws, c.index).x();
+  if (qn == JointQuantity::reaction_y) return joint_force(m, ws, c.index).y();
   const int f = m.joint_film[c.index];
   const double clearance = scene.joints[c.index].bearing.clearance_m();
   if (f < 0) {  // a lubricated joint run as ideal: centred
-    if (qn == "h_min") return clearance;
+    if (qn == JointQuantity::h_min) return clearance;
     return 0.0;
   }
   const FilmKinematics& k = ws.films[f];
-  if (qn == "e_x") return k.e.x();
-  if (qn == "e_y") return k.e.y();
-  if (qn == "eps") return k.state.eps;
-  if (qn == "eps_dot") return k.state.eps_dot;
-  if (qn == "gamma") return k.gamma();
-  if (qn == "gamma_dot") return k.gamma_dot;
-  if (qn == "wedge") return k.state.wedge;
-  if (qn == "h_min") return clearance * (1.0 - k.state.eps);
-  if (qn == "film_radial") return k.force.radial_N;
-  if (qn == "film_tangential") return k.force.tangential_N;
+  switch (qn) {
+    case JointQuantity::e_x: return k.e.x();
+    case JointQuantity::e_y: return k.e.y();
+    case JointQuantity::eps: return k.state.eps;
+    case JointQuantity::eps_dot: return k.state.eps_dot;
+    case JointQuantity::gamma: return k.gamma();
+    case JointQuantity::gamma_dot: return k.gamma_dot;
+    case JointQuantity::wedge: return k.state.wedge;
+    case JointQuantity::h_min: return clearance * (1.0 - k.state.eps);
+    case JointQuantity::film_radial: return k.force.radial_N;
+    case JointQuantity::film_tangential: return k.force.tangential_N;
+    case JointQuantity::reaction: case JointQuantity::reaction_x: case JointQuantity::reaction_y: break;
+  }
   return 0.0;
 }
 
@@ -336,7 +330,7 @@ RunResult Runner::run() {
     res_.series.units.push_back("s");
     for (const auto& c : scene_.output.channels) {
       res_.series.names.push_back(c.name);
-      res_.series.units.push_back(channel_unit(c.source, c.quantity));
+      res_.series.units.push_back(channel_unit(c));
     }
     res_.series.data.resize(res_.series.names.size());
   }
@@ -374,16 +368,15 @@ RunResult Runner::run() {
   double t_stop = next_stop(t0_);
   is.t_stop = t_stop;
   is.projection = sol.projection;
-  const bool newton =
-      sol.method == Method::cvode_bdf || sol.method == Method::arkode_dirk || sol.method == Method::ida;
+  const bool newton = is_newton(sol.method);
   // A mechanism without a degree of freedom (every coordinate fixed by joints and drivers:
   // the ideal slider-crank) leaves partitioning nothing to integrate: it runs on the
   // baumgarte formulation, whose states are all the coordinates.
-  const bool partitioned = sol.partitioned && m_.nq > m_.nc;
-  const Formulation formulation = partitioned ? Formulation::partitioned
-                                  : sol.ggl   ? Formulation::ggl
-                                              : Formulation::baumgarte;
-  is.user_jacobian = newton && sol.structured_jacobian && !partitioned;
+  const Formulation formulation = sol.formulation == Formulation::partitioned && m_.nq <= m_.nc
+                                      ? Formulation::baumgarte
+                                      : sol.formulation;
+  const bool partitioned = formulation == Formulation::partitioned;
+  is.user_jacobian = newton && sol.jacobian == JacobianKind::structured && !partitioned;
   // Partitioned: the integrated coordinates are the mechanism's degrees of freedom (e.g. a
   // rod's angle and the slider's x), and the squeeze film's stiff mode lies almost along
   // one of them. Its Jacobian terms (∝ the journal's whirl rate and the rod's rate) change
@@ -397,11 +390,11 @@ RunResult Runner::run() {
   is.jacobian_every_step = partitioned;
   res_.stats.rtol = sol.rtol;
   res_.stats.atol = atol;
-  res_.stats.method = to_string(sol.method);
-  res_.stats.formulation = formulation == Formulation::partitioned ? "partitioned"
-                           : formulation == Formulation::ggl      ? "ggl"
-                                                                  : "baumgarte";
-  res_.stats.jacobian = !newton ? "none" : is.user_jacobian ? "structured" : "difference_quotients";
+  res_.stats.method = name_of(sol.method);
+  res_.stats.formulation = name_of(formulation);
+  res_.stats.jacobian = !newton ? std::string("none")
+                                : std::string(name_of(is.user_jacobian ? JacobianKind::structured
+                                                                       : JacobianKind::difference_quotients));
 
   const bool energy = scene_.output.energy_balance;
   MultibodySystem sys(m_, ws_, sim.eps_limit, energy, formulation);

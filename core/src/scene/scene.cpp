@@ -39,16 +39,6 @@ int resolve_joint(const Scene& scene, ObjectReader& r, const std::string& key) {
   return idx;
 }
 
-std::string joint_type_name(JointType t) {
-  switch (t) {
-    case JointType::revolute: return "revolute";
-    case JointType::translational: return "translational";
-    case JointType::ground: return "ground";
-    case JointType::lubricated_revolute: return "lubricated_revolute";
-  }
-  return "?";
-}
-
 // Constraint equations a joint adds to the kinematic analysis that assembles the initial
 // state, where every joint is ideal: a lubricated joint (a force element while running)
 // is closed there as a revolute at its initial eccentricity.
@@ -81,10 +71,8 @@ JointSpec parse_joint(const Scene& scene, const json& j, const std::string& path
   JointSpec s;
   s.name = r.string("name");
   if (s.name.empty()) fail(r.child("name"), j["name"], "must not be empty");
-  const std::string type =
-      r.choice("type", {"revolute", "translational", "ground", "lubricated_revolute"});
-  if (type == "revolute" || type == "translational") {
-    s.type = type == "revolute" ? JointType::revolute : JointType::translational;
+  s.type = r.choice_of<JointType>("type");
+  if (s.type == JointType::revolute || s.type == JointType::translational) {
     s.body_i = resolve_body(scene, r, "body_i", true);
     s.body_j = resolve_body(scene, r, "body_j", true);
     if (s.body_i == s.body_j) fail(r.child("body_j"), j["body_j"], "must differ from body_i");
@@ -95,12 +83,10 @@ JointSpec parse_joint(const Scene& scene, const json& j, const std::string& path
       if (a.norm() < 1e-12) fail(r.child("axis_i"), j["axis_i"], "must be a non-zero direction");
       s.axis_i = a.normalized();
     }
-  } else if (type == "ground") {
-    s.type = JointType::ground;
+  } else if (s.type == JointType::ground) {
     s.body_i = kGround;
     s.body_j = resolve_body(scene, r, "body", false);
   } else {
-    s.type = JointType::lubricated_revolute;
     s.body_i = resolve_body(scene, r, "bearing_body", true);
     s.body_j = resolve_body(scene, r, "journal_body", true);
     if (s.body_i == s.body_j)
@@ -121,17 +107,15 @@ JointSpec parse_joint(const Scene& scene, const json& j, const std::string& path
     const std::string law = r.string("force_law");
     if (law == "ideal") {
       s.ideal = true;
-    } else if (!parse_force_law(law, s.law)) {
-      fail(r.child("force_law"), j["force_law"], "must be one of ideal, " + force_law_names());
+    } else if (const auto parsed = parse_name<ForceLaw>(law)) {
+      s.law = *parsed;
+    } else {
+      fail(r.child("force_law"), j["force_law"], "must be one of ideal, " + names_list<ForceLaw>());
     }
     // Options of finite_reynolds (accepted with any law, so that a sweep can vary force_law
     // with them in the base scene; only finite_reynolds reads them).
     FiniteBearingOptions& fo = s.finite;
-    if (r.has("cavitation")) {
-      const std::string cav = r.string("cavitation");
-      if (!parse_cavitation(cav, fo.cavitation))
-        fail(r.child("cavitation"), j["cavitation"], "must be one of " + cavitation_names());
-    }
+    if (r.has("cavitation")) fo.cavitation = r.choice_of<Cavitation>("cavitation");
     fo.n_theta = static_cast<int>(r.integer_or("reynolds_n_theta", fo.n_theta, 8, 4096));
     fo.n_z = static_cast<int>(r.integer_or("reynolds_n_z", fo.n_z, 1, 1024));
     fo.groove_at_max_film = r.boolean_or("reynolds_groove_at_max_film", fo.groove_at_max_film);
@@ -146,10 +130,7 @@ ContactSpec parse_contact(const Scene& scene, const json& j) {
   const std::string path = "effects.contact";
   ObjectReader r(j, path);
   ContactSpec c;
-  if (r.has("model")) {
-    const std::string m = r.choice("model", {"lankarani_nikravesh", "hunt_crossley"});
-    parse_contact_model(m, c.model);
-  }
+  if (r.has("model")) c.model = r.choice_of<ContactModel>("model");
   const bool given_k = r.has("stiffness_N_per_m_n");
   const bool given_mat = r.has("materials");
   if (given_k == given_mat)
@@ -209,8 +190,7 @@ DriverSpec parse_driver(const Scene& scene, const json& j, const std::string& pa
   DriverSpec d;
   d.name = r.string("name");
   if (d.name.empty()) fail(r.child("name"), j["name"], "must not be empty");
-  const std::string type = r.choice("type", {"constant_speed", "reversing"});
-  d.type = type == "constant_speed" ? DriverType::constant_speed : DriverType::reversing;
+  d.type = r.choice_of<DriverType>("type");
   d.body = resolve_body(scene, r, "body", false);
   d.speed_rad_s = r.number("speed_rpm") * 2.0 * kPi / 60.0;
   if (d.type == DriverType::reversing) {
@@ -286,24 +266,6 @@ void check_whole_scene(const Scene& scene, const json& doc) {
 
 }  // namespace
 
-const std::vector<std::string>& method_names() {
-  static const std::vector<std::string> names = {"cvode_adams", "cvode_bdf", "arkode_erk", "arkode_dirk",
-                                                     "ida"};
-  return names;
-}
-
-std::string to_string(Method m) { return method_names()[static_cast<size_t>(m)]; }
-
-bool parse_method(const std::string& name, Method& m) {
-  const auto& names = method_names();
-  for (size_t i = 0; i < names.size(); ++i)
-    if (names[i] == name) {
-      m = static_cast<Method>(i);
-      return true;
-    }
-  return false;
-}
-
 int Scene::body_index(const std::string& name) const {
   if (name == "ground") return kGround;
   for (size_t i = 0; i < bodies.size(); ++i)
@@ -336,43 +298,34 @@ std::optional<double> Scene::cycle_period_s() const {
   return 2.0 * kPi / std::fabs(d.speed_rad_s);
 }
 
-const std::vector<std::string>& body_quantities() {
-  static const std::vector<std::string> q = {"x", "y", "angle", "vx", "vy", "omega",
-                                             "ax", "ay", "alpha"};
-  return q;
+bool is_film_quantity(JointQuantity q) {
+  return q != JointQuantity::reaction && q != JointQuantity::reaction_x && q != JointQuantity::reaction_y;
 }
 
-const std::vector<std::string>& joint_quantities() {
-  static const std::vector<std::string> q = {
-      "reaction", "reaction_x", "reaction_y", "e_x", "e_y", "eps", "eps_dot",
-      "gamma", "gamma_dot", "wedge", "h_min", "film_radial", "film_tangential"};
-  return q;
-}
-
-bool is_film_quantity(const std::string& quantity) {
-  return quantity != "reaction" && quantity != "reaction_x" && quantity != "reaction_y" &&
-         std::find(joint_quantities().begin(), joint_quantities().end(), quantity) !=
-             joint_quantities().end();
-}
-
-std::string channel_unit(ChannelSource source, const std::string& q) {
-  if (source == ChannelSource::time) return "s";
-  if (source == ChannelSource::body) {
-    if (q == "x" || q == "y") return "m";
-    if (q == "angle") return "rad";
-    if (q == "vx" || q == "vy") return "m/s";
-    if (q == "omega") return "rad/s";
-    if (q == "ax" || q == "ay") return "m/s^2";
-    if (q == "alpha") return "rad/s^2";
-  } else {
-    if (q == "reaction" || q == "reaction_x" || q == "reaction_y" || q == "film_radial" ||
-        q == "film_tangential")
-      return "N";
-    if (q == "e_x" || q == "e_y" || q == "h_min") return "m";
-    if (q == "eps") return "1";
-    if (q == "eps_dot") return "1/s";
-    if (q == "gamma") return "rad";
-    if (q == "gamma_dot" || q == "wedge") return "rad/s";
+std::string channel_unit(const ChannelSpec& c) {
+  switch (c.source) {
+    case ChannelSource::time: return "s";
+    case ChannelSource::body:
+      switch (c.body_quantity) {
+        case BodyQuantity::x: case BodyQuantity::y: return "m";
+        case BodyQuantity::angle: return "rad";
+        case BodyQuantity::vx: case BodyQuantity::vy: return "m/s";
+        case BodyQuantity::omega: return "rad/s";
+        case BodyQuantity::ax: case BodyQuantity::ay: return "m/s^2";
+        case BodyQuantity::alpha: return "rad/s^2";
+      }
+      break;
+    case ChannelSource::joint:
+      switch (c.joint_quantity) {
+        case JointQuantity::reaction: case JointQuantity::reaction_x: case JointQuantity::reaction_y:
+        case JointQuantity::film_radial: case JointQuantity::film_tangential: return "N";
+        case JointQuantity::e_x: case JointQuantity::e_y: case JointQuantity::h_min: return "m";
+        case JointQuantity::eps: return "1";
+        case JointQuantity::eps_dot: return "1/s";
+        case JointQuantity::gamma: return "rad";
+        case JointQuantity::gamma_dot: case JointQuantity::wedge: return "rad/s";
+      }
+      break;
   }
   return "?";
 }
@@ -430,7 +383,7 @@ Scene parse_scene(const json& doc) {
   if (const json* solver = top.raw_optional("solver")) {
     ObjectReader r(*solver, "solver");
     SolverSpec& s = scene.solver;
-    parse_method(r.choice("method", method_names(), std::string("cvode_bdf")), s.method);
+    s.method = r.choice_of<Method>("method", Method::cvode_bdf);
     s.rtol = r.number_or("rtol", s.rtol, [](double v) { return v >= 1e-14 && v < 1.0; },
                          "must be in [1e-14, 1)");
     s.atol = r.number_optional("atol", positive, "must be > 0 (SI units of each state)");
@@ -441,33 +394,30 @@ Scene parse_scene(const json& doc) {
     s.baumgarte_alpha = r.number_or("baumgarte_alpha", 5.0, non_negative, "must be >= 0 1/s");
     s.baumgarte_beta = r.number_or("baumgarte_beta", 5.0, non_negative, "must be >= 0 1/s");
     s.max_steps = r.integer_or("max_steps", s.max_steps, 1, 1'000'000'000'000LL);
-    s.switching_events = r.choice("switching", {"events", "none"}, std::string("events")) == "events";
+    s.switching = r.choice_of<Switching>("switching", Switching::events);
     const bool ida = s.method == Method::ida;
-    const std::string form =
-        r.choice("formulation", {"baumgarte", "partitioned", "ggl"}, std::string(ida ? "ggl" : "partitioned"));
-    s.partitioned = form == "partitioned";
-    s.ggl = form == "ggl";
-    if (s.ggl && !ida)
-      fail("solver.formulation", json(form), "ggl is a DAE: it requires solver.method = ida");
-    if (ida && !s.ggl)
-      fail("solver.formulation", json(form),
+    s.formulation = r.choice_of<Formulation>("formulation", ida ? Formulation::ggl : Formulation::partitioned);
+    const json form(std::string(name_of(s.formulation)));
+    const bool partitioned = s.formulation == Formulation::partitioned;
+    if (s.formulation == Formulation::ggl && !ida)
+      fail("solver.formulation", form, "ggl is a DAE: it requires solver.method = ida");
+    if (ida && s.formulation != Formulation::ggl)
+      fail("solver.formulation", form,
            "solver.method = ida integrates the GGL index-2 DAE: the formulation must be ggl (or absent)");
     s.projection = r.boolean_or("projection", false);
     // IDA: the structured iteration matrix by default (README "Integration", Jacobian).
-    s.structured_jacobian = ida;
+    s.jacobian = ida ? JacobianKind::structured : JacobianKind::difference_quotients;
     if (const json* jac = r.raw_optional("jacobian")) {
-      const std::string name =
-          r.choice("jacobian", {"structured", "difference_quotients"}, std::string("difference_quotients"));
-      s.structured_jacobian = name == "structured";
-      if (s.method != Method::cvode_bdf && s.method != Method::arkode_dirk && !ida)
+      s.jacobian = r.choice_of<JacobianKind>("jacobian");
+      if (!is_newton(s.method))
         fail("solver.jacobian", *jac,
              "applies only to the methods with a Newton iteration (cvode_bdf, arkode_dirk, ida)");
-      if (s.structured_jacobian && s.partitioned)
+      if (s.jacobian == JacobianKind::structured && partitioned)
         fail("solver.jacobian", *jac,
              "structured requires solver.formulation = baumgarte (the partitioned formulation, the "
              "default, uses difference quotients)");
     }
-    if (s.projection && s.partitioned)
+    if (s.projection && partitioned)
       fail("solver.projection", json(true),
            "does not apply to solver.formulation = partitioned, the default (no drift to project): "
            "set solver.formulation = baumgarte to project");
@@ -479,7 +429,7 @@ Scene parse_scene(const json& doc) {
   if ((scene.solver.method == Method::cvode_bdf || scene.solver.method == Method::ida) &&
       scene.solver.max_order > 5)
     fail("solver.max_order", json(scene.solver.max_order),
-         "must be <= 5 for " + to_string(scene.solver.method) + " (BDF orders 1 to 5)");
+         "must be <= 5 for " + std::string(name_of(scene.solver.method)) + " (BDF orders 1 to 5)");
 
   if (const json* sim = top.raw_optional("simulation")) {
     ObjectReader r(*sim, "simulation");
@@ -526,15 +476,15 @@ Scene parse_scene(const json& doc) {
         if (by_body) {
           c.source = ChannelSource::body;
           c.index = resolve_body(scene, cr, "body", false);
-          c.quantity = cr.choice("quantity", body_quantities());
+          c.body_quantity = cr.choice_of<BodyQuantity>("quantity");
         } else {
           c.source = ChannelSource::joint;
           c.index = resolve_joint(scene, cr, "joint");
-          c.quantity = cr.choice("quantity", joint_quantities());
+          c.joint_quantity = cr.choice_of<JointQuantity>("quantity");
           const JointSpec& jt = scene.joints[static_cast<size_t>(c.index)];
-          if (is_film_quantity(c.quantity) && jt.type != JointType::lubricated_revolute)
-            fail(cr.child("quantity"), json(c.quantity),
-                 "is a film quantity, but joint \"" + jt.name + "\" is " + joint_type_name(jt.type) +
+          if (is_film_quantity(c.joint_quantity) && jt.type != JointType::lubricated_revolute)
+            fail(cr.child("quantity"), json(std::string(name_of(c.joint_quantity))),
+                 "is a film quantity, but joint \"" + jt.name + "\" is " + std::string(name_of(jt.type)) +
                      ", not lubricated_revolute (its quantities: reaction, reaction_x, reaction_y)");
         }
         cr.finish();

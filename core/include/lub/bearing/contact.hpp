@@ -37,8 +37,14 @@
 namespace lub {
 
 enum class ContactModel { lankarani_nikravesh, hunt_crossley };
-std::string_view to_string(ContactModel m);
-bool parse_contact_model(std::string_view name, ContactModel& m);
+
+template <>
+struct NameTable<ContactModel> {
+  static constexpr std::array<std::pair<ContactModel, std::string_view>, 2> entries{{
+      {ContactModel::lankarani_nikravesh, "lankarani_nikravesh"},
+      {ContactModel::hunt_crossley, "hunt_crossley"},
+  }};
+};
 
 /// Elastic constants of one body's surface material.
 struct ContactMaterial {

@@ -24,8 +24,12 @@
 // Units: SI throughout.
 #pragma once
 
+#include <array>
 #include <string>
 #include <string_view>
+#include <utility>
+
+#include "lub/common/name_table.hpp"
 
 namespace lub {
 
@@ -265,20 +269,29 @@ struct FiniteBearingOptions {
   bool groove_at_max_film = false;
 };
 
-/// Scene name of a law ("pinkus_sternlicht", ...).
-std::string_view to_string(ForceLaw law);
-/// Parses a scene name (exact, case-sensitive); returns false for an unknown name and
-/// then leaves `law` unchanged.
-bool parse_force_law(std::string_view name, ForceLaw& law);
-/// All names, comma separated, for error messages.
-std::string force_law_names();
+/// Scene names of the laws (lub/common/name_table.hpp: name_of, parse_name, names_list).
+template <>
+struct NameTable<ForceLaw> {
+  static constexpr std::array<std::pair<ForceLaw, std::string_view>, 7> entries{{
+      {ForceLaw::pinkus_sternlicht, "pinkus_sternlicht"},
+      {ForceLaw::frene_long, "frene_long"},
+      {ForceLaw::frene_short, "frene_short"},
+      {ForceLaw::gumbel_long, "gumbel_long"},
+      {ForceLaw::gumbel_short, "gumbel_short"},
+      {ForceLaw::pinkus_sternlicht_continuous, "pinkus_sternlicht_continuous"},
+      {ForceLaw::finite_reynolds, "finite_reynolds"},
+  }};
+};
 
-/// Scene name of a cavitation condition ("gumbel", "reynolds", "sommerfeld").
-std::string_view to_string(Cavitation c);
-/// Parses a cavitation name (exact); returns false and leaves `c` unchanged if unknown.
-bool parse_cavitation(std::string_view name, Cavitation& c);
-/// All cavitation names, comma separated.
-std::string cavitation_names();
+/// Scene names of the cavitation conditions.
+template <>
+struct NameTable<Cavitation> {
+  static constexpr std::array<std::pair<Cavitation, std::string_view>, 3> entries{{
+      {Cavitation::gumbel, "gumbel"},
+      {Cavitation::reynolds, "reynolds"},
+      {Cavitation::sommerfeld, "sommerfeld"},
+  }};
+};
 
 class FiniteBearingSolver;  // lub/bearing/reynolds.hpp
 

@@ -19,12 +19,11 @@
 #include <utility>
 #include <vector>
 
+#include "lub/formulation/options.hpp"
 #include "lub/integrators/integrator.hpp"
 #include "lub/mechanism/model.hpp"
 
 namespace lub {
-
-enum class Formulation { baumgarte, partitioned, ggl };
 
 /// Preallocated scratch of the structured Jacobian (MultibodySystem::jacobian).
 struct JacobianScratch {

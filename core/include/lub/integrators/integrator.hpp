@@ -7,8 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "lub/run/run.hpp"
-#include "lub/scene/scene.hpp"
+#include "lub/integrators/method.hpp"
 
 namespace lub {
 
@@ -51,6 +50,20 @@ class OdeSystem {
   }
 };
 
+/// What an integrator counted (over all its restarts): the counters of a run's
+/// SolverStats (lub/run/run.hpp), which adds what the model and the run loop counted.
+struct IntegratorStats {
+  long long steps = 0;
+  long long rhs_evals = 0;          ///< right-hand-side evaluations by the integrator
+  long long jac_evals = 0;          ///< Jacobian evaluations (BDF with dense Newton)
+  long long rhs_evals_jac = 0;      ///< right-hand sides spent on difference-quotient Jacobians
+  long long lin_setups = 0;
+  long long err_test_fails = 0;
+  long long nonlin_iters = 0;
+  long long nonlin_conv_fails = 0;
+  long long root_evals = 0;
+};
+
 struct IntegratorSettings {
   Method method = Method::cvode_bdf;
   double rtol = 1e-6;
@@ -86,7 +99,7 @@ class Integrator {
   /// The solution at the current time.
   virtual const double* y() const = 0;
   /// Fills the integrator's counters (steps, evaluations, failures) into `s`.
-  virtual void statistics(SolverStats& s) const = 0;
+  virtual void statistics(IntegratorStats& s) const = 0;
   /// SUNDIALS' message after a failure.
   virtual std::string error_message() const = 0;
   /// Which root functions fired at the last StepOutcome::root (±1 by direction, or 0).

@@ -15,6 +15,8 @@
 
 #include <Eigen/Core>
 
+#include "lub/common/name_table.hpp"
+
 namespace lub {
 
 /// Bad user input: the message names the field, the value and the rule. Programs map it
@@ -50,6 +52,13 @@ class ObjectReader {
   /// A string that must be one of `choices`.
   std::string choice(const std::string& key, const std::vector<std::string>& choices,
                      const std::optional<std::string>& fallback = std::nullopt);
+  /// A string that must name an enumerator of E (its NameTable); `fallback` if absent.
+  template <class E>
+  E choice_of(const std::string& key, std::optional<E> fallback = std::nullopt) {
+    std::optional<std::string> fb;
+    if (fallback) fb = std::string(name_of(*fallback));
+    return *parse_name<E>(choice(key, names_of<E>(), fb));
+  }
   bool boolean_or(const std::string& key, bool fallback);
 
   /// A finite number; `rule` checks it (nullptr: any finite number) and `rule_text` says

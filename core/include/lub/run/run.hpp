@@ -3,9 +3,13 @@
 // stop a sweep. Only bad input throws (InputError), before any work.
 #pragma once
 
+#include <array>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
+#include "lub/integrators/integrator.hpp"
 #include "lub/scene/scene.hpp"
 
 namespace lub {
@@ -16,20 +20,20 @@ enum class RunStatus {
   solver_failure,   ///< SUNDIALS gave up (its message is in RunResult::message)
   budget_exceeded,  ///< solver.max_steps or solver.max_wall_time_s reached
 };
-std::string to_string(RunStatus s);
+template <>
+struct NameTable<RunStatus> {
+  static constexpr std::array<std::pair<RunStatus, std::string_view>, 4> entries{{
+      {RunStatus::ok, "ok"},
+      {RunStatus::film_collapse, "film_collapse"},
+      {RunStatus::solver_failure, "solver_failure"},
+      {RunStatus::budget_exceeded, "budget_exceeded"},
+  }};
+};
+inline std::string to_string(RunStatus s) { return std::string(name_of(s)); }
 
-/// What the integrator did and what it cost.
-struct SolverStats {
-  long long steps = 0;
-  long long rhs_evals = 0;          ///< right-hand-side evaluations by the integrator
-  long long jac_evals = 0;          ///< Jacobian evaluations (BDF with dense Newton)
-  long long rhs_evals_jac = 0;      ///< right-hand sides spent on difference-quotient Jacobians
+/// What the integrator did and what it cost: the integrator's counters and the run's.
+struct SolverStats : IntegratorStats {
   long long film_law_evals_jac = 0; ///< force-law calls spent on structured Jacobians
-  long long lin_setups = 0;
-  long long err_test_fails = 0;
-  long long nonlin_iters = 0;
-  long long nonlin_conv_fails = 0;
-  long long root_evals = 0;
   long long observer_evals = 0;     ///< extra evaluations for metrics and series
   long long repartitions = 0;       ///< new choices of independent coordinates (partitioned)
   long long mode_switches = 0;      ///< switches of a discontinuous law (ε̇ = 0 crossings, sliding)

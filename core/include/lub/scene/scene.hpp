@@ -4,14 +4,20 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "lub/bearing/contact.hpp"
 #include "lub/bearing/force_laws.hpp"
+#include "lub/common/name_table.hpp"
+#include "lub/formulation/options.hpp"
+#include "lub/integrators/method.hpp"
 #include "lub/io/json_reader.hpp"
 
 namespace lub {
@@ -28,6 +34,16 @@ struct BodySpec {
 };
 
 enum class JointType { revolute, translational, ground, lubricated_revolute };
+
+template <>
+struct NameTable<JointType> {
+  static constexpr std::array<std::pair<JointType, std::string_view>, 4> entries{{
+      {JointType::revolute, "revolute"},
+      {JointType::translational, "translational"},
+      {JointType::ground, "ground"},
+      {JointType::lubricated_revolute, "lubricated_revolute"},
+  }};
+};
 
 struct JointSpec {
   std::string name;
@@ -48,6 +64,14 @@ struct JointSpec {
 
 enum class DriverType { constant_speed, reversing };
 
+template <>
+struct NameTable<DriverType> {
+  static constexpr std::array<std::pair<DriverType, std::string_view>, 2> entries{{
+      {DriverType::constant_speed, "constant_speed"},
+      {DriverType::reversing, "reversing"},
+  }};
+};
+
 /// Prescribes a body's angle: φ(t) = φ0 + ω t (constant_speed), or
 /// φ(t) = φ0 + (ω/Ω) sin(Ω t) (reversing: speed ω cos Ω t changes sign).
 struct DriverSpec {
@@ -58,16 +82,6 @@ struct DriverSpec {
   double reversal_frequency_rad_s = 0.0;    ///< Ω (reversing only)
   std::optional<double> initial_angle_rad;  ///< φ0; default: the body's initial angle
 };
-
-/// Integration methods: CVODE Adams–Moulton (fixed-point corrector: the paper's variable
-/// step and order predictor–corrector), CVODE BDF (Newton, dense), ARKODE explicit
-/// Dormand–Prince 5(4), ARKODE implicit L-stable SDIRK 4 (Newton, dense), IDAS variable-
-/// order BDF on the stabilised index-2 (GGL) DAE (Newton, dense).
-enum class Method { cvode_adams, cvode_bdf, arkode_erk, arkode_dirk, ida };
-/// Scene names of all methods, comma separated.
-const std::vector<std::string>& method_names();
-bool parse_method(const std::string& name, Method& m);
-std::string to_string(Method m);
 
 struct SolverSpec {
   Method method = Method::cvode_bdf;
@@ -82,18 +96,17 @@ struct SolverSpec {
   /// crossing of ε̇ = 0 by root finding, restarts the integrator on the branch that
   /// applies and integrates Filippov sliding motion on ε̇ = 0; `none` lets the
   /// integrator step across the jump (it chatters: kept to show the difference).
-  bool switching_events = true;
+  Switching switching = Switching::events;
   /// Project positions and velocities onto Φ = 0, Φ̇ = 0 after every step (CVODE's
   /// projection, cvode_bdf only), on top of Baumgarte: constraint drift at round-off.
   bool projection = false;
-  /// solver.formulation: "partitioned" (the default: generalised coordinate partitioning;
+  /// solver.formulation: partitioned (the default: generalised coordinate partitioning;
   /// only the mechanism's degrees of freedom are integrated, dependent coordinates solved
   /// from Φ = 0; no drift, so long runs hold) or "baumgarte" (all coordinates, Baumgarte's
   /// terms: the paper's method; its drift ends long runs at simulation.drift_limit_m) or
   /// "ggl" (Gear–Gupta–Leimkuhler index-2 DAE in (q, v, λ, μ), method ida only, its default).
-  bool partitioned = true;
-  bool ggl = false;
-  /// solver.jacobian (Newton methods: cvode_bdf, arkode_dirk, ida): "structured" (the
+  Formulation formulation = Formulation::partitioned;
+  /// solver.jacobian (Newton methods: cvode_bdf, arkode_dirk, ida): structured (the
   /// baumgarte formulation's Jacobian, or the GGL DAE's iteration matrix, from the film
   /// elements' derivatives and the constraint structure, multibody_jacobian.cpp) or
   /// "difference_quotients" (SUNDIALS' dense DQ: 2 nq full evaluations per Jacobian, 2 nq
@@ -101,7 +114,7 @@ struct SolverSpec {
   /// quotients (2 dof columns). Default: structured for ida (2–5× faster), difference
   /// quotients otherwise (structured saves the Jacobians' right-hand sides but no clear
   /// wall time; README "Integration").
-  bool structured_jacobian = false;
+  JacobianKind jacobian = JacobianKind::difference_quotients;
   long long max_steps = 20'000'000;  ///< budget: internal steps for the whole run
   double max_wall_time_s = 600.0;    ///< budget: wall time for the whole run
 };
@@ -128,11 +141,57 @@ struct SimulationSpec {
 
 enum class ChannelSource { time, body, joint };
 
+/// What a body channel records: position x, y [m], angle [rad], velocities vx, vy [m/s],
+/// omega [rad/s], accelerations ax, ay [m/s²], alpha [rad/s²] of its centre of mass.
+enum class BodyQuantity { x, y, angle, vx, vy, omega, ax, ay, alpha };
+
+template <>
+struct NameTable<BodyQuantity> {
+  static constexpr std::array<std::pair<BodyQuantity, std::string_view>, 9> entries{{
+      {BodyQuantity::x, "x"},
+      {BodyQuantity::y, "y"},
+      {BodyQuantity::angle, "angle"},
+      {BodyQuantity::vx, "vx"},
+      {BodyQuantity::vy, "vy"},
+      {BodyQuantity::omega, "omega"},
+      {BodyQuantity::ax, "ax"},
+      {BodyQuantity::ay, "ay"},
+      {BodyQuantity::alpha, "alpha"},
+  }};
+};
+
+/// What a joint channel records: the force it transmits (reaction, reaction_x, reaction_y)
+/// or, lubricated joints only, the film (is_film_quantity).
+enum class JointQuantity {
+  reaction, reaction_x, reaction_y, e_x, e_y, eps, eps_dot, gamma, gamma_dot, wedge, h_min,
+  film_radial, film_tangential,
+};
+
+template <>
+struct NameTable<JointQuantity> {
+  static constexpr std::array<std::pair<JointQuantity, std::string_view>, 13> entries{{
+      {JointQuantity::reaction, "reaction"},
+      {JointQuantity::reaction_x, "reaction_x"},
+      {JointQuantity::reaction_y, "reaction_y"},
+      {JointQuantity::e_x, "e_x"},
+      {JointQuantity::e_y, "e_y"},
+      {JointQuantity::eps, "eps"},
+      {JointQuantity::eps_dot, "eps_dot"},
+      {JointQuantity::gamma, "gamma"},
+      {JointQuantity::gamma_dot, "gamma_dot"},
+      {JointQuantity::wedge, "wedge"},
+      {JointQuantity::h_min, "h_min"},
+      {JointQuantity::film_radial, "film_radial"},
+      {JointQuantity::film_tangential, "film_tangential"},
+  }};
+};
+
 struct ChannelSpec {
   std::string name;
   ChannelSource source = ChannelSource::time;
-  int index = -1;        ///< body or joint index
-  std::string quantity;  ///< see channel_quantities()
+  int index = -1;  ///< body or joint index
+  BodyQuantity body_quantity = BodyQuantity::x;             ///< source body
+  JointQuantity joint_quantity = JointQuantity::reaction;   ///< source joint
 };
 
 struct OutputSpec {
@@ -181,12 +240,9 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& origi
 /// JSON. The pointer must name an existing value or a new key of an existing object.
 void apply_override(nlohmann::json& doc, const std::string& assignment);
 
-/// Names of the body and joint channel quantities (for docs and errors).
-const std::vector<std::string>& body_quantities();
-const std::vector<std::string>& joint_quantities();
 /// True for the joint quantities only a lubricated joint has (e_x, eps, h_min, ...).
-bool is_film_quantity(const std::string& quantity);
-/// SI unit of a channel quantity ("m", "rad", "N", "1", ...).
-std::string channel_unit(ChannelSource source, const std::string& quantity);
+bool is_film_quantity(JointQuantity q);
+/// SI unit of a channel ("s", "m", "rad", "N", "1", ...).
+std::string channel_unit(const ChannelSpec& c);
 
 }  // namespace lub
