@@ -14,6 +14,7 @@ namespace lub {
 MultibodySystem::MultibodySystem(const Model& m, Workspace& ws, double eps_limit, bool energy, Formulation f)
     : m_(m), ws_(ws), eps_limit_(eps_limit), energy_(energy), form_(f),
       nz_(f == Formulation::partitioned ? m.nq - m.nc : m.nq) {
+  check_workspace(m, ws);
   acc_.assign(m.nq, 0.0);
   scratch_.assign(2 * m.nq, 0.0);
   int next_slot = m.nc;

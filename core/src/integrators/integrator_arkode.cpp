@@ -19,6 +19,10 @@ namespace {
 
 using detail::CallbackData;
 
+struct FreeArkStep {
+  void operator()(void* mem) const { ARKStepFree(&mem); }
+};
+
 class ArkodeIntegrator final : public Integrator {
  public:
   ArkodeIntegrator(const IntegratorSettings& s, OdeSystem& sys, double t0, const std::vector<double>& y0)
@@ -26,7 +30,7 @@ class ArkodeIntegrator final : public Integrator {
     data_.sys = &sys;
     data_.n = sys.size();
     data_.nquad = sys.num_quadratures();
-    if (SUNContext_Create(nullptr, &ctx_) != 0) throw std::runtime_error("SUNContext_Create failed");
+    ctx_ = detail::new_context();
     const sunindextype n = data_.n + data_.nquad;
     y_ = N_VNew_Serial(n, ctx_);
     atol_ = N_VNew_Serial(n, ctx_);
@@ -65,15 +69,6 @@ class ArkodeIntegrator final : public Integrator {
     }
   }
 
-  ~ArkodeIntegrator() override {
-    if (mem_) ARKStepFree(&mem_);
-    if (ls_) SUNLinSolFree(ls_);
-    if (A_) SUNMatDestroy(A_);
-    if (atol_) N_VDestroy(atol_);
-    if (y_) N_VDestroy(y_);
-    if (ctx_) SUNContext_Free(&ctx_);
-  }
-
   StepOutcome step(double& t) override {
     sunrealtype tret = 0;
     // tout = the stop time: ARKODE's initial-step estimate after a (re)start uses it.
@@ -88,10 +83,10 @@ class ArkodeIntegrator final : public Integrator {
   }
 
   bool dense(double t, int k, double* out) override {
-    N_Vector v = N_VNew_Serial(N_VGetLength(y_), ctx_);
+    detail::OwnedVector v;
+    v = N_VNew_Serial(N_VGetLength(y_), ctx_);
     const int flag = ARKStepGetDky(mem_, t, k, v);
     for (int i = 0; i < data_.n; ++i) out[i] = NV_Ith_S(v, i);
-    N_VDestroy(v);
     return flag == ARK_SUCCESS;
   }
 
@@ -162,11 +157,12 @@ class ArkodeIntegrator final : public Integrator {
   double rtol_ = 0.0;
   IntegratorStats base_;
   CallbackData data_;
-  SUNContext ctx_ = nullptr;
-  N_Vector y_ = nullptr, atol_ = nullptr;
-  void* mem_ = nullptr;
-  SUNMatrix A_ = nullptr;
-  SUNLinearSolver ls_ = nullptr;
+  // Owned handles, in the order they must outlive each other (destroyed bottom-up).
+  detail::OwnedContext ctx_;
+  detail::OwnedVector y_, atol_;
+  detail::OwnedMatrix A_;
+  detail::OwnedLinearSolver ls_;
+  detail::Owned<void*, FreeArkStep> mem_;
 };
 
 }  // namespace

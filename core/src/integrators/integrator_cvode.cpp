@@ -26,13 +26,17 @@ using detail::quad_cb;
 using detail::rhs_cb;
 using detail::root_cb;
 
+struct FreeCvode {
+  void operator()(void* mem) const { CVodeFree(&mem); }
+};
+
 class CvodeIntegrator final : public Integrator {
  public:
   CvodeIntegrator(const IntegratorSettings& s, OdeSystem& sys, double t0, const std::vector<double>& y0)
       : method_(s.method) {
     data_.sys = &sys;
     data_.n = sys.size();
-    if (SUNContext_Create(nullptr, &ctx_) != 0) throw std::runtime_error("SUNContext_Create failed");
+    ctx_ = detail::new_context();
     const sunindextype n = sys.size();
     y_ = N_VNew_Serial(n, ctx_);
     for (sunindextype i = 0; i < n; ++i) NV_Ith_S(y_, i) = y0[i];
@@ -76,17 +80,6 @@ class CvodeIntegrator final : public Integrator {
     }
   }
 
-  ~CvodeIntegrator() override {
-    if (mem_) CVodeFree(&mem_);
-    if (ls_) SUNLinSolFree(ls_);
-    if (A_) SUNMatDestroy(A_);
-    if (nls_) SUNNonlinSolFree(nls_);
-    if (q_) N_VDestroy(q_);
-    if (atol_) N_VDestroy(atol_);
-    if (y_) N_VDestroy(y_);
-    if (ctx_) SUNContext_Free(&ctx_);
-  }
-
   StepOutcome step(double& t) override {
     sunrealtype tret = 0;
     // tout = the stop time: CVODE's initial-step estimate after a (re)start uses it.
@@ -105,10 +98,9 @@ class CvodeIntegrator final : public Integrator {
   }
 
   bool dense(double t, int k, double* out) override {
-    N_Vector v = N_VMake_Serial(N_VGetLength(y_), out, ctx_);
-    const int flag = CVodeGetDky(mem_, t, k, v);
-    N_VDestroy(v);
-    return flag == CV_SUCCESS;
+    detail::OwnedVector v;
+    v = N_VMake_Serial(N_VGetLength(y_), out, ctx_);
+    return CVodeGetDky(mem_, t, k, v) == CV_SUCCESS;
   }
 
   void quadratures(double* out) override {
@@ -187,12 +179,13 @@ class CvodeIntegrator final : public Integrator {
   double rtol_ = 0.0;
   IntegratorStats base_;  // counters accumulated before the last reinit
   CallbackData data_;
-  SUNContext ctx_ = nullptr;
-  N_Vector y_ = nullptr, atol_ = nullptr, q_ = nullptr;
-  void* mem_ = nullptr;
-  SUNMatrix A_ = nullptr;
-  SUNLinearSolver ls_ = nullptr;
-  SUNNonlinearSolver nls_ = nullptr;
+  // Owned handles, in the order they must outlive each other (destroyed bottom-up).
+  detail::OwnedContext ctx_;
+  detail::OwnedVector y_, atol_, q_;
+  detail::OwnedNonlinearSolver nls_;
+  detail::OwnedMatrix A_;
+  detail::OwnedLinearSolver ls_;
+  detail::Owned<void*, FreeCvode> mem_;
 };
 
 }  // namespace

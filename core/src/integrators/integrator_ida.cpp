@@ -29,6 +29,10 @@ using detail::CallbackData;
 using detail::err_cb;
 using detail::guarded;
 
+struct FreeIda {
+  void operator()(void* mem) const { IDAFree(&mem); }
+};
+
 int res_cb(sunrealtype t, N_Vector Y, N_Vector Yp, N_Vector F, void* user) {
   auto* d = static_cast<CallbackData*>(user);
   return guarded(d, "DAE residual", [&] {
@@ -66,7 +70,7 @@ class IdaIntegrator final : public Integrator {
     data_.sys = &sys;
     data_.n = sys.size();
     if (sys.num_algebraic() <= 0) throw std::runtime_error("ida: the system has no DAE form");
-    if (SUNContext_Create(nullptr, &ctx_) != 0) throw std::runtime_error("SUNContext_Create failed");
+    ctx_ = detail::new_context();
     const sunindextype n = sys.size() + sys.num_algebraic();
     Y_ = N_VNew_Serial(n, ctx_);
     Yp_ = N_VNew_Serial(n, ctx_);
@@ -105,15 +109,6 @@ class IdaIntegrator final : public Integrator {
       N_VConst(0.0, q_);
       check(IDAQuadInit(mem_, ida_quad_cb, q_), "IDAQuadInit");
     }
-  }
-
-  ~IdaIntegrator() override {
-    if (mem_) IDAFree(&mem_);
-    if (ls_) SUNLinSolFree(ls_);
-    if (A_) SUNMatDestroy(A_);
-    for (N_Vector v : {q_, id_, atol_, dky_, Yp_, Y_})
-      if (v) N_VDestroy(v);
-    if (ctx_) SUNContext_Free(&ctx_);
   }
 
   StepOutcome step(double& t) override {
@@ -215,11 +210,12 @@ class IdaIntegrator final : public Integrator {
   double rtol_ = 0.0;
   IntegratorStats base_;  // counters accumulated before the last reinit
   CallbackData data_;
-  SUNContext ctx_ = nullptr;
-  N_Vector Y_ = nullptr, Yp_ = nullptr, dky_ = nullptr, atol_ = nullptr, id_ = nullptr, q_ = nullptr;
-  void* mem_ = nullptr;
-  SUNMatrix A_ = nullptr;
-  SUNLinearSolver ls_ = nullptr;
+  // Owned handles, in the order they must outlive each other (destroyed bottom-up).
+  detail::OwnedContext ctx_;
+  detail::OwnedVector Y_, Yp_, dky_, atol_, id_, q_;
+  detail::OwnedMatrix A_;
+  detail::OwnedLinearSolver ls_;
+  detail::Owned<void*, FreeIda> mem_;
 };
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "common/small_dense.hpp"
+#include "lub/common/check.hpp"
 
 namespace lub {
 
@@ -501,7 +502,17 @@ bool factor_schur(const Model& m, Workspace& ws, int nc) {
 }
 }  // namespace
 
+void check_workspace(const Model& m, const Workspace& ws) {
+  const long rows = m.nc + m.n_switching;
+  LUB_ASSERT(ws.g.size() == m.nq && ws.qdd.size() == m.nq, "workspace built for a model of another size");
+  LUB_ASSERT(ws.Phi_q.rows() == rows && ws.Phi_q.cols() == m.nq && ws.Phi.size() == rows,
+             "workspace built for a model with other constraints");
+  LUB_ASSERT(ws.films.size() == m.films.size() && ws.film_mode.size() == m.films.size(),
+             "workspace built for a model with other film elements");
+}
+
 int evaluate_forces(const Model& m, Workspace& ws, double t, const double* q, const double* v) {
+  check_workspace(m, ws);
   ++ws.counters.rhs;
   const double* cphi = ws.cos_phi.data();
   const double* sphi = ws.sin_phi.data();

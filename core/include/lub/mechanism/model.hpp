@@ -135,6 +135,11 @@ struct Workspace {
   std::vector<double> contact_N;
 };
 
+/// Always-on check (LUB_ASSERT: lub::InternalError) that `ws` was built for `m`: the sizes
+/// every evaluation relies on. Cheap (a few integer comparisons), called at the
+/// model/workspace boundary (each evaluation, each system built over the pair).
+void check_workspace(const Model& m, const Workspace& ws);
+
 /// Force of film element k on the journal (radial, tangential) at bearing state `state`
 /// with the law evaluated on the branch `mode` selects (FilmMode::sliding: at ε̇ = 0),
 /// including the contact hand-over if the scene has it. Pure but for ws's solver scratch;
