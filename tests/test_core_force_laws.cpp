@@ -10,7 +10,7 @@
 
 #include "film_quadrature.hpp"
 #include "bearing_fixture.hpp"
-#include "lub/bearing/force_laws.hpp"
+#include "lub/bearing/film_force.hpp"
 
 #include <gtest/gtest.h>
 

@@ -15,7 +15,7 @@
 
 #include "film_quadrature.hpp"
 #include "bearing_fixture.hpp"
-#include "lub/bearing/force_laws.hpp"
+#include "lub/bearing/film_force.hpp"
 
 namespace {
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "lub/bearing/film_force.hpp"
 #include "lub/common/check.hpp"
 #include "lub/mechanism/model.hpp"
 

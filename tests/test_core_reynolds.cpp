@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "film_quadrature.hpp"
-#include "lub/bearing/force_laws.hpp"
+#include "lub/bearing/film_force.hpp"
 #include "lub/bearing/reynolds.hpp"
 #include "bearing_fixture.hpp"
 

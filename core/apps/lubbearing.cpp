@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "lub/bearing/force_laws.hpp"
+#include "lub/bearing/film_force.hpp"
 #include "lub/bearing/reynolds.hpp"
 #include "lub/bearing/steady_bearing.hpp"
 

@@ -13,7 +13,7 @@
 #include <cmath>
 #include <vector>
 
-#include "lub/bearing/force_laws.hpp"
+#include "lub/bearing/film_force.hpp"
 #include "lub/bearing/reynolds.hpp"
 #include "../bearing_fixture.hpp"
 

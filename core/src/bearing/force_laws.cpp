@@ -11,7 +11,6 @@
 #include <utility>
 
 #include "bearing/film_math.hpp"
-#include "lub/bearing/reynolds.hpp"
 
 namespace lub {
 namespace {
@@ -232,33 +231,6 @@ FilmForce film_force_pinkus_sternlicht_continuous(const BearingGeometry& g, doub
   add_long_arc(kc, p1, p2, fr, ft);
   const double c6 = 6.0 * long_bearing_coefficient(g, viscosity_Pa_s);
   return FilmForce{c6 * fr, c6 * ft};
-}
-
-FilmForce film_force(ForceLaw law, const BearingGeometry& g, double viscosity_Pa_s,
-                     const BearingState& s, FiniteBearingSolver* solver) {
-  switch (law) {
-    case ForceLaw::pinkus_sternlicht:
-      return film_force_pinkus_sternlicht(g, viscosity_Pa_s, s);
-    case ForceLaw::frene_long:
-      return film_force_frene_long(g, viscosity_Pa_s, s);
-    case ForceLaw::frene_short:
-      return film_force_frene_short(g, viscosity_Pa_s, s);
-    case ForceLaw::gumbel_long:
-      return film_force_gumbel_long(g, viscosity_Pa_s, s);
-    case ForceLaw::gumbel_short:
-      return film_force_gumbel_short(g, viscosity_Pa_s, s);
-    case ForceLaw::pinkus_sternlicht_continuous:
-      return film_force_pinkus_sternlicht_continuous(g, viscosity_Pa_s, s);
-    case ForceLaw::finite_reynolds:
-      if (solver) return solver->solve(g, viscosity_Pa_s, s);
-      return FiniteBearingSolver().solve(g, viscosity_Pa_s, s);
-  }
-  return FilmForce{};  // unreachable for a valid enumerator
-}
-
-FilmForce film_force(ForceLaw law, const BearingGeometry& g, double viscosity_Pa_s,
-                     const BearingState& s) {
-  return film_force(law, g, viscosity_Pa_s, s, nullptr);
 }
 
 double pressure_short(const BearingGeometry& g, double viscosity_Pa_s, const BearingState& s,

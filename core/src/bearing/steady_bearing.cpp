@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "bearing/film_math.hpp"
-#include "lub/bearing/reynolds.hpp"
+#include "lub/bearing/film_force.hpp"
 
 namespace lub {
 

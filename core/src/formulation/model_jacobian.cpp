@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "common/central_difference.hpp"
+#include "lub/mechanism/film_element.hpp"
 #include "lub/mechanism/model.hpp"
 
 namespace lub {
@@ -15,41 +16,23 @@ namespace {
 
 using Eigen::Vector2d;
 
-inline Vector2d rot(double phi, const Vector2d& s) {
-  const double c = std::cos(phi), sn = std::sin(phi);
-  return {c * s.x() - sn * s.y(), sn * s.x() + c * s.y()};
-}
-inline Vector2d perp(const Vector2d& v) { return {-v.y(), v.x()}; }  // R90 v
-inline double cross(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-inline double angle(int b, const double* q) { return b == kGround ? 0.0 : q[3 * b + 2]; }
-inline double rate(int b, const double* v) { return b == kGround ? 0.0 : v[3 * b + 2]; }
-
 // What film element k adds to g at (q, v), as evaluate() adds it: out[0..2] on the bearing
 // body (x, y, φ), out[3..5] on the journal body. False outside the model's domain.
 bool film_generalised_force(const Model& m, Workspace& ws, int k, const double* q, const double* v,
                             SlidingRadial sliding, double out[6]) {
   const FilmElement& f = m.films[k];
-  const FilmKinematics fk = film_kinematics(m, k, q, v);
-  if (!f.contact && !(fk.state.eps < 1.0)) return false;
-  FilmForce force = film_element_force(m, ws, k, fk.state, ws.film_mode[k], &ws.counters.film_jacobian);
   // Sliding: the radial force is the sliding row's multiplier −λ_s, held at its value
   // at the state of the last evaluate(): differentiating F = −λ_s r(q) at fixed λ_s gives
   // the row's geometric stiffness −∂(Φ_s,qᵀ λ_s)/∂q, which is not small (λ_s/|e|, with
   // |e| ~ the clearance as radius of curvature) and which a = M⁻¹(g − Φ_qᵀλ) needs.
   // In the GGL DAE (SlidingRadial::in_constraint) the radial force is not in g but in
   // Φ_qᵀλ with the DAE's multiplier, as in evaluate() before its solve: zero here.
-  if (ws.film_mode[k] == FilmMode::sliding)
-    force.radial_N = sliding == SlidingRadial::held_multiplier ? -ws.lambda(ws.slide_row[k]) : 0.0;
-  const Vector2d F = force.radial_N * fk.r + force.tangential_N * perp(fk.r);
-  if (!std::isfinite(F.x()) || !std::isfinite(F.y())) return false;
-  const Vector2d ai = rot(angle(f.bearing, q), f.s_bearing), aj = rot(angle(f.journal, q), f.s_journal);
-  out[0] = -F.x();
-  out[1] = -F.y();
-  out[2] = -cross(ai, F);
-  out[3] = F.x();
-  out[4] = F.y();
-  out[5] = cross(aj, F);
-  return true;
+  const double sliding_radial_N = ws.film_mode[k] == FilmMode::sliding && sliding == SlidingRadial::held_multiplier
+                                      ? -ws.lambda(ws.slide_row[k])
+                                      : 0.0;
+  FilmKinematics fk;
+  return film_element_load(m, ws, k, body_state(f.bearing, q, v), body_state(f.journal, q, v), sliding_radial_N,
+                           &ws.counters.film_jacobian, fk, out);
 }
 
 // Φ̈ + 2α Φ̇ + β² Φ of the sliding row of film k at (q, v, q̈ = a): Φ = |e| − e_s,

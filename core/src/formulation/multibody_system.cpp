@@ -1,4 +1,5 @@
 #include "lub/formulation/multibody_system.hpp"
+#include "lub/mechanism/film_element.hpp"
 
 #include <Eigen/LU>
 

@@ -9,62 +9,13 @@
 
 #include "common/small_dense.hpp"
 #include "lub/common/check.hpp"
+#include "lub/mechanism/film_element.hpp"
 
 namespace lub {
 
 namespace {
 
 using Eigen::Vector2d;
-
-inline Vector2d perp(const Vector2d& v) { return {-v.y(), v.x()}; }  // R90 v
-inline double cross(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-// Pose and velocity of a body (the ground is fixed at the origin), with cos φ and sin φ.
-struct BodyState {
-  Vector2d r{0, 0}, rd{0, 0};
-  double phi = 0.0, phid = 0.0;
-  double c = 1.0, s = 0.0;
-  /// A body-frame vector in the global frame.
-  Vector2d rot(const Vector2d& p) const { return {c * p.x() - s * p.y(), s * p.x() + c * p.y()}; }
-};
-// The trigonometric functions are most of the cost of the kinematics: an evaluation
-// computes them once per body (body_trig) and every constraint and film reads the table.
-inline void body_trig(int nb, const double* q, double* cphi, double* sphi) {
-  for (int b = 0; b < nb; ++b) {
-    const double phi = q[3 * b + 2];  // one local argument: the compiler fuses sin and cos
-    cphi[b] = std::cos(phi);
-    sphi[b] = std::sin(phi);
-  }
-}
-inline BodyState body_state(int b, const double* q, const double* v, const double* cphi, const double* sphi) {
-  BodyState s;
-  if (b == kGround) return s;
-  const int o = 3 * b;
-  s.r = {q[o], q[o + 1]};
-  s.phi = q[o + 2];
-  s.c = cphi[b];
-  s.s = sphi[b];
-  if (v) {
-    s.rd = {v[o], v[o + 1]};
-    s.phid = v[o + 2];
-  }
-  return s;
-}
-// The same without a table (one-off kinematics of a single film).
-inline BodyState body_state(int b, const double* q, const double* v) {
-  BodyState s;
-  if (b == kGround) return s;
-  const int o = 3 * b;
-  s.r = {q[o], q[o + 1]};
-  s.phi = q[o + 2];
-  s.c = std::cos(s.phi);
-  s.s = std::sin(s.phi);
-  if (v) {
-    s.rd = {v[o], v[o + 1]};
-    s.phid = v[o + 2];
-  }
-  return s;
-}
 
 // Driver angle f(t) and its derivatives.
 inline void driver_motion(const Constraint& c, double t, double& f, double& fd, double& fdd) {
@@ -332,50 +283,12 @@ Model build_model(const Scene& scene) {
 }
 
 namespace {
-// Kinematics of film f between bearing body bi and journal body bj; ai, aj: the bearing
-// and journal points from their bodies' centres, global.
-FilmKinematics film_kinematics(const FilmElement& f, const BodyState& bi, const BodyState& bj, Vector2d& ai,
-                               Vector2d& aj) {
-  ai = bi.rot(f.s_bearing);
-  aj = bj.rot(f.s_journal);
-  FilmKinematics k_out;
-  k_out.e = bj.r + aj - bi.r - ai;
-  k_out.e_dot = bj.rd + bj.phid * perp(aj) - bi.rd - bi.phid * perp(ai);
-  const double c = f.clearance;
-  const double e = k_out.e.norm();
-  if (e > 1e-12 * c) {
-    k_out.r = k_out.e / e;
-    k_out.state.eps = e / c;
-    k_out.state.eps_dot = k_out.r.dot(k_out.e_dot) / c;
-    k_out.gamma_dot = cross(k_out.e, k_out.e_dot) / (e * e);
-  } else {
-    // Centred journal: the line of centres is undefined. Take it along the journal's
-    // relative velocity (the direction it is about to move in), so ε̇ = |ė|/c and γ̇ = 0;
-    // this is the limit e → 0 along the trajectory, and the Sommerfeld laws reduce to
-    // the isotropic squeeze damping −(K/c) ė whatever the choice.
-    const double ed = k_out.e_dot.norm();
-    k_out.r = ed > 0.0 ? Vector2d(k_out.e_dot / ed) : Vector2d(1.0, 0.0);
-    k_out.state.eps = 0.0;
-    k_out.state.eps_dot = ed / c;
-    k_out.gamma_dot = 0.0;
-  }
-  k_out.state.wedge = bj.phid + bi.phid - 2.0 * k_out.gamma_dot;
-  return k_out;
-}
-}  // namespace
-
-FilmKinematics film_kinematics(const Model& m, int k, const double* q, const double* v) {
-  const FilmElement& f = m.films[k];
-  Vector2d ai, aj;
-  return film_kinematics(f, body_state(f.bearing, q, v), body_state(f.journal, q, v), ai, aj);
-}
-
-namespace {
-inline void add_body_force(Eigen::VectorXd& g, int b, const Vector2d& F, double moment) {
+// Adds a body's share of a film element's generalised force (x, y, φ) to g.
+inline void add_body_load(Eigen::VectorXd& g, int b, const double* load) {
   if (b == kGround) return;
-  g(3 * b) += F.x();
-  g(3 * b + 1) += F.y();
-  g(3 * b + 2) += moment;
+  g(3 * b) += load[0];
+  g(3 * b + 1) += load[1];
+  g(3 * b + 2) += load[2];
 }
 }  // namespace
 
@@ -412,26 +325,6 @@ void fill_sliding_rows(const Model& m, Workspace& ws, const double* q, const dou
   }
 }
 }  // namespace
-
-FilmForce film_element_force(const Model& m, Workspace& ws, int k, const BearingState& state, FilmMode mode,
-                             long long* law_calls) {
-  const FilmElement& f = m.films[k];
-  BearingState st = state;
-  switch (mode) {
-    case FilmMode::natural: break;
-    case FilmMode::outward: st.eps_dot = std::max(st.eps_dot, 0.0); break;
-    case FilmMode::inward: st.eps_dot = std::min(st.eps_dot, -std::numeric_limits<double>::min()); break;
-    case FilmMode::sliding: st.eps_dot = 0.0; break;
-  }
-  FiniteBearingSolver* solver = ws.film_solvers[k] ? &*ws.film_solvers[k] : nullptr;
-  const auto film = [&](const BearingState&) {
-    if (law_calls) ++*law_calls;
-    return film_force(f.law, f.geometry, f.viscosity, st, solver);
-  };
-  // With contact: film weighted over the hand-over band (not evaluated above it) plus the
-  // dry-contact force, whose damping sees the true ε̇.
-  return f.contact ? force_with_contact(*f.contact, f.clearance, state, film, &ws.contact_N[k]) : film(st);
-}
 
 namespace {
 // The rows of Φ_q are sparse (a constraint block touches at most two bodies, see
@@ -529,23 +422,18 @@ int evaluate_forces(const Model& m, Workspace& ws, double t, const double* q, co
   for (size_t k = 0; k < m.films.size(); ++k) {
     const FilmElement& f = m.films[k];
     FilmKinematics& fk = ws.films[k];
-    Vector2d ai, aj;
-    fk = film_kinematics(f, body_state(f.bearing, q, v, cphi, sphi), body_state(f.journal, q, v, cphi, sphi), ai,
-                         aj);
-    // Journal through the wall: outside the model, unless the contact effect takes over.
-    if (!f.contact && !(fk.state.eps < 1.0)) return 1;
-    fk.force = film_element_force(m, ws, static_cast<int>(k), fk.state, ws.film_mode[k], &ws.counters.film);
+    // A sliding film's radial force is the sliding constraint's multiplier, after the solve.
+    double load[6];
+    if (!film_element_load(m, ws, static_cast<int>(k), body_state(f.bearing, q, v, cphi, sphi),
+                           body_state(f.journal, q, v, cphi, sphi), 0.0, &ws.counters.film, fk, load))
+      return 1;
     fk.sliding = ws.film_mode[k] == FilmMode::sliding;
     if (fk.sliding) {
-      fk.force.radial_N = 0.0;  // the sliding constraint's multiplier, after the solve
       ws.slide_row[k] = m.nc + n_sliding++;
       ws.row_bodies[ws.slide_row[k]] = {f.bearing, f.journal};
     }
-    const Vector2d t_dir = perp(fk.r);
-    fk.F = fk.force.radial_N * fk.r + fk.force.tangential_N * t_dir;
-    if (!std::isfinite(fk.F.x()) || !std::isfinite(fk.F.y())) return 1;
-    add_body_force(ws.g, f.journal, fk.F, cross(aj, fk.F));
-    add_body_force(ws.g, f.bearing, -fk.F, -cross(ai, fk.F));
+    add_body_load(ws.g, f.journal, load + 3);
+    add_body_load(ws.g, f.bearing, load);
   }
   ws.nc_active = m.nc + n_sliding;
   if (ws.nc_active == 0) return 0;

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "lub/integrators/integrator.hpp"
+#include "lub/mechanism/film_element.hpp"
 #include "lub/mechanism/model.hpp"
 #include "lub/formulation/multibody_system.hpp"
 

@@ -293,22 +293,8 @@ struct NameTable<Cavitation> {
   }};
 };
 
-class FiniteBearingSolver;  // lub/bearing/reynolds.hpp
-
-/// Film force of `law`. Requires 0 <= eps < 1, finite eps_dot and wedge, positive
-/// geometry and viscosity (the caller validates; see each law for its limits:
-/// ε = 0 and ε̇ = 0 are evaluated by their limits, never NaN).
-/// For `finite_reynolds` this overload builds a solver with default options each call
-/// (allocates: for checks and tools; inside a right-hand side use the overload below).
-FilmForce film_force(ForceLaw law, const BearingGeometry& g, double viscosity_Pa_s,
-                     const BearingState& s);
-
-/// Same, for `finite_reynolds` with the given solver (its options and preallocated scratch;
-/// no allocation); `solver` is ignored (may be null) for the closed-form laws.
-FilmForce film_force(ForceLaw law, const BearingGeometry& g, double viscosity_Pa_s,
-                     const BearingState& s, FiniteBearingSolver* solver);
-
-/// The laws one by one (what `film_force` dispatches to); same preconditions.
+/// The closed-form laws one by one (what `film_force`, lub/bearing/film_force.hpp,
+/// dispatches to with finite_reynolds); same preconditions.
 FilmForce film_force_pinkus_sternlicht(const BearingGeometry& g, double viscosity_Pa_s,
                                        const BearingState& s);
 FilmForce film_force_frene_long(const BearingGeometry& g, double viscosity_Pa_s,

@@ -22,8 +22,7 @@
 #include <vector>
 
 #include "lub/bearing/contact.hpp"
-#include "lub/bearing/force_laws.hpp"
-#include "lub/bearing/reynolds.hpp"
+#include "lub/bearing/film_force.hpp"
 #include "lub/scene/scene.hpp"
 
 namespace lub {
@@ -140,13 +139,6 @@ struct Workspace {
 /// model/workspace boundary (each evaluation, each system built over the pair).
 void check_workspace(const Model& m, const Workspace& ws);
 
-/// Force of film element k on the journal (radial, tangential) at bearing state `state`
-/// with the law evaluated on the branch `mode` selects (FilmMode::sliding: at ε̇ = 0),
-/// including the contact hand-over if the scene has it. Pure but for ws's solver scratch;
-/// each call of the law increments *law_calls (if given).
-FilmForce film_element_force(const Model& m, Workspace& ws, int k, const BearingState& state, FilmMode mode,
-                             long long* law_calls = nullptr);
-
 /// Builds the model. Throws InputError for an inconsistent scene (e.g. redundant
 /// constraints are detected later, at assembly).
 Model build_model(const Scene& scene);
@@ -173,9 +165,6 @@ void constraint_residual(const Model& m, Workspace& ws, double t, const double* 
 /// projected onto the manifold's tangent space. Returns 0, 1 (no convergence), −1.
 int project_state(const Model& m, Workspace& ws, double t, double* q, double* v, double* dq, double* dv,
                   double tol, double* err);
-
-/// Bearing kinematics (no force) of film element `k` at (q, v).
-FilmKinematics film_kinematics(const Model& m, int k, const double* q, const double* v);
 
 /// Force on body j of scene joint `joint` from body i, global [N], after evaluate():
 /// the film force on the journal for a lubricated joint, the constraint reaction otherwise.

@@ -19,11 +19,9 @@
 #include "lub/formulation/options.hpp"
 #include "lub/integrators/method.hpp"
 #include "lub/io/json_reader.hpp"
+#include "lub/mechanism/planar.hpp"
 
 namespace lub {
-
-/// Index of the ground in body references.
-inline constexpr int kGround = -1;
 
 struct BodySpec {
   std::string name;
