@@ -11,6 +11,7 @@
 
 #include "lub/formulation/multibody_system.hpp"
 #include "lub/io/json_reader.hpp"
+#include "lub/mechanism/builder.hpp"
 #include "lub/mechanism/model.hpp"
 #include "lub/run/run.hpp"
 

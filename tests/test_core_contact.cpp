@@ -9,6 +9,7 @@
 #include <string>
 
 #include "lub/bearing/contact.hpp"
+#include "lub/mechanism/builder.hpp"
 #include "lub/mechanism/model.hpp"
 #include "bearing_fixture.hpp"
 

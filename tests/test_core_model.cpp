@@ -8,6 +8,7 @@
 
 #include "lub/bearing/film_force.hpp"
 #include "lub/common/check.hpp"
+#include "lub/mechanism/builder.hpp"
 #include "lub/mechanism/model.hpp"
 
 namespace {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "lub/io/json_reader.hpp"
+#include "lub/mechanism/builder.hpp"
 #include "lub/mechanism/model.hpp"
 #include "lub/scene/scene.hpp"
 #include "lub/formulation/multibody_system.hpp"

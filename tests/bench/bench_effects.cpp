@@ -13,6 +13,7 @@
 
 #include <string>
 
+#include "lub/mechanism/builder.hpp"
 #include "lub/mechanism/model.hpp"
 #include "lub/run/run.hpp"
 

@@ -5,6 +5,7 @@
 //   build/tests/bench/bench_rhs
 #include <benchmark/benchmark.h>
 
+#include "lub/mechanism/builder.hpp"
 #include "lub/mechanism/model.hpp"
 
 namespace {

@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "lub/mechanism/builder.hpp"
 #include "lub/mechanism/model.hpp"
 #include "lub/scene/scene.hpp"
 

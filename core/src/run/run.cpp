@@ -8,6 +8,7 @@
 
 #include "lub/integrators/integrator.hpp"
 #include "lub/mechanism/film_element.hpp"
+#include "lub/mechanism/builder.hpp"
 #include "lub/mechanism/model.hpp"
 #include "lub/formulation/multibody_system.hpp"
 

@@ -23,7 +23,9 @@
 
 #include "lub/bearing/contact.hpp"
 #include "lub/bearing/film_force.hpp"
-#include "lub/scene/scene.hpp"
+#include "lub/common/name_table.hpp"
+#include "lub/mechanism/driver.hpp"
+#include "lub/mechanism/planar.hpp"
 
 namespace lub {
 
@@ -139,10 +141,6 @@ struct Workspace {
 /// model/workspace boundary (each evaluation, each system built over the pair).
 void check_workspace(const Model& m, const Workspace& ws);
 
-/// Builds the model. Throws InputError for an inconsistent scene (e.g. redundant
-/// constraints are detected later, at assembly).
-Model build_model(const Scene& scene);
-
 /// The first half of evaluate(): generalised forces ws.g (gravity and film elements; a
 /// sliding film's radial force left out: it is its row's multiplier), film kinematics
 /// and forces, and — when there are constraint rows — Φ, Φ_q, Φ̇, γ of the ws.nc_active
@@ -224,11 +222,5 @@ double mechanical_energy(const Model& m, const double* q, const double* v);
 double driver_power(const Model& m, const Workspace& ws, const double* v);
 /// Power of the film forces on the system, F·ė summed over films [W] (after evaluate()).
 double film_power(const Workspace& ws);
-
-/// Kinematic analysis with all joints ideal (lubricated joints closed at their initial
-/// eccentricity): Newton–Raphson on positions from the scene's poses, then velocities.
-/// Throws InputError ("assembly: ...") if it cannot close.
-void assemble_initial_state(const Model& m, const Scene& scene, double t0,
-                            Eigen::VectorXd& q, Eigen::VectorXd& v);
 
 }  // namespace lub

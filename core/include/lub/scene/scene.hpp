@@ -19,6 +19,7 @@
 #include "lub/formulation/options.hpp"
 #include "lub/integrators/method.hpp"
 #include "lub/io/json_reader.hpp"
+#include "lub/mechanism/driver.hpp"
 #include "lub/mechanism/planar.hpp"
 
 namespace lub {
@@ -58,16 +59,6 @@ struct JointSpec {
   ForceLaw law = ForceLaw::pinkus_sternlicht;
   FiniteBearingOptions finite;  ///< finite_reynolds: cavitation, reynolds_n_theta/_n_z, groove
   Eigen::Vector2d initial_eccentricity_m{0, 0};  ///< journal centre − bearing centre at t0
-};
-
-enum class DriverType { constant_speed, reversing };
-
-template <>
-struct NameTable<DriverType> {
-  static constexpr std::array<std::pair<DriverType, std::string_view>, 2> entries{{
-      {DriverType::constant_speed, "constant_speed"},
-      {DriverType::reversing, "reversing"},
-  }};
 };
 
 /// Prescribes a body's angle: φ(t) = φ0 + ω t (constant_speed), or
