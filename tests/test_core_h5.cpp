@@ -1,6 +1,7 @@
 // Tests of the HDF5 wrapper lub::h5: files, groups, attributes, datasets, tables
 // (append, reopen, resume, survival of a killed writer) and dimension scales.
 #include "lub/io/h5.hpp"
+#include "lub/run/run_io.hpp"
 
 #include <gtest/gtest.h>
 
@@ -329,6 +330,13 @@ TEST_F(H5Test, TableAppendAndReadColumns) {
   EXPECT_EQ(t.attribute_strings("units"), (std::vector<std::string>{"", "", "m", "m"}));
   t.set_attribute("description", "one row per finished case");
 
+  // netCDF-4 style: one dataset per column, the first the dimension scale of the others.
+  EXPECT_TRUE(t.column("case_id").is_scale());
+  EXPECT_EQ(t.column("case_id").attribute_string("NAME"), "case_id");
+  EXPECT_TRUE(t.column("hash").has_attribute("DIMENSION_LIST"));
+  EXPECT_EQ(t.column("clearance_m").units(), "m");
+  EXPECT_FALSE(t.column("hash").has_attribute("units"));  // strings have no unit
+
   // Bad rows append nothing.
   EXPECT_THROW(t.append(Row{std::int64_t{3}, std::string("h3"), 1.0}), std::runtime_error);
   EXPECT_THROW(t.append(Row{3.0, std::string("h3"), 1.0, 1.0}), std::runtime_error);
@@ -458,4 +466,46 @@ TEST_F(H5Test, DimensionScales) {
   EXPECT_EQ(c.attribute_string("NAME"), "clearance_m");
   EXPECT_THROW(h.attach_scale(c, 2), std::runtime_error);  // no such dimension
   EXPECT_THROW(c.attach_scale(h, 0), std::runtime_error);  // scale not 1-D
+}
+
+// ---------------------------------------------------------------------------------
+// Run file layout: netCDF-4 style, so xarray indexes /series by t and /cycles by cycle.
+
+TEST_F(H5Test, RunFileSeriesOnTimeAndCyclesAsColumns) {
+  lub::RunResult r;
+  r.series.names = {"t", "eps", "slider_a"};
+  r.series.units = {"s", "1", "m/s^2"};
+  r.series.data = {{0.0, 1e-5, 2e-5}, {0.1, 0.2, 0.3}, {1.0, 2.0, 3.0}};
+  r.cycles.resize(2);
+  r.cycles[1].min_film_m = 1e-5;
+  const std::string scene =
+      R"({"outputs": {"channels": [{"name": "eps", "joint": "rod_slider", "quantity": "eps"},
+                                   {"name": "slider_a", "body": "slider", "quantity": "ax"}]}})";
+  const std::string path = file("run.h5");
+  lub::write_run_file(path, scene, "test", r);
+  File f = File::open(path);
+  EXPECT_EQ(f.attribute_string("format"), lub::kRunFormat);
+  EXPECT_TRUE(f.open_dataset("series/t").is_scale());
+  EXPECT_EQ(f.open_dataset("series/t").attribute_string("long_name"), "time");
+  const Dataset a = f.open_dataset("series/slider_a");
+  EXPECT_TRUE(a.has_attribute("DIMENSION_LIST"));
+  EXPECT_EQ(a.units(), "m s-2");  // CF style
+  EXPECT_EQ(a.attribute_string("long_name"), "ax of body slider: x acceleration of the centre of mass");
+  EXPECT_EQ(f.open_dataset("series/eps").attribute_string("long_name"), "eps of joint rod_slider: eccentricity ratio |e|/c");
+  const Table c = f.open_table("cycles");
+  EXPECT_EQ(c.rows(), 2u);
+  EXPECT_EQ(c.read_int64s("cycle"), (std::vector<std::int64_t>{1, 2}));
+  EXPECT_TRUE(c.column("cycle").is_scale());
+  EXPECT_EQ(c.read_doubles("min_film_thickness_m")[1], 1e-5);
+  EXPECT_EQ(c.column("peak_acceleration_m_s2").units(), "m s-2");
+}
+
+TEST(CfUnits, MapsTheEngineUnits) {
+  EXPECT_EQ(lub::cf_units("m/s^2"), "m s-2");
+  EXPECT_EQ(lub::cf_units("rad/s"), "rad s-1");
+  EXPECT_EQ(lub::cf_units(""), "1");
+  EXPECT_EQ(lub::cf_units("Pa s"), "Pa s");
+  EXPECT_EQ(lub::cf_units("1/s"), "1/s");
+  for (const auto& f : lub::metric_fields()) EXPECT_EQ(lub::cf_units(f.unit), f.unit) << f.name;
+  for (const auto& f : lub::solver_fields()) EXPECT_EQ(lub::cf_units(f.unit), f.unit) << f.name;
 }

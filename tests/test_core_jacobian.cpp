@@ -170,6 +170,10 @@ lub::RunResult run(const std::string& method, const std::string& jacobian, const
 // "metrics within ~5e-6 of converged"). The peaks (reaction, acceleration) are sampled
 // at step ends and 120 crank angles and carry a sampling error of a few 1e-4 (cvode_bdf
 // and arkode_dirk, both with difference quotients, differ by 4e-4 on frene_long): 1e-3.
+// The printed law's peak acceleration peaks at the ε̇ = 0 switches, located only to the
+// root tolerance: sampled at the third cycle it scatters by ~2e-3 between methods that
+// agree on the orbit (cvode_bdf at 1e-11: 68283 m/s²; arkode_erk at 1e-10: 68178;
+// arkode_dirk at 1e-8, DQ 68282, structured 68141): 3e-3 there.
 // And cheaper: no right-hand sides spent on Jacobians.
 TEST(StructuredJacobianRun, SameMetricsFewerEvaluations) {
   for (const std::string method : {"cvode_bdf", "arkode_dirk"}) {
@@ -177,7 +181,8 @@ TEST(StructuredJacobianRun, SameMetricsFewerEvaluations) {
       SCOPED_TRACE(method + " " + law);
       const lub::RunResult dq = run(method, "difference_quotients", law, 1e-8, 3);
       const lub::RunResult st = run(method, "structured", law, 1e-8, 3);
-      lub_test::expect_same_run_fewer_evaluations(dq, st, {2e-5, 2e-5, 1e-3, 1e-3});
+      lub_test::expect_same_run_fewer_evaluations(dq, st,
+                                                  {2e-5, 2e-5, 1e-3, law == "pinkus_sternlicht" ? 3e-3 : 1e-3});
     }
   }
 }

@@ -57,7 +57,7 @@ TEST(SweepGrid, FactorialIsRowMajorFirstAxisSlowest) {
   ASSERT_EQ(g.axes.size(), 2u);
   EXPECT_EQ(g.axes[0].name, "speed_rpm");
   EXPECT_EQ(g.axes[0].pointer, "/drivers/0/speed_rpm");
-  EXPECT_EQ(g.axes[0].units, "rpm");
+  EXPECT_EQ(g.axes[0].units, "min-1");
   EXPECT_TRUE(g.axes[0].numeric);
   EXPECT_FALSE(g.axes[1].numeric);
   EXPECT_EQ(g.cases[4].axis_values[0], 50);
@@ -192,6 +192,44 @@ TEST(SweepGrid, LoadsTheShippedGrids) {
   EXPECT_EQ(lub::sweep::load_grid(dir + "full_factorial.json").cases.size(), 192u);
   for (const char* f : {"paper_clearance.json", "paper_viscosity.json", "paper_speed.json", "paper_force_law.json"})
     EXPECT_NO_THROW(lub::sweep::load_grid(dir + f)) << f;
+}
+
+// The accuracy grids compare formulations by sub-grid name: each case must run the
+// formulation its sub-grid is named after, whatever the scenes' default is (partitioned
+// since issue 12; before, a sub-grid without a formulation axis silently ran it).
+TEST(SweepGrid, AccuracyGridsRunTheFormulationTheirSubGridsName) {
+  const std::string dir = std::string(LUB_SOURCE_DIR) + "/configs/grids/";
+  for (const char* f : {"accuracy_reference.json", "accuracy_hard_40cP.json", "accuracy_force_laws.json"}) {
+    const Grid g = lub::sweep::load_grid(dir + f);
+    int checked = 0;
+    for (const auto& b : g.blocks) {
+      for (int id : b.case_ids) {
+        const json solver = scene_of(g, id)["solver"];
+        const std::string form = solver.value("formulation", std::string("(default)"));
+        const bool projection = solver.value("projection", false);
+        const std::string method = solver.value("method", std::string("cvode_bdf"));
+        SCOPED_TRACE(std::string(f) + ", sub-grid " + b.name + ", case " + std::to_string(id));
+        if (b.name == "baumgarte") {
+          EXPECT_EQ(form, "baumgarte");
+          EXPECT_FALSE(projection);
+        } else if (b.name == "projection") {
+          EXPECT_EQ(form, "baumgarte");
+          EXPECT_TRUE(projection);
+          EXPECT_EQ(method, "cvode_bdf");
+        } else if (b.name == "partitioned" || b.name == "reference") {
+          EXPECT_EQ(form, "partitioned");
+          EXPECT_FALSE(projection);
+        } else if (b.name == "ggl") {
+          EXPECT_EQ(form, "ggl");
+          EXPECT_EQ(method, "ida");
+        } else {
+          ADD_FAILURE() << "unexpected sub-grid " << b.name;
+        }
+        ++checked;
+      }
+    }
+    EXPECT_GT(checked, 40) << f;
+  }
 }
 
 TEST(SweepGrid, CaseNames) {

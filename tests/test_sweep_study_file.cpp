@@ -16,7 +16,9 @@
 
 #include "lub/io/json_reader.hpp"
 #include "lub/sweep/case_result.hpp"
+#include "lub/io/output_path.hpp"
 #include "lub/sweep/grid.hpp"
+#include "lub/sweep/output_lock.hpp"
 #include "lub/sweep/progress.hpp"
 #include "lub/sweep/sweep.hpp"
 
@@ -103,11 +105,19 @@ TEST_F(StudyFile, LayoutUnitsAndAttributes) {
   EXPECT_EQ(t.rows(), 5u);
   std::vector<std::string> names;
   for (const auto& c : t.columns()) names.push_back(c.name);
-  const std::vector<std::string> head = {"case_id", "case", "hash", "force_law", "speed_rpm", "solver.rtol", "status", "message"};
+  const std::vector<std::string> head = {"case", "name", "hash", "force_law", "speed_rpm", "solver.rtol", "status", "message"};
   EXPECT_EQ(std::vector<std::string>(names.begin(), names.begin() + 8), head);
   EXPECT_EQ(names.back(), "revision");
-  EXPECT_EQ(t.columns()[t.column_index("speed_rpm")].units, "rpm");
+  EXPECT_EQ(t.columns()[t.column_index("speed_rpm")].units, "min-1");
   EXPECT_EQ(t.columns()[t.column_index("min_film_thickness_m")].units, "m");
+  EXPECT_EQ(t.columns()[t.column_index("peak_acceleration_m_s2")].units, "m s-2");
+  EXPECT_EQ(t.columns()[t.column_index("steps")].units, "1");
+  EXPECT_FALSE(t.columns()[t.column_index("max_eps")].long_name.empty());
+  // netCDF-4 style: `case` (the case ids) is the dimension scale of every column.
+  EXPECT_TRUE(t.column("case").is_scale());
+  EXPECT_EQ(t.read_int64s("case"), (std::vector<std::int64_t>{0, 1, 2, 3, 4}));
+  EXPECT_TRUE(t.column("max_eps").has_attribute("DIMENSION_LIST"));
+  EXPECT_TRUE(t.column("status").has_attribute("DIMENSION_LIST"));
   EXPECT_EQ(t.columns()[t.column_index("steps")].type, lub::h5::ColumnType::Int64);
   EXPECT_EQ(t.attribute_strings("axes"), (std::vector<std::string>{"force_law", "speed_rpm", "solver.rtol"}));
   EXPECT_EQ(t.read_strings("force_law"), (std::vector<std::string>{"ideal", "ideal", "frene_short", "frene_short", "ideal"}));
@@ -116,7 +126,7 @@ TEST_F(StudyFile, LayoutUnitsAndAttributes) {
   EXPECT_EQ(t.read_strings("hash")[3], g.cases[3].hash);
 
   // Every case's scene, by case id.
-  const auto scenes = read_strings(f, "scenes");
+  const auto scenes = f.open_dataset("scenes").read_strings();
   ASSERT_EQ(scenes.size(), 5u);
   EXPECT_EQ(scenes[2], g.cases[2].scene);
 
@@ -126,15 +136,73 @@ TEST_F(StudyFile, LayoutUnitsAndAttributes) {
   EXPECT_EQ(idx.read_int64s(), (std::vector<std::int64_t>{0, 1, 2, 3}));
   EXPECT_TRUE(f.open_dataset("grids/main/speed_rpm").is_scale());
   EXPECT_EQ(f.open_dataset("grids/main/speed_rpm").read_doubles(), (std::vector<double>{5000, 500}));
-  EXPECT_EQ(f.open_dataset("grids/main/speed_rpm").units(), "rpm");
-  EXPECT_EQ(read_strings(f.open_group("grids/main"), "force_law"), (std::vector<std::string>{"ideal", "frene_short"}));
+  EXPECT_EQ(f.open_dataset("grids/main/speed_rpm").units(), "min-1");
+  EXPECT_EQ(f.open_dataset("grids/main/force_law").read_strings(), (std::vector<std::string>{"ideal", "frene_short"}));
   EXPECT_EQ(f.open_dataset("grids/extra/case_id").read_int64s(), std::vector<std::int64_t>{4});
+  EXPECT_TRUE(f.open_dataset("grids/extra/case").is_scale());
+
+  // Every result field as a variable over the sub-grid's axes, with units and long_name.
+  const auto h = f.open_dataset("grids/main/min_film_thickness_m");
+  EXPECT_EQ(h.shape(), (std::vector<std::size_t>{2, 2}));
+  EXPECT_EQ(h.units(), "m");
+  EXPECT_TRUE(h.has_attribute("long_name"));
+  EXPECT_TRUE(h.has_attribute("DIMENSION_LIST"));
+  const std::size_t k = t.column_index("min_film_thickness_m");
+  const auto col = t.read_doubles("min_film_thickness_m");
+  EXPECT_EQ(h.read_doubles(), (std::vector<double>{col[0], col[1], col[2], col[3]}));
+  EXPECT_GT(k, 0u);
+  EXPECT_EQ(f.open_dataset("grids/main/status").read_strings(), (std::vector<std::string>(4, "ok")));
+  EXPECT_EQ(f.open_dataset("grids/extra/steps").read_doubles(), (std::vector<double>{t.read_doubles("steps")[4]}));
 
   // Series of the cases that have them.
   EXPECT_TRUE(f.exists("series/case_0002/h_min"));
   EXPECT_FALSE(f.exists("series/case_0001"));
   EXPECT_EQ(f.open_dataset("series/case_0002/h_min").units(), "m");
   EXPECT_EQ(f.open_group("series/case_0002").attribute_strings("channels"), (std::vector<std::string>{"t", "h_min"}));
+  EXPECT_TRUE(f.open_dataset("series/case_0002/t").is_scale());
+  EXPECT_TRUE(f.open_dataset("series/case_0002/h_min").has_attribute("DIMENSION_LIST"));
+}
+
+TEST_F(StudyFile, GridVariablesHoldNaNMetricsForCasesNotOkAndSayWhy) {
+  const Grid g = small_grid();
+  const std::string path = file("s.h5");
+  {
+    StudyWriter w(path, g, {}, "");
+    w.append(fake(g, 0));
+    w.append(fake(g, 1, "film_collapse"));
+    w.append(fake(g, 2));  // cases 3 and 4 never run: an incomplete study
+    w.finalize();
+  }
+  const auto f = lub::h5::File::open(path);
+  const auto h = f.open_dataset("grids/main/min_film_thickness_m").read_doubles();
+  EXPECT_FALSE(std::isnan(h[0]));
+  EXPECT_TRUE(std::isnan(h[1]));  // not ok
+  EXPECT_TRUE(std::isnan(h[3]));  // not run
+  EXPECT_EQ(f.open_dataset("grids/main/status").read_strings(),
+            (std::vector<std::string>{"ok", "film_collapse", "ok", "not_run"}));
+  EXPECT_EQ(f.open_dataset("grids/main/message").read_strings()[1], "it broke");
+  // Solver statistics of a failed case are kept: they say what the failure cost.
+  EXPECT_FALSE(std::isnan(f.open_dataset("grids/main/steps").read_doubles()[1]));
+}
+
+TEST_F(StudyFile, OlderFormatIsRefusedWithAClearMessage) {
+  const Grid g = small_grid();
+  const std::string path = file("old.h5");
+  {
+    auto f = lub::h5::File::create(path);
+    f.set_attribute("program", "lubsweep");
+    f.set_attribute("format", "lubsweep-study-1");
+    f.write_dataset("cases", std::vector<double>{1.0}, "1");  // stands for the compound table
+  }
+  try {
+    read_existing(path, g, false, lub::build_revision());
+    FAIL() << "an old-format study file was read";
+  } catch (const lub::InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("format lubsweep-study-1"), std::string::npos) << msg;
+    EXPECT_NE(msg.find(kStudyFormat), std::string::npos) << msg;
+    EXPECT_NE(msg.find("--restart"), std::string::npos) << msg;
+  }
 }
 
 TEST_F(StudyFile, FinalFileIsInCaseIdOrderWhateverTheArrivalOrder) {
@@ -146,7 +214,7 @@ TEST_F(StudyFile, FinalFileIsInCaseIdOrderWhateverTheArrivalOrder) {
     w.finalize();
   }
   const auto ta = lub::h5::File::open(a).open_table("cases"), tb = lub::h5::File::open(b).open_table("cases");
-  EXPECT_EQ(tb.read_int64s("case_id"), (std::vector<std::int64_t>{0, 1, 2, 3, 4}));
+  EXPECT_EQ(tb.read_int64s("case"), (std::vector<std::int64_t>{0, 1, 2, 3, 4}));
   for (const auto& f : result_fields()) EXPECT_EQ(ta.read_doubles(f.name), tb.read_doubles(f.name)) << f.name;
 }
 
@@ -181,7 +249,7 @@ TEST_F(StudyFile, ResumeFindsTheCasesByHash) {
   }
   const auto f = lub::h5::File::open(path);
   EXPECT_EQ(f.attribute_int64("complete"), 1);
-  EXPECT_EQ(f.open_table("cases").read_int64s("case_id"), (std::vector<std::int64_t>{0, 1, 2, 3, 4}));
+  EXPECT_EQ(f.open_table("cases").read_int64s("case"), (std::vector<std::int64_t>{0, 1, 2, 3, 4}));
   EXPECT_EQ(f.open_dataset("series/case_0002/h_min").read_doubles(), fake(g, 2).series.data[1]);
 
   // Another grid over the same file: rows of other scenes are not reused.
@@ -372,4 +440,34 @@ TEST(SweepOptions, CommandLine) {
   Options r;
   EXPECT_EQ(*parse_options({"g.json", "-o", "x", "--restart", "--retry-failed"}, r, help, text),
             "--restart and --retry-failed exclude each other");
+}
+
+TEST_F(StudyFile, OutputLockRefusesASecondHolderNamingTheFirst) {
+  const std::string path = file("s.h5");
+  {
+    lub::sweep::OutputLock first(path);
+    EXPECT_TRUE(first.held());
+    try {
+      lub::sweep::OutputLock second(path);
+      FAIL() << "a second lock was granted";
+    } catch (const lub::InputError& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find("the file is in use by another sweep (pid " + std::to_string(::getpid())), std::string::npos)
+          << msg;
+    }
+    EXPECT_TRUE(fs::exists(path + ".lock"));
+  }
+  EXPECT_FALSE(fs::exists(path + ".lock"));  // removed when released
+  { std::ofstream stale(path + ".lock"); stale << "pid 1 on host gone\n"; }  // a killed sweep's
+  lub::sweep::OutputLock again(path);  // not locked by anyone: taken over
+  EXPECT_TRUE(again.held());
+}
+
+TEST(OutputPath, RefusedWithTheRule) {
+  EXPECT_EQ(lub::output_path_problem("x/"), std::optional<std::string>("-o x/: must name a file, not a directory (the path ends in '/')"));
+  EXPECT_NE(lub::output_path_problem("/")->find("must name a file"), std::string::npos);
+  EXPECT_NE(lub::output_path_problem(".")->find("existing directory"), std::string::npos);
+  EXPECT_NE(lub::output_path_problem("/no/such/dir/s.h5")->find("its directory /no/such/dir does not exist"), std::string::npos);
+  EXPECT_NE(lub::output_path_problem("")->find("empty"), std::string::npos);
+  EXPECT_FALSE(lub::output_path_problem(::testing::TempDir() + "/fine.h5").has_value());
 }

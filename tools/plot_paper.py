@@ -47,8 +47,8 @@ def crank_deg(s):
     return np.degrees(a - 2 * math.pi * math.floor(a[0] / (2 * math.pi) + 1e-6))
 
 
-def case_title(study, cid, axis):
-    v = study.value(axis, cid)
+def case_title(cases, cid, axis):
+    v = cases.at[cid, axis]
     if axis == "clearance_m":
         return f"c = {v * 1e3:g} mm"
     if axis == "viscosity_Pa_s":
@@ -60,10 +60,10 @@ def case_title(study, cid, axis):
     return f"{axis} = {v}"
 
 
-def clearance_m(study, cid):
-    if "clearance_m" in study.columns:
-        return float(study.value("clearance_m", cid))
-    scene = study.scene(cid)
+def clearance_m(path, cases, cid):
+    if "clearance_m" in cases.columns:
+        return float(cases.at[cid, "clearance_m"])
+    scene = study_io.scene(path, cid)
     name = scene.get("metrics", {}).get("joint")
     for j in scene["joints"]:
         if j.get("name") == name and "bearing_radius_m" in j:
@@ -72,21 +72,27 @@ def clearance_m(study, cid):
 
 
 class Figures:
-    def __init__(self, study, outdir):
-        self.s = study
-        self.out = outdir
+    def __init__(self, path, outdir):
+        self.path, self.out, self.written = path, outdir, []
+        self.c = study_io.cases(path)
         self.ideal_by_speed = {}
-        if "force_law" in study.columns:
-            for r in range(study.n):
-                if study.cases["force_law"][r] == "ideal" and study.cases["status"][r] == "ok":
-                    speed = study.cases["speed_rpm"][r] if "speed_rpm" in study.columns else None
-                    self.ideal_by_speed.setdefault(speed, int(study.cases["case_id"][r]))
-        self.written = []
+        if "force_law" in self.c.columns:
+            ideal = self.c[(self.c["force_law"] == "ideal") & (self.c["status"] == "ok")]
+            for cid, row in ideal.iterrows():
+                self.ideal_by_speed.setdefault(row.get("speed_rpm"), cid)
+
+    def value(self, column, cid):
+        return self.c.at[cid, column]
+
+    def series(self, cid):
+        """A case's channels as numpy arrays, or None."""
+        ds = study_io.series(self.path, self.value("name", cid))
+        return None if ds is None else {k: v.values for k, v in ds.variables.items()}
 
     def ideal_for(self, cid):
-        speed = self.s.value("speed_rpm", cid) if "speed_rpm" in self.s.columns else None
+        speed = self.value("speed_rpm", cid) if "speed_rpm" in self.c.columns else None
         ic = self.ideal_by_speed.get(speed)
-        return None if ic is None else (ic, self.s.series(self.s.value("case", ic)))
+        return None if ic is None else (ic, self.series(ic))
 
     def save(self, fig, name):
         path = os.path.join(self.out, name)
@@ -95,7 +101,7 @@ class Figures:
         self.written.append(path)
 
     def status_panel(self, ax, cid):
-        st, msg = self.s.value("status", cid), self.s.value("message", cid)
+        st, msg = self.value("status", cid), self.value("message", cid)
         ax.text(0.5, 0.5, f"{st}\n{msg[:60]}", ha="center", va="center", transform=ax.transAxes, fontsize=8,
                 wrap=True, color="firebrick")
 
@@ -109,7 +115,7 @@ class Figures:
         ax.set_ylabel("joint reaction [N]")
 
     def orbit(self, ax, cid, s):
-        c = clearance_m(self.s, cid)
+        c = clearance_m(self.path, self.c, cid)
         th = np.linspace(0, 2 * math.pi, 361)
         ax.plot(c * 1e3 * np.cos(th), c * 1e3 * np.sin(th), "k-", lw=0.8)
         ax.plot(s["e_x"] * 1e3, s["e_y"] * 1e3, lw=0.8)
@@ -119,7 +125,7 @@ class Figures:
 
     def film(self, ax, cid, s):
         ax.plot(crank_deg(s), s["h_min"] * 1e6, lw=0.8)
-        safe = self.s.value("safe_film_thickness_m", cid)
+        safe = self.value("safe_film_thickness_m", cid)
         if safe is not None and np.isfinite(safe) and safe > 0:
             ax.axhline(safe * 1e6, color="firebrick", ls=":", lw=0.8, label="safe film")
         ax.set_xlabel("crank angle [deg]")
@@ -131,7 +137,7 @@ class Figures:
         ax.set_ylabel("dε/dt [1/s]")
 
     def panel(self, ax, what, cid, title):
-        s = self.s.series(self.s.value("case", cid))
+        s = self.series(cid)
         ax.set_title(title, fontsize=9)
         ax.tick_params(labelsize=7)
         ax.xaxis.label.set_size(8)
@@ -145,14 +151,14 @@ class Figures:
                     transform=ax.transAxes, fontsize=8, color="gray")
             return
         getattr(self, what)(ax, cid, s)
-        if self.s.value("status", cid) != "ok":
-            ax.text(0.02, 0.02, self.s.value("status", cid), transform=ax.transAxes, fontsize=7, color="firebrick")
+        if self.value("status", cid) != "ok":
+            ax.text(0.02, 0.02, self.value("status", cid), transform=ax.transAxes, fontsize=7, color="firebrick")
         ax.grid(True, lw=0.3, alpha=0.5)
 
     # --- figures -------------------------------------------------------------------------
     def study_figures(self, grid, g):
-        axis, _ = g["axes"][0]
-        ids = [int(i) for i in np.asarray(g["case_id"]).ravel()]
+        axis = g.case_id.dims[0]
+        ids = [int(i) for i in g.case_id.values.ravel()]
         first = FIRST_FIGURE.get(grid)
         labels = {"reaction": "joint reaction force", "orbit": "journal centre orbit",
                   "film": "minimum film thickness", "phase": "phase portrait"}
@@ -162,7 +168,7 @@ class Figures:
             rows = math.ceil(n / cols)
             fig, axs = plt.subplots(rows, cols, figsize=(4.6 * cols, 3.4 * rows), squeeze=False)
             for i, cid in enumerate(ids):
-                self.panel(axs[i // cols][i % cols], what, cid, f"({chr(ord('a') + i)}) " + case_title(self.s, cid, axis))
+                self.panel(axs[i // cols][i % cols], what, cid, f"({chr(ord('a') + i)}) " + case_title(self.c, cid, axis))
             for j in range(n, rows * cols):
                 axs[j // cols][j % cols].set_visible(False)
             if what == "reaction":
@@ -173,7 +179,7 @@ class Figures:
             self.save(fig, f"{num}{grid}_{what}.png")
 
     def reference(self, cid):
-        s = self.s.series(self.s.value("case", cid))
+        s = self.series(cid)
         if s is None:
             return
         fig, axs = plt.subplots(2, 3, figsize=(12, 6.6))
@@ -200,8 +206,8 @@ class Figures:
         for ax, t in zip([axs[0][0], axs[0][1]], ["slider velocity", "slider acceleration"]):
             ax.set_title(t, fontsize=9)
         fig.suptitle("reference case: " + ", ".join(
-            case_title(self.s, cid, a) for a in ["clearance_m", "viscosity_Pa_s", "speed_rpm", "force_law"]
-            if a in self.s.columns), fontsize=10)
+            case_title(self.c, cid, a) for a in ["clearance_m", "viscosity_Pa_s", "speed_rpm", "force_law"]
+            if a in self.c.columns), fontsize=10)
         fig.tight_layout()
         self.save(fig, "fig05_reference.png")
 
@@ -211,23 +217,24 @@ def main():
     ap.add_argument("study", help="study file written by lubsweep")
     ap.add_argument("-o", "--outdir", default=None, help="directory of the PNGs (default: <study>_figures)")
     args = ap.parse_args()
-    s = study_io.Study(args.study)
+    study_io.check(args.study)
     out = args.outdir or os.path.splitext(args.study)[0] + "_figures"
     os.makedirs(out, exist_ok=True)
-    figs = Figures(s, out)
+    figs = Figures(args.study, out)
 
-    studies = [(n, g) for n, g in s.grids.items() if g["kind"] == "factorial" and len(g["axes"]) == 1
-               and not (len(g["axes"][0][1]) == 1)]
+    grids = {n: study_io.grid(args.study, n) for n in study_io.grid_names(args.study)}
+    studies = [(n, g) for n, g in grids.items() if g.attrs.get("kind") == "factorial" and g.case_id.ndim == 1
+               and g.case_id.size > 1]
     # The paper's order first.
     studies.sort(key=lambda ng: FIRST_FIGURE.get(ng[0], 99))
     for name, g in studies:
         figs.study_figures(name, g)
     # Reference: the first case of the clearance study, else the first lubricated case.
     ref = None
-    if "clearance" in s.grids:
-        ref = int(np.asarray(s.grids["clearance"]["case_id"]).ravel()[0])
-    elif s.n:
-        ref = int(s.cases["case_id"][0])
+    if "clearance" in grids:
+        ref = int(grids["clearance"].case_id.values.ravel()[0])
+    elif len(figs.c):
+        ref = int(figs.c.index[0])
     if ref is not None:
         figs.reference(ref)
     if not figs.written:

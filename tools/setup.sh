@@ -13,6 +13,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev googletest
   libbenchmark-dev
   python3-numpy python3-h5py python3-matplotlib
+  python3-xarray python3-h5netcdf python3-pandas python3-pytest
   python3-jsonschema
   clang libclang-rt-14-dev
 )

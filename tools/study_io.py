@@ -1,89 +1,65 @@
-"""Reading a lubsweep study file (HDF5) from Python: the helpers the plotting and
-comparison tools share. Needs h5py and numpy (Debian: /usr/bin/python3).
+"""Opening a lubsweep study file from Python: the file is netCDF-4 style (README, "The
+study file"), so xarray and pandas read it directly; this module only adds the format
+check and the few look-ups the tools share. Debian: /usr/bin/python3 with python3-xarray,
+python3-h5netcdf, python3-pandas.
 
     import study_io
-    s = study_io.Study("out/study.h5")
-    s.cases            # numpy structured array of /cases (strings decoded)
-    s.axes             # axis column names, e.g. ['clearance_m', 'viscosity_Pa_s', ...]
-    s.grid("clearance")    # {'case_id': N-D ids, 'axes': [(name, values), ...]}
-    s.series("case_0003")  # {'t': array, 'h_min': array, ...} or None
-    s.on_grid("clearance", "max_eps")  # the metric reshaped onto the sub-grid's axes
+    study_io.check("out/study.h5")                     # a lubsweep study of this format, or SystemExit
+    cases = study_io.cases("out/study.h5")              # pandas DataFrame, index: case id
+    ds = study_io.grid("out/study.h5", "clearance")     # xarray Dataset over the sub-grid's axes
+    s = study_io.series("out/study.h5", "case_0003")    # xarray Dataset indexed by t, or None
 """
 import json
 
 import h5py
-import numpy as np
+import xarray as xr
+
+FORMAT = "lubsweep-study-2"
 
 
-def _decode(a):
-    """bytes columns of a structured array -> str."""
-    if a.dtype.names is None:
-        return a
-    out = {}
-    for name in a.dtype.names:
-        col = a[name]
-        if col.dtype.kind == "O":
-            col = np.array([x.decode() if isinstance(x, bytes) else x for x in col], dtype=object)
-        out[name] = col
-    return out
+def _open(path, group=None):
+    return xr.open_dataset(path, group=group, engine="h5netcdf")
 
 
-class Study:
-    def __init__(self, path):
-        self.path = path
+def check(path):
+    """Root attributes of a study file of this format; SystemExit with the reason otherwise."""
+    try:
         with h5py.File(path, "r") as f:
-            if f.attrs.get("program") != "lubsweep" or "cases" not in f:
-                raise SystemExit(f"{path}: not a lubsweep study file")
-            self.attrs = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f.attrs.items()}
-            t = f["cases"]
-            self.columns = list(t.dtype.names)
-            self.units = dict(zip([c.decode() if isinstance(c, bytes) else c for c in t.attrs["columns"]],
-                                  [u.decode() if isinstance(u, bytes) else u for u in t.attrs["units"]]))
-            self.axes = [a.decode() if isinstance(a, bytes) else a for a in t.attrs.get("axes", [])]
-            self.metrics = [a.decode() if isinstance(a, bytes) else a for a in t.attrs.get("metrics", [])]
-            self.solver = [a.decode() if isinstance(a, bytes) else a for a in t.attrs.get("solver", [])]
-            self.cases = _decode(t[:])
-            self.n = len(t)
-            self.grids = {}
-            for name, g in f.get("grids", {}).items():
-                ids = g["case_id"][()]
-                axes = []
-                for a in g.attrs.get("axes", []):
-                    a = a.decode() if isinstance(a, bytes) else a
-                    d = g[a]
-                    vals = d.asstr()[()] if d.dtype.kind == "O" else d[()]
-                    axes.append((a, vals))
-                self.grids[name] = {"case_id": ids, "axes": axes,
-                                    "kind": g.attrs.get("kind", "factorial")}
-            self._row = {int(c): i for i, c in enumerate(self.cases["case_id"])}
+            attrs = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f.attrs.items()}
+    except OSError as e:
+        raise SystemExit(f"{path}: not an HDF5 file ({e})")
+    if attrs.get("program") != "lubsweep":
+        raise SystemExit(f"{path}: not a lubsweep study file")
+    if attrs.get("format") != FORMAT:
+        raise SystemExit(f"{path}: a study file of format {attrs.get('format')}; these tools read {FORMAT} "
+                         "(re-run the sweep with --restart to rewrite it)")
+    return attrs
 
-    def row(self, case_id):
-        """Row index of a case id (equal to it in a finished file)."""
-        return self._row.get(int(case_id))
 
-    def value(self, column, case_id):
-        r = self.row(case_id)
-        return None if r is None else self.cases[column][r]
+def cases(path):
+    """/cases as a pandas DataFrame indexed by case id (its `attrs`: the group's attributes)."""
+    ds = _open(path, "cases")
+    df = ds.to_dataframe()
+    df.attrs = dict(ds.attrs, units={k: ds[k].attrs.get("units", "") for k in ds.variables})
+    return df
 
-    def series(self, case_name):
-        with h5py.File(self.path, "r") as f:
-            g = f.get(f"series/{case_name}")
-            if g is None:
-                return None
-            return {k: g[k][()] for k in g.keys()}
 
-    def scene(self, case_id):
-        with h5py.File(self.path, "r") as f:
-            return json.loads(f["scenes"].asstr()[int(case_id)])
+def grid_names(path):
+    with h5py.File(path, "r") as f:
+        return list(f.get("grids", {}).keys())
 
-    def on_grid(self, grid, column):
-        """`column` of /cases reshaped onto a sub-grid (NaN where a case has no row)."""
-        g = self.grids[grid]
-        ids = np.asarray(g["case_id"])
-        col = self.cases[column]
-        out = np.full(ids.shape, np.nan, dtype=float) if col.dtype.kind != "O" else np.empty(ids.shape, dtype=object)
-        for idx, cid in np.ndenumerate(ids):
-            r = self.row(cid)
-            if r is not None:
-                out[idx] = col[r]
-        return out
+
+def grid(path, name):
+    return _open(path, f"grids/{name}")
+
+
+def series(path, case_name):
+    """The stored channels of a case (xarray Dataset on t), or None."""
+    with h5py.File(path, "r") as f:
+        if f"series/{case_name}" not in f:
+            return None
+    return _open(path, f"series/{case_name}")
+
+
+def scene(path, case_id):
+    return json.loads(_open(path).scenes.sel(scene=int(case_id)).item())

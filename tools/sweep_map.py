@@ -26,63 +26,40 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import study_io  # noqa: E402
 
 
-def parse_fix(study, items):
-    fixed = {}
+def select(cases, axes, x, y, items):
+    """The rows with the --fix values; every other axis that varies must be fixed."""
+    rows, fixed = cases, {}
     for it in items:
-        if "=" not in it:
-            raise SystemExit(f"sweep_map: --fix {it}: must be AXIS=VALUE")
-        k, v = it.split("=", 1)
-        if k not in study.axes:
-            raise SystemExit(f"sweep_map: --fix {it}: {k} is not an axis of the study ({', '.join(study.axes)})")
-        col = study.cases[k]
-        fixed[k] = v if col.dtype.kind == "O" else float(v)
-    return fixed
-
-
-def select(study, x, y, fixed):
-    rows = np.ones(study.n, dtype=bool)
-    for k, v in fixed.items():
-        col = study.cases[k]
-        rows &= (col == v) if col.dtype.kind == "O" else np.isclose(col.astype(float), v, rtol=1e-12, atol=0)
-    free = []
-    for a in study.axes:
-        if a in (x, y) or a in fixed:
-            continue
-        vals = ordered(study.cases[a][rows].tolist())
-        if len(vals) > 1:
-            free.append(f"{a} ({', '.join(map(str, vals))})")
+        k, eq, v = it.partition("=")
+        if not eq or k not in axes:
+            raise SystemExit(f"sweep_map: --fix {it}: must be AXIS=VALUE with AXIS one of {', '.join(axes)}")
+        fixed[k] = v if cases[k].dtype.kind == "O" else float(v)
+        rows = rows[rows[k] == v] if cases[k].dtype.kind == "O" else rows[np.isclose(rows[k], float(v), rtol=1e-12, atol=0)]
+    free = [f"{a} ({', '.join(map(str, rows[a].unique()))})" for a in axes
+            if a not in (x, y) and a not in fixed and rows[a].nunique() > 1]
     if free:
         raise SystemExit("sweep_map: fix the other axes that vary with --fix AXIS=VALUE: " + "; ".join(free))
-    if not rows.any():
+    if rows.empty:
         raise SystemExit("sweep_map: no case matches the --fix values")
-    return rows
+    return rows, fixed
 
 
-def ordered(values):
-    """Axis values in the order of the study's grids (as listed), else sorted."""
-    try:
-        return sorted(set(values), key=float)
-    except (TypeError, ValueError):
-        seen = []
-        for v in values:
-            if v not in seen:
-                seen.append(v)
-        return seen
+def ordered(col):
+    """Axis values sorted if numeric, else in their order of appearance."""
+    return sorted(col.unique()) if col.dtype.kind != "O" else list(dict.fromkeys(col))
 
 
-def label(study, name):
-    u = study.units.get(name, "")
-    return f"{name} [{u}]" if u and u not in ("1",) and not name.endswith(u.replace(" ", "_")) else name
+def label(units, name):
+    u = units.get(name, "")
+    in_name = name.endswith(u.replace(" ", "_")) or name.endswith("_rpm")  # the unit is in the name
+    return f"{name} [{u}]" if u and u != "1" and not in_name else name
 
 
-def draw(study, metric, x, y, rows, fixed, outdir):
-    xs, ys = ordered(study.cases[x][rows].tolist()), ordered(study.cases[y][rows].tolist())
-    z = np.full((len(ys), len(xs)), np.nan)
-    status = np.empty((len(ys), len(xs)), dtype=object)
-    for r in np.nonzero(rows)[0]:
-        i, j = ys.index(study.cases[y][r]), xs.index(study.cases[x][r])
-        z[i, j] = float(study.cases[metric][r])
-        status[i, j] = study.cases["status"][r]
+def draw(rows, units, metric, x, y, fixed, outdir):
+    xs, ys = ordered(rows[x]), ordered(rows[y])
+    z = rows.pivot_table(index=y, columns=x, values=metric, aggfunc="first", dropna=False).reindex(index=ys, columns=xs)
+    status = rows.pivot_table(index=y, columns=x, values="status", aggfunc="first").reindex(index=ys, columns=xs)
+    z, status = z.to_numpy(dtype=float), status.to_numpy(dtype=object)
     finite = z[np.isfinite(z)]
     norm = None
     if finite.size and finite.min() > 0 and finite.max() / finite.min() > 100:
@@ -92,7 +69,7 @@ def draw(study, metric, x, y, rows, fixed, outdir):
     for i in range(len(ys)):
         for j in range(len(xs)):
             txt = "" if not math.isfinite(z[i, j]) else f"{z[i, j]:.3g}"
-            if status[i, j] not in (None, "ok"):
+            if status[i, j] not in (None, "ok") and isinstance(status[i, j], str):
                 ax.add_patch(plt.Rectangle((j - 0.5, i - 0.5), 1, 1, fill=False, hatch="///", color="firebrick", lw=0))
                 txt = f"{txt}\n{status[i, j]}"
             colour = "firebrick"
@@ -100,12 +77,12 @@ def draw(study, metric, x, y, rows, fixed, outdir):
                 r, g, b, _ = im.cmap(im.norm(z[i, j]))
                 colour = "black" if 0.299 * r + 0.587 * g + 0.114 * b > 0.5 else "white"
             ax.text(j, i, txt, ha="center", va="center", fontsize=7, color=colour,
-                    bbox=None if status[i, j] in (None, "ok") else dict(fc="white", ec="none", alpha=0.7, pad=1))
+                    bbox=None if status[i, j] in (None, "ok") or not isinstance(status[i, j], str) else dict(fc="white", ec="none", alpha=0.7, pad=1))
     ax.set_xticks(range(len(xs)), [f"{v:g}" if isinstance(v, float) else str(v) for v in xs], fontsize=8)
     ax.set_yticks(range(len(ys)), [f"{v:g}" if isinstance(v, float) else str(v) for v in ys], fontsize=8)
-    ax.set_xlabel(label(study, x))
-    ax.set_ylabel(label(study, y))
-    fig.colorbar(im, ax=ax, label=label(study, metric))
+    ax.set_xlabel(label(units, x))
+    ax.set_ylabel(label(units, y))
+    fig.colorbar(im, ax=ax, label=label(units, metric))
     title = metric + ("" if not fixed else "  (" + ", ".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}"
                                                            for k, v in fixed.items()) + ")")
     ax.set_title(title, fontsize=9)
@@ -125,21 +102,22 @@ def main():
     ap.add_argument("--fix", action="append", default=[], help="AXIS=VALUE for every other varying axis")
     ap.add_argument("-o", "--outdir", default=".")
     args = ap.parse_args()
-    s = study_io.Study(args.study)
+    study_io.check(args.study)
+    cases = study_io.cases(args.study)
+    axes, units = list(cases.attrs.get("axes", [])), cases.attrs["units"]
     for a in (args.x, args.y):
-        if a not in s.axes:
-            raise SystemExit(f"sweep_map: {a} is not an axis of the study ({', '.join(s.axes)})")
+        if a not in axes:
+            raise SystemExit(f"sweep_map: {a} is not an axis of the study ({', '.join(axes)})")
     metrics = args.metric or ["max_eps"]
     if "all" in metrics:
-        metrics = [m for m in s.metrics if s.cases[m].dtype.kind in "fiu"]
+        metrics = [m for m in cases.attrs["metrics"] if cases[m].dtype.kind in "fiu"]
     for m in metrics:
-        if m not in s.columns:
+        if m not in cases.columns:
             raise SystemExit(f"sweep_map: {m} is not a column of /cases")
-    fixed = parse_fix(s, args.fix)
-    rows = select(s, args.x, args.y, fixed)
+    rows, fixed = select(cases, axes, args.x, args.y, args.fix)
     os.makedirs(args.outdir, exist_ok=True)
     for m in metrics:
-        print(draw(s, m, args.x, args.y, rows, fixed, args.outdir))
+        print(draw(rows, units, m, args.x, args.y, fixed, args.outdir))
     return 0
 
 

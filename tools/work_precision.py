@@ -50,35 +50,36 @@ def main():
                     help="radial clearance for the orbit error [m] (default: from the reference scene)")
     args = ap.parse_args()
 
-    s = study_io.Study(args.study)
-    c = s.cases
-    if "rtol" not in c or "reference" not in s.grids:
+    study_io.check(args.study)
+    c = study_io.cases(args.study)  # pandas, index: case id
+    series = lambda cid: {k: v.values for k, v in study_io.series(args.study, c["name"][cid]).variables.items()}
+    if "rtol" not in c or "reference" not in study_io.grid_names(args.study):
         print(f"{args.study}: not an accuracy study (needs an rtol axis and a 'reference' grid)", file=sys.stderr)
         return 2
     # One reference per setting of the other axes (e.g. per force law): a case is measured
     # against the reference whose values of the other axes equal its own.
     numerics = {"method", "rtol", "formulation", "projection"}
-    others = [a for a in s.axes if a not in numerics]
+    others = [a for a in c.attrs.get("axes", []) if a not in numerics]
     key = lambda i: tuple(str(c[a][i]) for a in others)
     refs = {}
-    for rid in np.ravel(s.grids["reference"]["case_id"]):
-        r = s.row(int(rid))
+    for rid in study_io.grid(args.study, "reference").case_id.values.ravel():
+        r = int(rid)
         if c["status"][r] != "ok":
             print(f"{args.study}: the reference case {int(rid)} did not complete: {c['message'][r]}", file=sys.stderr)
             return 2
         refs[key(r)] = r
-    scene = s.scene(int(c["case_id"][next(iter(refs.values()))]))
+    scene = study_io.scene(args.study, next(iter(refs.values())))
     clearance = args.clearance_m
     if clearance is None:
         j = next(j for j in scene["joints"] if j["type"] == "lubricated_revolute")
         clearance = j["bearing_radius_m"] - j["journal_radius_m"]
 
     rows = []
-    for i in range(s.n):
+    for i in c.index:
         ref = refs.get(key(i))
         if ref is None or i in refs.values():
             continue
-        ref_series = s.series(c["case"][ref])
+        ref_series = series(ref)
         h_ref = c["min_film_thickness_m"][ref]
         r_ref = c["peak_reaction_N"][ref]
         cost_rhs = int(c["rhs_evals"][i]) + int(c["rhs_evals_jacobian"][i])
@@ -86,7 +87,7 @@ def main():
                "steps": int(c["steps"][i]), "rhs": cost_rhs, "wall": float(c["wall_time_s"][i]),
                "orbit": math.nan, "min_film": math.nan, "reaction": math.nan}
         if row["status"] == "ok":
-            ser = s.series(c["case"][i])
+            ser = series(i)
             if ser is not None and ref_series is not None:
                 ex = np.interp(ref_series["t"], ser["t"], ser["e_x"])
                 ey = np.interp(ref_series["t"], ser["t"], ser["e_y"])
@@ -109,7 +110,7 @@ def main():
                      f"{r['wall']:.3f} | {fmt(r['orbit'])} | {fmt(r['min_film'])} | {fmt(r['reaction'])} |")
     lines.append("")
     for k, ref in refs.items():
-        lines.append(f"Reference{' (' + ' '.join(k) + ')' if k else ''}: case {int(c['case_id'][ref])} "
+        lines.append(f"Reference{' (' + ' '.join(k) + ')' if k else ''}: case {ref} "
                      f"({label(c, ref)}, rtol {c['rtol'][ref]:.0e}): "
                      f"h_min = {c['min_film_thickness_m'][ref] * 1e6:.4f} µm, "
                      f"peak reaction = {c['peak_reaction_N'][ref]:.2f} N, "

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "lub/io/output_path.hpp"
 #include "lub/run/run.hpp"
 #include "lub/run/run_io.hpp"
 #include "lub/scene/scene.hpp"
@@ -38,17 +39,6 @@ const char* kUsage =
 int usage_error(const std::string& msg) {
   std::cerr << "lubsim: " << msg << "\n\n" << kUsage;
   return 2;
-}
-
-bool directory_writable(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  const std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
-  const std::string probe = dir + "/.lubsim_write_probe";
-  std::ofstream f(probe);
-  if (!f) return false;
-  f.close();
-  std::remove(probe.c_str());
-  return true;
 }
 
 }  // namespace
@@ -85,6 +75,11 @@ int main(int argc, char** argv) {
   }
   if (scene_path.empty()) return usage_error("no scene given");
   if (out_path.empty()) return usage_error("no output file given (-o RUN.h5)");
+  // The output path first: a run that could not be written is refused before any work.
+  if (const auto problem = lub::output_path_problem(out_path)) {
+    std::cerr << "lubsim: " << *problem << "\n";
+    return 2;
+  }
 
   lub::Scene scene;
   std::string scene_text;
@@ -95,10 +90,6 @@ int main(int argc, char** argv) {
     scene_text = doc.dump(2);
   } catch (const lub::InputError& e) {
     std::cerr << "lubsim: " << scene_path << ": " << e.what() << "\n";
-    return 2;
-  }
-  if (!directory_writable(out_path)) {
-    std::cerr << "lubsim: -o " << out_path << ": the directory does not exist or is not writable\n";
     return 2;
   }
 

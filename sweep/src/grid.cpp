@@ -88,7 +88,7 @@ std::string unit_of_key(const std::string& pointer) {
   const auto slash = pointer.find_last_of('/');
   const std::string key = slash == std::string::npos ? pointer : pointer.substr(slash + 1);
   static const std::vector<std::pair<std::string, std::string>> suffixes = {
-      {"_Pa_s", "Pa s"}, {"_rpm", "rpm"}, {"_rad_s", "rad/s"}, {"_m_s2", "m/s^2"}, {"_kg_m2", "kg m^2"},
+      {"_Pa_s", "Pa s"}, {"_rpm", "min-1"}, {"_rad_s", "rad s-1"}, {"_m_s2", "m s-2"}, {"_kg_m2", "kg m2"},
       {"_m", "m"},       {"_s", "s"},     {"_rad", "rad"},     {"_kg", "kg"},     {"_N", "N"},
       {"_J", "J"}};
   for (const auto& [suffix, unit] : suffixes)
@@ -99,7 +99,7 @@ std::string unit_of_key(const std::string& pointer) {
 }
 
 bool reserved_column(const std::string& name) {
-  static const std::vector<std::string> own = {"case_id", "case", "hash", "status", "message", "rank", "revision"};
+  static const std::vector<std::string> own = {"case_id", "case", "name", "hash", "status", "message", "rank", "revision"};
   if (std::find(own.begin(), own.end(), name) != own.end()) return true;
   for (const auto& f : metric_fields())
     if (name == f.name) return true;
@@ -135,7 +135,7 @@ void resolve_named(Axis& axis, const Context& cx, const std::string& path) {
                                       (cx.driver_name.empty() ? std::string() : " named \"" + cx.driver_name + "\"") +
                                       " (set grid.driver)");
     axis.pointer = "/drivers/" + std::to_string(*cx.driver) + "/speed_rpm";
-    axis.units = "rpm";
+    axis.units = "min-1";  // CF: revolutions per minute
     return;
   }
   if (!cx.joint)

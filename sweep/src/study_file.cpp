@@ -1,10 +1,9 @@
 #include "lub/sweep/study_file.hpp"
 
-#include <hdf5.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <stdexcept>
 
@@ -17,42 +16,6 @@ using nlohmann::json;
 
 namespace {
 
-/// Owner of a temporary HDF5 id (for the few calls lub::h5 does not offer).
-class Hid {
- public:
-  explicit Hid(hid_t id) : id_(id) {}
-  Hid(const Hid&) = delete;
-  Hid& operator=(const Hid&) = delete;
-  Hid(Hid&& o) noexcept : id_(o.id_) { o.id_ = -1; }
-  ~Hid() {
-    if (id_ < 0) return;
-    switch (H5Iget_type(id_)) {
-      case H5I_DATASET: H5Dclose(id_); break;
-      case H5I_DATATYPE: H5Tclose(id_); break;
-      case H5I_DATASPACE: H5Sclose(id_); break;
-      case H5I_GENPROP_LST: H5Pclose(id_); break;
-      default: break;
-    }
-  }
-  hid_t get() const { return id_; }
-  bool ok() const { return id_ >= 0; }
-
- private:
-  hid_t id_;
-};
-
-[[noreturn]] void h5_fail(const h5::Group& g, const std::string& name, const std::string& what) {
-  H5Eclear2(H5E_DEFAULT);
-  throw std::runtime_error("lubsweep: " + g.file_name() + ":" + g.path() + "/" + name + ": " + what);
-}
-
-Hid string_type() {
-  Hid t(H5Tcopy(H5T_C_S1));
-  if (!t.ok() || H5Tset_size(t.get(), H5T_VARIABLE) < 0 || H5Tset_cset(t.get(), H5T_CSET_UTF8) < 0)
-    throw std::runtime_error("lubsweep: cannot build the HDF5 string type");
-  return t;
-}
-
 h5::Cell axis_cell(const Axis& a, const json& v) {
   if (a.numeric) return v.is_number() ? v.get<double>() : std::nan("");
   if (v.is_null()) return std::string();
@@ -62,6 +25,31 @@ h5::Cell axis_cell(const Axis& a, const json& v) {
 
 std::string policy_text(FailurePolicy p) {
   return p == FailurePolicy::abort_on_failure ? "abort" : "continue";
+}
+
+std::string axis_long_name(const Axis& a) {
+  if (a.kind == "clearance_m") return "radial clearance c = bearing radius - journal radius";
+  if (a.kind == "viscosity_Pa_s") return "lubricant dynamic viscosity";
+  if (a.kind == "speed_rpm") return "driver speed in revolutions per minute";
+  if (a.kind == "force_law") return "hydrodynamic force law of the lubricated joint";
+  return "scene value " + a.pointer;
+}
+
+/// Writes an axis's values as a dimension scale `name` in `g`.
+h5::Dataset write_axis(h5::Group& g, const Axis& a, const std::vector<json>& values) {
+  h5::Dataset d;
+  if (a.numeric) {
+    std::vector<double> v;
+    for (const json& x : values) v.push_back(x.is_number() ? x.get<double>() : std::nan(""));
+    d = g.write_dataset(a.name, v, a.units);
+  } else {
+    std::vector<std::string> v;
+    for (const json& x : values) v.push_back(x.is_null() ? std::string() : x.is_string() ? x.get<std::string>() : x.dump());
+    d = g.write_strings(a.name, v);
+  }
+  d.set_attribute("long_name", axis_long_name(a));
+  d.set_attribute("pointer", a.pointer);
+  return d;
 }
 
 void write_header(h5::File& f, const Grid& g, bool complete) {
@@ -86,10 +74,19 @@ void write_header(h5::File& f, const Grid& g, bool complete) {
   if (!axes.empty()) t.set_attribute("axes", axes);
   t.set_attribute("metrics", metrics);
   t.set_attribute("solver", solver);
+  for (const Axis& a : g.axes) t.column(a.name).set_attribute("pointer", a.pointer);
 
+  // /scenes on the root's own `scene` dimension (the case ids of the grid), so the root
+  // group opens in netCDF readers too.
   std::vector<std::string> scenes;
-  for (const Case& c : g.cases) scenes.push_back(c.scene);
-  write_strings(f, "scenes", scenes);
+  std::vector<std::int64_t> all_ids;
+  for (const Case& c : g.cases) scenes.push_back(c.scene), all_ids.push_back(c.id);
+  h5::Dataset scene_ids = f.write_dataset("scene", all_ids, {all_ids.size()}, "1");
+  scene_ids.set_attribute("long_name", "case id of each scene");
+  scene_ids.make_scale("scene");
+  h5::Dataset sc = f.write_strings("scenes", scenes);
+  sc.set_attribute("long_name", "effective scene of each case (canonical JSON)");
+  sc.attach_scale(scene_ids, 0);
 
   h5::Group grids = f.require_group("grids");
   for (const Block& b : g.blocks) {
@@ -97,27 +94,85 @@ void write_header(h5::File& f, const Grid& g, bool complete) {
     bg.set_attribute("kind", b.factorial ? "factorial" : "cases");
     std::vector<std::int64_t> ids(b.case_ids.begin(), b.case_ids.end());
     std::vector<std::size_t> shape = b.shape.empty() ? std::vector<std::size_t>{ids.size()} : b.shape;
-    write_int64s(bg, "case_id", ids, shape);
-    if (!b.factorial) continue;
+    h5::Dataset index = bg.write_dataset("case_id", ids, shape, "1");
+    index.set_attribute("long_name", "case id (the coordinate of /cases) of each grid point");
     std::vector<std::string> names;
-    h5::Dataset index = bg.open_dataset("case_id");
-    for (std::size_t i = 0; i < b.axes.size(); ++i) {
-      const Axis& a = g.axes[static_cast<std::size_t>(b.axes[i])];
-      names.push_back(a.name);
-      if (a.numeric) {
-        std::vector<double> v;
-        for (const json& x : b.values[i]) v.push_back(x.get<double>());
-        bg.write_dataset(a.name, v, a.units);
-      } else {
-        std::vector<std::string> v;
-        for (const json& x : b.values[i]) v.push_back(x.is_string() ? x.get<std::string>() : x.dump());
-        write_strings(bg, a.name, v);
+    if (b.factorial) {
+      for (std::size_t i = 0; i < b.axes.size(); ++i) {
+        const Axis& a = g.axes[static_cast<std::size_t>(b.axes[i])];
+        names.push_back(a.name);
+        h5::Dataset scale = write_axis(bg, a, b.values[i]);
+        scale.make_scale(a.name);
+        index.attach_scale(scale, static_cast<unsigned>(i), a.name);
       }
-      h5::Dataset scale = bg.open_dataset(a.name);
-      scale.set_attribute("pointer", a.pointer);
-      index.attach_scale(scale, static_cast<unsigned>(i), a.name);
+    } else {
+      // An explicit list: dimension `case` (the case ids); each axis a variable over it.
+      h5::Dataset scale = bg.write_dataset("case", ids, {ids.size()}, "1");
+      scale.set_attribute("long_name", "case id");
+      scale.make_scale("case");
+      index.attach_scale(scale, 0, "case");
+      for (std::size_t k = 0; k < g.axes.size(); ++k) {
+        std::vector<json> v;
+        for (int id : b.case_ids) v.push_back(g.cases.at(static_cast<std::size_t>(id)).axis_values[k]);
+        h5::Dataset d = write_axis(bg, g.axes[k], v);
+        d.attach_scale(scale, 0);
+      }
     }
     if (!names.empty()) bg.set_attribute("axes", names);
+  }
+}
+
+/// Attaches the dimension scales of sub-grid `bg` (those of its `case_id`) to `d`.
+void attach_like_index(h5::Group& bg, const Block& b, const Grid& g, h5::Dataset& d) {
+  if (!b.factorial) {
+    h5::Dataset scale = bg.open_dataset("case");
+    d.attach_scale(scale, 0);
+    return;
+  }
+  for (std::size_t i = 0; i < b.axes.size(); ++i) {
+    h5::Dataset scale = bg.open_dataset(g.axes[static_cast<std::size_t>(b.axes[i])].name);
+    d.attach_scale(scale, static_cast<unsigned>(i));
+  }
+}
+
+/// Every sub-grid's results as labelled N-d variables on its axes: each result field
+/// (float64; NaN for the metrics of a case that is not ok, and for every field of a
+/// case without a row), `status` ("not_run" without a row) and `message`.
+void write_grid_results(h5::File& f, const Grid& g, const std::map<int, CaseResult>& results) {
+  const auto fields = result_fields();
+  const std::size_t n_metrics = metric_fields().size();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const Block& b : g.blocks) {
+    h5::Group bg = f.open_group("grids/" + b.name);
+    const std::vector<std::size_t> shape = b.shape.empty() ? std::vector<std::size_t>{b.case_ids.size()} : b.shape;
+    std::vector<const CaseResult*> rs;
+    for (int id : b.case_ids) {
+      const auto it = results.find(id);
+      rs.push_back(it == results.end() ? nullptr : &it->second);
+    }
+    for (std::size_t k = 0; k < fields.size(); ++k) {
+      std::vector<double> v;
+      for (const CaseResult* r : rs) {
+        const bool have = r != nullptr && k < r->values.size() && (k >= n_metrics || r->ok());
+        v.push_back(have ? r->values[k] : nan);
+      }
+      h5::Dataset d = bg.write_dataset(fields[k].name, v, shape, fields[k].unit, h5::WriteOptions{0});
+      d.set_attribute("long_name", std::string(fields[k].long_name) +
+                                       (k < n_metrics ? " (NaN: the case is not ok, see status)" : ""));
+      attach_like_index(bg, b, g, d);
+    }
+    std::vector<std::string> status, message;
+    for (const CaseResult* r : rs) {
+      status.push_back(r ? r->status : "not_run");
+      message.push_back(r ? r->message : "");
+    }
+    h5::Dataset st = bg.write_strings("status", status, shape);
+    st.set_attribute("long_name",
+                     "outcome: ok, film_collapse, solver_failure, budget_exceeded, invalid_scene, error, or not_run");
+    attach_like_index(bg, b, g, st);
+    h5::Dataset msg = bg.write_strings("message", message, shape);
+    msg.set_attribute("long_name", "why a case is not ok");
+    attach_like_index(bg, b, g, msg);
   }
 }
 
@@ -125,11 +180,9 @@ void write_series(h5::File& f, const Grid& g, const CaseResult& r) {
   if (r.series.names.empty()) return;
   const Case& c = g.cases.at(static_cast<std::size_t>(r.case_id));
   h5::Group s = f.require_group("series/" + c.name);
-  s.set_attribute("channels", r.series.names);
   s.set_attribute("case_id", static_cast<std::int64_t>(c.id));
   s.set_attribute("hash", c.hash);
-  for (std::size_t i = 0; i < r.series.names.size(); ++i)
-    s.write_dataset(r.series.names[i], r.series.data[i], r.series.units[i]);
+  lub::write_series(s, r.series, channel_long_names(c.scene, r.series.names));
 }
 
 void rename_over(const std::string& from, const std::string& to) {
@@ -143,59 +196,21 @@ void rename_over(const std::string& from, const std::string& to) {
 
 // ---------------------------------------------------------------------------------------
 
-void write_strings(h5::Group& group, const std::string& name, const std::vector<std::string>& values) {
-  Hid type = string_type();
-  const hsize_t dims[1] = {values.size()};
-  Hid space(H5Screate_simple(1, dims, nullptr));
-  Hid ds(H5Dcreate2(group.id(), name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
-  if (!space.ok() || !ds.ok()) h5_fail(group, name, "cannot create the string dataset");
-  std::vector<const char*> p;
-  for (const auto& s : values) p.push_back(s.c_str());
-  if (!values.empty() && H5Dwrite(ds.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, p.data()) < 0)
-    h5_fail(group, name, "cannot write the string dataset");
-}
-
-std::vector<std::string> read_strings(const h5::Group& group, const std::string& name) {
-  Hid ds(H5Dopen2(group.id(), name.c_str(), H5P_DEFAULT));
-  if (!ds.ok()) h5_fail(group, name, "cannot open the dataset");
-  Hid space(H5Dget_space(ds.get()));
-  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
-  Hid type = string_type();
-  std::vector<char*> buf(static_cast<std::size_t>(std::max<hssize_t>(n, 0)), nullptr);
-  if (n > 0 && H5Dread(ds.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data()) < 0)
-    h5_fail(group, name, "cannot read the string dataset");
-  std::vector<std::string> out;
-  for (char* s : buf) out.emplace_back(s ? s : "");
-  if (n > 0) H5Dvlen_reclaim(type.get(), space.get(), H5P_DEFAULT, buf.data());
-  return out;
-}
-
-void write_int64s(h5::Group& group, const std::string& name, const std::vector<std::int64_t>& values,
-                  const std::vector<std::size_t>& shape) {
-  std::vector<hsize_t> dims(shape.begin(), shape.end());
-  std::size_t n = 1;
-  for (std::size_t e : shape) n *= e;
-  if (n != values.size()) h5_fail(group, name, "shape does not match the number of values");
-  Hid space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr));
-  Hid ds(H5Dcreate2(group.id(), name.c_str(), H5T_STD_I64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
-  if (!space.ok() || !ds.ok()) h5_fail(group, name, "cannot create the dataset");
-  if (n > 0 && H5Dwrite(ds.get(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
-    h5_fail(group, name, "cannot write the dataset");
-}
-
 std::vector<h5::Column> case_columns(const Grid& g) {
   using h5::ColumnType;
-  std::vector<h5::Column> c = {{"case_id", ColumnType::Int64, ""},
-                               {"case", ColumnType::String, ""},
-                               {"hash", ColumnType::String, ""}};
+  std::vector<h5::Column> c = {{"case", ColumnType::Int64, "1", "case id (row in case-id order once the study is complete)"},
+                               {"name", ColumnType::String, "", "case name, its /series group"},
+                               {"hash", ColumnType::String, "", "SHA-256 of the effective scene (canonical JSON)"}};
   for (const Axis& a : g.axes)
-    c.push_back({a.name, a.numeric ? ColumnType::Float64 : ColumnType::String, a.units});
-  c.push_back({"status", ColumnType::String, ""});
-  c.push_back({"message", ColumnType::String, ""});
+    c.push_back({a.name, a.numeric ? ColumnType::Float64 : ColumnType::String, a.numeric ? a.units : "",
+                 axis_long_name(a)});
+  c.push_back({"status", ColumnType::String, "",
+               "outcome: ok, film_collapse, solver_failure, budget_exceeded, invalid_scene, error"});
+  c.push_back({"message", ColumnType::String, "", "why a case is not ok"});
   for (const auto& f : result_fields())
-    c.push_back({f.name, f.integer ? ColumnType::Int64 : ColumnType::Float64, f.unit});
-  c.push_back({"rank", ColumnType::Int64, ""});
-  c.push_back({"revision", ColumnType::String, ""});
+    c.push_back({f.name, f.integer ? ColumnType::Int64 : ColumnType::Float64, f.unit, f.long_name});
+  c.push_back({"rank", ColumnType::Int64, "1", "MPI rank that computed the case"});
+  c.push_back({"revision", ColumnType::String, "", "build revision that computed the case"});
   return c;
 }
 
@@ -218,6 +233,13 @@ h5::Row case_row(const Grid& g, const CaseResult& r) {
   return row;
 }
 
+void check_format(const h5::File& f, const std::string& what, const std::string& hint) {
+  const std::string format = f.has_attribute("format") ? f.attribute_string("format") : "(none)";
+  if (format != kStudyFormat)
+    throw InputError(what + ": a study file of format " + format + "; this lubsweep reads and writes format " +
+                     kStudyFormat + " (/cases as columns, /grids as labelled variables)" + hint);
+}
+
 ResumeState read_existing(const std::string& path, const Grid& grid, bool retry_failed,
                           const std::string& build) {
   const std::string hint = " (use --restart to overwrite it, or another -o)";
@@ -229,6 +251,7 @@ ResumeState read_existing(const std::string& path, const Grid& grid, bool retry_
   }
   if (!f.has_attribute("program") || f.attribute_string("program") != "lubsweep" || !f.exists("cases"))
     throw InputError("-o " + path + ": the file exists and is not a lubsweep study file" + hint);
+  check_format(f, "-o " + path, hint);
   ResumeState st;
   h5::Table t;
   try {
@@ -292,12 +315,16 @@ void copy_series(const h5::File& from, const std::string& from_name, h5::File& t
   h5::Group dst = to.require_group("series/" + to_case.name);
   dst.set_attribute("case_id", static_cast<std::int64_t>(to_case.id));
   dst.set_attribute("hash", to_case.hash);
-  std::vector<std::string> names = src.has_attribute("channels") ? src.attribute_strings("channels") : src.list();
-  dst.set_attribute("channels", names);
-  for (const std::string& name : names) {
+  Series s;
+  std::vector<std::string> long_names;
+  s.names = src.has_attribute("channels") ? src.attribute_strings("channels") : src.list();
+  for (const std::string& name : s.names) {
     h5::Dataset d = src.open_dataset(name);
-    dst.write_dataset(name, d.read_doubles(), d.units());
+    s.data.push_back(d.read_doubles());
+    s.units.push_back(d.units());
+    long_names.push_back(d.has_attribute("long_name") ? d.attribute_string("long_name") : std::string());
   }
+  lub::write_series(dst, s, long_names);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -349,6 +376,7 @@ void StudyWriter::finalize() {
   {
     h5::File f = h5::File::create(tmp);
     write_header(f, grid_, complete());
+    write_grid_results(f, grid_, results_);
     std::vector<h5::Row> rows;
     for (const auto& [id, r] : results_) {
       const Case& c = grid_.cases.at(static_cast<std::size_t>(id));
@@ -369,11 +397,14 @@ void StudyWriter::finalize() {
 
 void print_summary(const std::string& path, std::FILE* out) {
   const h5::File f = h5::File::open(path, h5::File::Mode::ReadOnly);
+  if (!f.has_attribute("program") || f.attribute_string("program") != "lubsweep")
+    throw InputError("not a lubsweep study file");
+  check_format(f, path, "");
   const h5::Table t = f.open_table("cases");
   const std::size_t n = t.rows();
   std::vector<std::string> axes;
   if (t.has_attribute("axes")) axes = t.attribute_strings("axes");
-  const auto names = t.read_strings("case");
+  const auto names = t.read_strings("name");
   const auto status = t.read_strings("status");
   const auto message = t.read_strings("message");
 

@@ -18,9 +18,11 @@
 #include <unistd.h>
 
 #include "lub/io/json_reader.hpp"
+#include "lub/io/output_path.hpp"
 #include "lub/run/run_io.hpp"
 #include "lub/sweep/case_result.hpp"
 #include "lub/sweep/grid.hpp"
+#include "lub/sweep/output_lock.hpp"
 #include "lub/sweep/progress.hpp"
 #include "lub/sweep/study_file.hpp"
 
@@ -247,19 +249,13 @@ class LocalWorker {
   std::thread thread_;  // last: starts after the members it uses
 };
 
-bool directory_writable(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  const std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
-  return ::access(dir.c_str(), W_OK | X_OK) == 0;
-}
-
 bool file_exists(const std::string& path) {
   struct stat s;
   return ::stat(path.c_str(), &s) == 0;
 }
 
 /// Rank 0: validation before any work. Returns 0 to go on, or an exit status.
-int prepare(const Options& o, Grid& grid, ResumeState& resume, bool& reuse_file) {
+int prepare(const Options& o, Grid& grid, ResumeState& resume, bool& reuse_file, OutputLock& lock) {
   try {
     grid = load_grid(o.grid);
   } catch (const InputError& e) {
@@ -267,8 +263,18 @@ int prepare(const Options& o, Grid& grid, ResumeState& resume, bool& reuse_file)
     return kExitBadInput;
   }
   if (o.check) return 0;
-  if (!directory_writable(o.output)) {
-    std::fprintf(stderr, "lubsweep: -o %s: the directory does not exist or is not writable\n", o.output.c_str());
+  if (const auto problem = output_path_problem(o.output)) {
+    std::fprintf(stderr, "lubsweep: %s\n", problem->c_str());
+    return kExitBadInput;
+  }
+  // One sweep per output file: the lock is held until this sweep ends (run_sweep).
+  try {
+    lock = OutputLock(o.output);
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "lubsweep: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "lubsweep: %s\n", e.what());
     return kExitBadInput;
   }
   reuse_file = false;
@@ -461,8 +467,9 @@ int run_sweep(const Options& o) {
   Grid grid;
   ResumeState resume;
   bool reuse_file = false;
+  OutputLock lock;  // rank 0: held for the sweep's lifetime
   int code = 0;
-  if (rank == 0) code = prepare(o, grid, resume, reuse_file);
+  if (rank == 0) code = prepare(o, grid, resume, reuse_file, lock);
   if (o.check) {
     if (rank == 0 && code == 0) list_cases(grid);
     return code;

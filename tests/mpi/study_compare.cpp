@@ -27,10 +27,10 @@ int compare(const std::string& pa, const std::string& pb) {
     report("rows: " + std::to_string(ta.rows()) + " vs " + std::to_string(tb.rows()));
     return 1;
   }
-  for (const char* col : {"case", "hash", "status", "message"})
+  for (const char* col : {"name", "hash", "status", "message"})
     if (ta.read_strings(col) != tb.read_strings(col)) report(std::string("column ") + col + " differs");
-  if (ta.read_int64s("case_id") != tb.read_int64s("case_id")) report("column case_id differs");
-  const auto names = ta.read_strings("case");
+  if (ta.read_int64s("case") != tb.read_int64s("case")) report("column case differs");
+  const auto names = ta.read_strings("name");
   for (const auto& f : lub::sweep::result_fields()) {
     if (std::string(f.name) == "wall_time_s") continue;
     const auto x = ta.read_doubles(f.name), y = tb.read_doubles(f.name);

@@ -8,8 +8,14 @@
 #                 non-study output is refused and left untouched
 #       abort     on_failure = abort stops the sweep (exit 3, incomplete file); a re-run
 #                 completes it, the failure kept
+#       lock      a second sweep on the output of a running one is refused (exit 2, naming
+#                 the first: pid and host) and changes nothing; the first is unharmed; a
+#                 killed sweep's stale lock file does not block the next sweep
+#       output_path  lubsweep and lubsim refuse an output path that is a directory (or in
+#                 a missing directory) before any work: exit 2, message, no file created
 #       tools     the Python tools on a small study (compare_study.py finds a regression,
-#                 plot_paper.py and sweep_map.py draw); exit 77 (skipped) without h5py
+#                 plot_paper.py and sweep_map.py draw); exit 77 (skipped) without Debian's
+#                 h5py, matplotlib, xarray, h5netcdf, pandas
 set -euo pipefail
 what="$1" mpiexec="$2" lubsweep="$3" compare="$4" work="$5"
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -35,7 +41,7 @@ resume)
   rc=$?
   set -e
   [ "$rc" -ne 0 ] || fail "the killed sweep exited 0"
-  rows=$(h5ls killed.h5/cases | sed -E 's/.*\{([0-9]+)\/.*/\1/')
+  rows=$(h5ls killed.h5/cases/case | sed -E 's/.*\{([0-9]+)\/.*/\1/')
   [ "$rows" = "3" ] || fail "the killed file holds $rows rows, expected 3"
   run 2 killed.h5 2> resumed.log
   grep -q "holds 3 of them (7 to run)" resumed.log || { cat resumed.log >&2; fail "the resumed sweep did not skip the 3 cases done"; }
@@ -70,7 +76,7 @@ abort)
   set -e
   [ "$rc" -eq 3 ] || { cat abort.log >&2; fail "an aborted sweep exited $rc, expected 3"; }
   grep -q "on_failure = abort: stopping" abort.log || { cat abort.log >&2; fail "no abort message"; }
-  rows=$(h5ls a.h5/cases | sed -E 's/.*\{([0-9]+)\/.*/\1/')
+  rows=$(h5ls a.h5/cases/case | sed -E 's/.*\{([0-9]+)\/.*/\1/')
   [ "$rows" -lt 8 ] || fail "the aborted sweep ran every case"
   [ "$(h5dump -A -a /complete a.h5 | grep -Eo '\(0\): [0-9]+')" = "(0): 0" ] || fail "the aborted file is marked complete"
   "$mpiexec" -np 2 "$lubsweep" "$here/abort_grid.json" -o a.h5 --no-summary 2> again.log \
@@ -78,22 +84,70 @@ abort)
   grep -q "holds 1 of them" again.log || grep -q "holds 2 of them" again.log || { cat again.log >&2; fail "resume"; }
   [ "$(h5dump -A -a /complete a.h5 | grep -Eo '\(0\): [0-9]+')" = "(0): 1" ] || fail "the resumed file is not complete"
   ;;
+lock)
+  "$mpiexec" -np 2 "$lubsweep" "$here/long_grid.json" -o held.h5 --no-summary 2> first.log &
+  first=$!
+  for _ in $(seq 1 300); do [ -s held.h5.lock ] && break; sleep 0.1; done
+  [ -s held.h5.lock ] || { cat first.log >&2; fail "the first sweep wrote no lock file"; }
+  set +e
+  "$mpiexec" -np 2 "$lubsweep" "$grid" -o held.h5 --no-summary 2> second.log
+  rc=$?
+  set -e
+  kill -0 "$first" 2>/dev/null || { cat first.log >&2; fail "the first sweep ended before the second tried (the test needs a longer grid)"; }
+  [ "$rc" -eq 2 ] || { cat second.log >&2; fail "a second sweep on a held output exited $rc, expected 2"; }
+  grep -q "held.h5: the file is in use by another sweep (pid [0-9]* on host $(hostname)" second.log \
+    || { cat second.log >&2; fail "the refusal does not name the file, the other sweep's pid and host"; }
+  ! grep -q "not an HDF5 file" second.log || fail "HDF5's own locking error leaked"
+  kill "$first"
+  wait "$first" || true
+  # The killed sweep's lock file is stale (flock ends with its process): the next sweep
+  # takes it over, resumes the file, and removes the lock when it ends.
+  run 2 held.h5 2> third.log || { cat third.log >&2; fail "a sweep after a killed one was refused"; }
+  [ ! -e held.h5.lock ] || fail "the lock file outlived the sweep"
+  ;;
+output_path)
+  mkdir -p adir
+  for out in adir/ adir missing_dir/s.h5; do
+    set +e
+    "$mpiexec" -np 2 "$lubsweep" "$grid" -o "$out" 2> out.log
+    rc=$?
+    set -e
+    [ "$rc" -eq 2 ] || { cat out.log >&2; fail "lubsweep -o $out exited $rc, expected 2"; }
+    grep -q "lubsweep: -o $out: " out.log || { cat out.log >&2; fail "lubsweep -o $out: message"; }
+    cat out.log >> all.log
+  done
+  grep -q "its directory missing_dir does not exist" out.log || { cat out.log >&2; fail "missing directory message"; }
+  lubsim="$(dirname "$lubsweep")/../core/lubsim"
+  scene="$here/../../configs/scenes/slider_crank.json"
+  for out in adir/ adir missing_dir/r.h5; do
+    set +e
+    start=$(date +%s%N)
+    "$lubsim" "$scene" -o "$out" -q 2> sim.log
+    rc=$?
+    ms=$(( ($(date +%s%N) - start) / 1000000 ))
+    set -e
+    [ "$rc" -eq 2 ] || { cat sim.log >&2; fail "lubsim -o $out exited $rc, expected 2"; }
+    grep -q "lubsim: -o $out: " sim.log || { cat sim.log >&2; fail "lubsim -o $out: message"; }
+    [ "$ms" -lt 1000 ] || fail "lubsim -o $out took $ms ms: it ran before refusing"
+    cat sim.log >> all.log
+  done
+  [ "$(grep -c "must name a file, not a directory (the path ends in '/')" all.log)" = 2 ] || { cat all.log >&2; fail "directory message"; }
+  [ "$(grep -c "must name a file, not a directory (it is an existing directory)" all.log)" = 2 ] || { cat all.log >&2; fail "existing directory message"; }
+  [ -z "$(ls -A adir)" ] || fail "a refused output created files in adir: $(ls -A adir)"
+  [ ! -e missing_dir ] || fail "a refused output created its directory"
+  ;;
 tools)
   # The Python post-processing on a small study (skipped without Debian's h5py/matplotlib).
   py=/usr/bin/python3
   tools="$here/../../tools"
-  "$py" -c "import h5py, matplotlib, numpy" 2>/dev/null || { echo "no h5py/matplotlib: skipped"; exit 77; }
+  "$py" -c "import h5py, matplotlib, numpy, xarray, h5netcdf, pandas" 2>/dev/null || { echo "no h5py/matplotlib/xarray/h5netcdf/pandas: skipped"; exit 77; }
   run 2 s.h5
   "$py" "$tools/compare_study.py" s.h5 s.h5 -q
+  cp s.h5 worse.h5
   "$py" - <<'PY'
 import h5py
-with h5py.File("s.h5", "r") as f, h5py.File("worse.h5", "w") as g:
-    for k, v in f.attrs.items():
-        g.attrs[k] = v
-    f.copy("cases", g)
-    rows = g["cases"][:]
-    rows["max_eps"][4] *= 1.01
-    g["cases"][:] = rows
+with h5py.File("worse.h5", "r+") as f:
+    f["cases/max_eps"][4] *= 1.01
 PY
   set +e
   "$py" "$tools/compare_study.py" worse.h5 s.h5 -q > compare.log

@@ -293,11 +293,6 @@ std::vector<T> read_attribute_numbers(hid_t obj, const std::string& name, hid_t 
 // ---------------------------------------------------------------------------------
 // Tables
 
-constexpr std::size_t kSlot = 8;  // bytes per field in a table's in-memory row
-static_assert(sizeof(double) == kSlot && sizeof(std::int64_t) == kSlot &&
-                  sizeof(char*) <= kSlot,
-              "table rows assume 8-byte fields");
-
 const char* type_name(ColumnType t) {
   switch (t) {
     case ColumnType::Float64: return "float64";
@@ -307,42 +302,104 @@ const char* type_name(ColumnType t) {
   return "?";
 }
 
-/// Compound type of a full table row: field i at offset 8 i. `file` picks the
-/// little-endian file types, else the native memory types (same layout).
-Hid row_type(hid_t err_loc, const std::vector<Column>& cols, bool file) {
-  Hid t(H5Tcreate(H5T_COMPOUND, kSlot * cols.size()));
-  if (!t.ok()) fail(err_loc, "cannot create the table row type");
-  Hid str = vlen_string_type(err_loc);
-  for (std::size_t i = 0; i < cols.size(); ++i) {
-    hid_t member = str.get();
-    if (cols[i].type == ColumnType::Float64) member = file ? H5T_IEEE_F64LE : H5T_NATIVE_DOUBLE;
-    if (cols[i].type == ColumnType::Int64) member = file ? H5T_STD_I64LE : H5T_NATIVE_INT64;
-    if (H5Tinsert(t.get(), cols[i].name.c_str(), i * kSlot, member) < 0) {
-      fail(err_loc, "cannot add column '" + cols[i].name + "' to the row type");
-    }
-  }
-  return t;
-}
-
-/// Memory compound type holding only column `name` (at offset 0) as `member`.
-Hid single_field_type(hid_t err_loc, const std::string& name, hid_t member) {
-  Hid t(H5Tcreate(H5T_COMPOUND, kSlot));
-  if (!t.ok() || H5Tinsert(t.get(), name.c_str(), 0, member) < 0) {
-    fail(err_loc, "cannot build the read type for column '" + name + "'");
-  }
-  return t;
-}
-
 void validate_columns(hid_t err_loc, const std::string& name, const std::vector<Column>& cols) {
   if (cols.empty()) fail(err_loc, "a table needs at least one column", name);
   for (std::size_t i = 0; i < cols.size(); ++i) {
     if (cols[i].name.empty()) fail(err_loc, "column " + std::to_string(i) + " has no name", name);
+    if (cols[i].name.find('/') != std::string::npos) {
+      fail(err_loc, "column '" + cols[i].name + "': a name without '/'", name);
+    }
     for (std::size_t j = 0; j < i; ++j) {
       if (cols[j].name == cols[i].name) {
         fail(err_loc, "duplicate column '" + cols[i].name + "'", name);
       }
     }
   }
+}
+
+/// File type of a column (a new id the caller owns).
+Hid column_file_type(hid_t err_loc, ColumnType t) {
+  if (t == ColumnType::String) return vlen_string_type(err_loc);
+  return Hid(H5Tcopy(t == ColumnType::Float64 ? H5T_IEEE_F64LE : H5T_STD_I64LE));
+}
+
+/// Memory type for a column of type t read/written as `t`.
+Hid column_mem_type(hid_t err_loc, ColumnType t) {
+  if (t == ColumnType::String) return vlen_string_type(err_loc);
+  return Hid(H5Tcopy(t == ColumnType::Float64 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT64));
+}
+
+/// Writes `count` elements of `buf` (as `mem_type`) to a 1-D extendible dataset at
+/// [start, start + count), extending it to exactly start + count.
+void write_rows(hid_t ds, hid_t mem_type, hsize_t start, hsize_t count, const void* buf) {
+  const hsize_t new_dims[1] = {start + count};
+  if (H5Dset_extent(ds, new_dims) < 0) fail(ds, "cannot extend the column");
+  if (count == 0) return;
+  Hid fspace(H5Dget_space(ds));
+  const hsize_t offset[1] = {start};
+  const hsize_t n[1] = {count};
+  Hid mspace(H5Screate_simple(1, n, nullptr));
+  if (!fspace.ok() || !mspace.ok() ||
+      H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, offset, nullptr, n, nullptr) < 0 ||
+      H5Dwrite(ds, mem_type, mspace.get(), fspace.get(), H5P_DEFAULT, buf) < 0) {
+    fail(ds, "cannot write " + std::to_string(count) + " rows");
+  }
+}
+
+/// Reads the first `count` elements of a 1-D dataset into `buf` as `mem_type`.
+void read_rows(hid_t ds, hid_t mem_type, hsize_t count, void* buf) {
+  if (count == 0) return;
+  Hid fspace(H5Dget_space(ds));
+  const hsize_t offset[1] = {0};
+  const hsize_t n[1] = {count};
+  Hid mspace(H5Screate_simple(1, n, nullptr));
+  if (!fspace.ok() || !mspace.ok() ||
+      H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, offset, nullptr, n, nullptr) < 0 ||
+      H5Dread(ds, mem_type, mspace.get(), fspace.get(), H5P_DEFAULT, buf) < 0) {
+    fail(ds, "cannot read " + std::to_string(count) + " rows");
+  }
+}
+
+/// Reads `count` elements: the first `count` of a 1-D dataset, or all of an N-D one.
+void read_rows_or_all(hid_t ds, hid_t mem_type, std::size_t count, void* buf) {
+  Hid space(H5Dget_space(ds));
+  if (H5Sget_simple_extent_ndims(space.get()) == 1) {
+    read_rows(ds, mem_type, count, buf);
+  } else if (H5Dread(ds, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0) {
+    fail(ds, "cannot read the dataset");
+  }
+}
+
+/// Reads every element of a string dataset (variable- or fixed-length).
+std::vector<std::string> read_dataset_strings(hid_t ds, std::size_t limit) {
+  Hid type(H5Dget_type(ds));
+  if (!type.ok() || H5Tget_class(type.get()) != H5T_STRING) fail(ds, "not a string dataset");
+  Hid space(H5Dget_space(ds));
+  const std::size_t n = std::min(npoints(space.get()), limit);
+  std::vector<std::string> out;
+  if (n == 0) return out;
+  out.reserve(n);
+  if (H5Tis_variable_str(type.get()) > 0) {
+    Hid mem = vlen_string_type(ds);
+    std::vector<char*> buf(n, nullptr);
+    read_rows_or_all(ds, mem.get(), n, buf.data());
+    for (char* p : buf) out.emplace_back(p != nullptr ? p : "");
+    const hsize_t dims[1] = {n};
+    Hid mspace(H5Screate_simple(1, dims, nullptr));
+    reclaim_vlen(mem.get(), mspace.get(), buf.data());
+  } else {
+    const std::size_t size = H5Tget_size(type.get());
+    Hid mem(H5Tcopy(type.get()));
+    std::vector<char> buf(n * size + 1, '\0');
+    read_rows_or_all(ds, mem.get(), n, buf.data());
+    for (std::size_t i = 0; i < n; ++i) {
+      const char* p = buf.data() + i * size;
+      std::size_t len = 0;
+      while (len < size && p[len] != '\0') ++len;
+      out.emplace_back(p, len);
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -539,6 +596,11 @@ std::vector<std::int64_t> Dataset::read_int64s() const {
   return out;
 }
 
+std::vector<std::string> Dataset::read_strings() const {
+  quiet();
+  return read_dataset_strings(id_, size());
+}
+
 std::string Dataset::units() const {
   return has_attribute("units") ? attribute_string("units") : std::string();
 }
@@ -591,13 +653,22 @@ bool Table::has_column(const std::string& name) const {
                      [&](const Column& c) { return c.name == name; });
 }
 
+Dataset Table::column(const std::string& name) const {
+  column_index(name);
+  return open_dataset(name);
+}
+
+std::size_t Table::rows() const {
+  if (columns_.empty()) return 0;
+  return open_dataset(columns_.front().name).size();
+}
+
 void Table::append(const std::vector<Row>& rows) {
   quiet();
   const std::size_t ncol = columns_.size();
   const std::size_t k = rows.size();
   if (k > 0) {
-    // Validate and pack every row first, so a bad row appends nothing.
-    std::vector<unsigned char> buf(k * ncol * kSlot, 0);
+    // Validate every row first, so a bad row appends nothing.
     for (std::size_t r = 0; r < k; ++r) {
       const Row& row = rows[r];
       if (row.size() != ncol) {
@@ -605,44 +676,44 @@ void Table::append(const std::vector<Row>& rows) {
                       " cells, the table has " + std::to_string(ncol) + " columns");
       }
       for (std::size_t c = 0; c < ncol; ++c) {
-        unsigned char* slot = buf.data() + (r * ncol + c) * kSlot;
         const Cell& cell = row[c];
         const ColumnType t = columns_[c].type;
-        if (t == ColumnType::Float64 && std::holds_alternative<double>(cell)) {
-          const double v = std::get<double>(cell);
-          std::memcpy(slot, &v, sizeof v);
-        } else if (t == ColumnType::Float64 && std::holds_alternative<std::int64_t>(cell)) {
-          const double v = static_cast<double>(std::get<std::int64_t>(cell));
-          std::memcpy(slot, &v, sizeof v);
-        } else if (t == ColumnType::Int64 && std::holds_alternative<std::int64_t>(cell)) {
-          const std::int64_t v = std::get<std::int64_t>(cell);
-          std::memcpy(slot, &v, sizeof v);
-        } else if (t == ColumnType::String && std::holds_alternative<std::string>(cell)) {
-          const char* p = std::get<std::string>(cell).c_str();
-          std::memcpy(slot, &p, sizeof p);
-        } else {
+        const bool fits = (t == ColumnType::Float64 && !std::holds_alternative<std::string>(cell)) ||
+                          (t == ColumnType::Int64 && std::holds_alternative<std::int64_t>(cell)) ||
+                          (t == ColumnType::String && std::holds_alternative<std::string>(cell));
+        if (!fits) {
           static const char* const cell_names[] = {"double", "int64", "string"};
           fail(id_, "row " + std::to_string(r) + ", column '" + columns_[c].name + "' (" +
                         type_name(t) + "): got a " + cell_names[cell.index()] + " cell");
         }
       }
     }
-
-    Hid mem = row_type(id_, columns_, false);
-    const hsize_t old_rows = static_cast<hsize_t>(size());
-    const hsize_t new_dims[1] = {old_rows + k};
-    if (H5Dset_extent(id_, new_dims) < 0) fail(id_, "cannot extend the table");
-    Hid fspace(H5Dget_space(id_));
-    const hsize_t start[1] = {old_rows};
-    const hsize_t count[1] = {static_cast<hsize_t>(k)};
-    Hid mspace(H5Screate_simple(1, count, nullptr));
-    if (!fspace.ok() || !mspace.ok() ||
-        H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, count, nullptr) < 0 ||
-        H5Dwrite(id_, mem.get(), mspace.get(), fspace.get(), H5P_DEFAULT, buf.data()) < 0) {
-      const std::string stack = take_error_stack();
-      const hsize_t back[1] = {old_rows};
-      H5Dset_extent(id_, back);  // best effort: drop the half-written rows
-      fail_stack(describe(id_), "cannot append " + std::to_string(k) + " rows", stack);
+    const hsize_t old_rows = static_cast<hsize_t>(this->rows());
+    // The dimension column (0) last: it defines the table's length.
+    for (std::size_t step = 1; step <= ncol; ++step) {
+      const std::size_t c = step % ncol;
+      const Column& col = columns_[c];
+      Hid ds(H5Dopen2(id_, col.name.c_str(), H5P_DEFAULT));
+      if (!ds.ok()) fail(id_, "cannot open column", col.name);
+      Hid mem = column_mem_type(id_, col.type);
+      if (col.type == ColumnType::Float64) {
+        std::vector<double> v(k);
+        for (std::size_t r = 0; r < k; ++r) {
+          const Cell& cell = rows[r][c];
+          v[r] = std::holds_alternative<double>(cell)
+                     ? std::get<double>(cell)
+                     : static_cast<double>(std::get<std::int64_t>(cell));
+        }
+        write_rows(ds.get(), mem.get(), old_rows, k, v.data());
+      } else if (col.type == ColumnType::Int64) {
+        std::vector<std::int64_t> v(k);
+        for (std::size_t r = 0; r < k; ++r) v[r] = std::get<std::int64_t>(rows[r][c]);
+        write_rows(ds.get(), mem.get(), old_rows, k, v.data());
+      } else {
+        std::vector<const char*> v(k);
+        for (std::size_t r = 0; r < k; ++r) v[r] = std::get<std::string>(rows[r][c]).c_str();
+        write_rows(ds.get(), mem.get(), old_rows, k, v.data());
+      }
     }
   }
   if (H5Fflush(id_, H5F_SCOPE_LOCAL) < 0) fail(id_, "cannot flush the file");
@@ -654,12 +725,10 @@ std::vector<double> Table::read_doubles(const std::string& column) const {
   if (columns_[c].type == ColumnType::String) {
     fail(id_, "column '" + column + "' holds strings, not numbers");
   }
-  std::vector<double> out(size());
-  if (out.empty()) return out;
-  Hid mem = single_field_type(id_, column, H5T_NATIVE_DOUBLE);
-  if (H5Dread(id_, mem.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0) {
-    fail(id_, "cannot read column '" + column + "'");
-  }
+  std::vector<double> out(rows());
+  Hid ds(H5Dopen2(id_, column.c_str(), H5P_DEFAULT));
+  if (!ds.ok()) fail(id_, "cannot open column", column);
+  read_rows(ds.get(), H5T_NATIVE_DOUBLE, out.size(), out.data());
   return out;
 }
 
@@ -669,12 +738,10 @@ std::vector<std::int64_t> Table::read_int64s(const std::string& column) const {
   if (columns_[c].type != ColumnType::Int64) {
     fail(id_, "column '" + column + "' is " + type_name(columns_[c].type) + ", not int64");
   }
-  std::vector<std::int64_t> out(size());
-  if (out.empty()) return out;
-  Hid mem = single_field_type(id_, column, H5T_NATIVE_INT64);
-  if (H5Dread(id_, mem.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0) {
-    fail(id_, "cannot read column '" + column + "'");
-  }
+  std::vector<std::int64_t> out(rows());
+  Hid ds(H5Dopen2(id_, column.c_str(), H5P_DEFAULT));
+  if (!ds.ok()) fail(id_, "cannot open column", column);
+  read_rows(ds.get(), H5T_NATIVE_INT64, out.size(), out.data());
   return out;
 }
 
@@ -684,20 +751,10 @@ std::vector<std::string> Table::read_strings(const std::string& column) const {
   if (columns_[c].type != ColumnType::String) {
     fail(id_, "column '" + column + "' is " + type_name(columns_[c].type) + ", not string");
   }
-  std::vector<std::string> out;
-  const std::size_t n = size();
-  if (n == 0) return out;
-  Hid str = vlen_string_type(id_);
-  Hid mem = single_field_type(id_, column, str.get());
-  Hid space(H5Dget_space(id_));
-  std::vector<char*> buf(n, nullptr);
-  if (!space.ok() || H5Dread(id_, mem.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data()) < 0) {
-    fail(id_, "cannot read column '" + column + "'");
-  }
-  out.reserve(n);
-  for (char* p : buf) out.emplace_back(p != nullptr ? p : "");
-  reclaim_vlen(mem.get(), space.get(), buf.data());
-  return out;
+  const std::size_t n = rows();
+  Hid ds(H5Dopen2(id_, column.c_str(), H5P_DEFAULT));
+  if (!ds.ok()) fail(id_, "cannot open column", column);
+  return read_dataset_strings(ds.get(), n);
 }
 
 // =================================================================================
@@ -860,6 +917,61 @@ Dataset Group::write_dataset(const std::string& name, const std::vector<std::int
   return out;
 }
 
+Dataset Group::write_dataset(const std::string& name, const std::vector<std::int64_t>& values,
+                             const std::vector<std::size_t>& shape, const std::string& units) {
+  quiet();
+  const std::size_t total =
+      std::accumulate(shape.begin(), shape.end(), std::size_t{1}, std::multiplies<>());
+  if (total != values.size()) {
+    fail(id_, "shape holds " + std::to_string(total) + " values, data has " +
+                  std::to_string(values.size()), name);
+  }
+  if (exists(name)) fail(id_, "already exists", name);
+  const std::vector<hsize_t> dims(shape.begin(), shape.end());
+  Hid space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr));
+  if (!space.ok()) fail(id_, "cannot create a dataspace", name);
+  Hid lcpl = intermediate_lcpl(id_);
+  Hid ds(H5Dcreate2(id_, name.c_str(), H5T_STD_I64LE, space.get(), lcpl.get(), H5P_DEFAULT,
+                    H5P_DEFAULT));
+  if (!ds.ok()) fail(id_, "cannot create dataset", name);
+  if (total > 0 &&
+      H5Dwrite(ds.get(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0) {
+    fail(id_, "cannot write dataset", name);
+  }
+  Dataset out(ds.release());
+  if (!units.empty()) out.set_attribute("units", units);
+  return out;
+}
+
+Dataset Group::write_strings(const std::string& name, const std::vector<std::string>& values,
+                             const std::vector<std::size_t>& shape_in) {
+  quiet();
+  const std::vector<std::size_t> shape =
+      shape_in.empty() ? std::vector<std::size_t>{values.size()} : shape_in;
+  const std::size_t total =
+      std::accumulate(shape.begin(), shape.end(), std::size_t{1}, std::multiplies<>());
+  if (total != values.size()) {
+    fail(id_, "shape holds " + std::to_string(total) + " values, data has " +
+                  std::to_string(values.size()), name);
+  }
+  if (exists(name)) fail(id_, "already exists", name);
+  const std::vector<hsize_t> dims(shape.begin(), shape.end());
+  Hid space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr));
+  if (!space.ok()) fail(id_, "cannot create a dataspace", name);
+  Hid type = vlen_string_type(id_);
+  Hid lcpl = intermediate_lcpl(id_);
+  Hid ds(H5Dcreate2(id_, name.c_str(), type.get(), space.get(), lcpl.get(), H5P_DEFAULT,
+                    H5P_DEFAULT));
+  if (!ds.ok()) fail(id_, "cannot create dataset", name);
+  std::vector<const char*> p;
+  p.reserve(values.size());
+  for (const std::string& v : values) p.push_back(v.c_str());
+  if (total > 0 && H5Dwrite(ds.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, p.data()) < 0) {
+    fail(id_, "cannot write dataset", name);
+  }
+  return Dataset(ds.release());
+}
+
 Dataset Group::open_dataset(const std::string& path) const {
   quiet();
   const hid_t d = H5Dopen2(id_, path.c_str(), H5P_DEFAULT);
@@ -872,7 +984,7 @@ Table Group::create_table(const std::string& name, const std::vector<Column>& co
   quiet();
   validate_columns(id_, name, columns);
   if (exists(name)) fail(id_, "already exists", name);
-  Hid ftype = row_type(id_, columns, true);
+  Group g = require_group(name);
   const hsize_t dims[1] = {0};
   const hsize_t maxdims[1] = {H5S_UNLIMITED};
   const hsize_t chunk[1] = {static_cast<hsize_t>(std::max<std::size_t>(chunk_rows, 1))};
@@ -881,11 +993,20 @@ Table Group::create_table(const std::string& name, const std::vector<Column>& co
   if (!space.ok() || !dcpl.ok() || H5Pset_chunk(dcpl.get(), 1, chunk) < 0) {
     fail(id_, "cannot prepare table", name);
   }
-  Hid lcpl = intermediate_lcpl(id_);
-  const hid_t d = H5Dcreate2(id_, name.c_str(), ftype.get(), space.get(), lcpl.get(), dcpl.get(),
-                             H5P_DEFAULT);
-  if (d < 0) fail(id_, "cannot create table", name);
-  Table t(d, columns);
+  std::vector<Dataset> cols;
+  for (const Column& c : columns) {
+    Hid ftype = column_file_type(id_, c.type);
+    const hid_t d = H5Dcreate2(g.id(), c.name.c_str(), ftype.get(), space.get(), H5P_DEFAULT,
+                               dcpl.get(), H5P_DEFAULT);
+    if (d < 0) fail(g.id(), "cannot create column", c.name);
+    cols.push_back(Dataset(d));
+    if (!c.units.empty()) cols.back().set_attribute("units", c.units);
+    if (!c.long_name.empty()) cols.back().set_attribute("long_name", c.long_name);
+  }
+  cols.front().make_scale(columns.front().name);
+  for (std::size_t i = 1; i < cols.size(); ++i) cols[i].attach_scale(cols.front(), 0);
+  Table t(H5Gopen2(id_, name.c_str(), H5P_DEFAULT), columns);
+  if (!t.valid()) fail(id_, "cannot open table", name);
   std::vector<std::string> names, units;
   for (const Column& c : columns) {
     names.push_back(c.name);
@@ -898,41 +1019,39 @@ Table Group::create_table(const std::string& name, const std::vector<Column>& co
 
 Table Group::open_table(const std::string& name) const {
   quiet();
-  const hid_t d = H5Dopen2(id_, name.c_str(), H5P_DEFAULT);
-  if (d < 0) fail(id_, "cannot open table", name);
-  Table t(d, {});
-  Hid type(H5Dget_type(d));
-  if (!type.ok() || H5Tget_class(type.get()) != H5T_COMPOUND) {
-    fail(d, "not a table (its type is not compound)");
+  H5O_info_t info;
+  if (!exists(name) || H5Oget_info_by_name(id_, name.c_str(), &info, H5P_DEFAULT) < 0) {
+    fail(id_, "cannot open table (absent)", name);
   }
-  if (t.shape().size() != 1) fail(d, "not a table (not one-dimensional)");
-  const int n = H5Tget_nmembers(type.get());
-  if (n <= 0) fail(d, "not a table (no fields)");
-  std::vector<Column> cols(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) {
-    const unsigned u = static_cast<unsigned>(i);
-    char* fname = H5Tget_member_name(type.get(), u);
-    if (fname == nullptr) fail(d, "cannot read field name " + std::to_string(i));
-    cols[u].name = fname;
-    H5free_memory(fname);
-    Hid mtype(H5Tget_member_type(type.get(), u));
-    switch (H5Tget_class(mtype.get())) {
-      case H5T_FLOAT: cols[u].type = ColumnType::Float64; break;
-      case H5T_INTEGER: cols[u].type = ColumnType::Int64; break;
+  if (info.type != H5O_TYPE_GROUP) {
+    fail(id_, "not a table of columns (a dataset: an older, compound-type table?)", name);
+  }
+  const hid_t g = H5Gopen2(id_, name.c_str(), H5P_DEFAULT);
+  if (g < 0) fail(id_, "cannot open table", name);
+  Table t(g, {});
+  if (!t.has_attribute("columns")) fail(g, "not a table (no 'columns' attribute)");
+  const std::vector<std::string> names = t.attribute_strings("columns");
+  if (names.empty()) fail(g, "not a table (no columns)");
+  std::vector<Column> cols;
+  for (const std::string& n : names) {
+    if (!t.exists(n)) fail(g, "column '" + n + "' is missing");
+    const Dataset d = t.open_dataset(n);
+    if (d.shape().size() != 1) fail(d.id(), "not a table column (not one-dimensional)");
+    Hid type(H5Dget_type(d.id()));
+    Column c{n, ColumnType::Float64, d.units(),
+             d.has_attribute("long_name") ? d.attribute_string("long_name") : std::string()};
+    switch (H5Tget_class(type.get())) {
+      case H5T_FLOAT: c.type = ColumnType::Float64; break;
+      case H5T_INTEGER: c.type = ColumnType::Int64; break;
       case H5T_STRING:
-        if (H5Tis_variable_str(mtype.get()) <= 0) {
-          fail(d, "column '" + cols[u].name + "' is a fixed-length string (unsupported)");
+        if (H5Tis_variable_str(type.get()) <= 0) {
+          fail(d.id(), "column '" + n + "' is a fixed-length string (unsupported)");
         }
-        cols[u].type = ColumnType::String;
+        c.type = ColumnType::String;
         break;
-      default: fail(d, "column '" + cols[u].name + "' has an unsupported type");
+      default: fail(d.id(), "column '" + n + "' has an unsupported type");
     }
-  }
-  if (t.has_attribute("units")) {
-    const std::vector<std::string> units = t.attribute_strings("units");
-    if (units.size() == cols.size()) {
-      for (std::size_t i = 0; i < cols.size(); ++i) cols[i].units = units[i];
-    }
+    cols.push_back(std::move(c));
   }
   t.columns_ = std::move(cols);
   return t;

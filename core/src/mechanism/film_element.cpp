@@ -49,21 +49,49 @@ FilmKinematics film_kinematics(const Model& m, int k, const double* q, const dou
 FilmForce film_element_force(const Model& m, Workspace& ws, int k, const BearingState& state, FilmMode mode,
                              long long* law_calls) {
   const FilmElement& f = m.films[k];
-  BearingState st = state;
-  switch (mode) {
-    case FilmMode::natural: break;
-    case FilmMode::outward: st.eps_dot = std::max(st.eps_dot, 0.0); break;
-    case FilmMode::inward: st.eps_dot = std::min(st.eps_dot, -std::numeric_limits<double>::min()); break;
-    case FilmMode::sliding: st.eps_dot = 0.0; break;
-  }
   FiniteBearingSolver* solver = ws.film_solvers[k] ? &*ws.film_solvers[k] : nullptr;
-  const auto film = [&](const BearingState&) {
+  const auto law = [&](const BearingState& at) {
     if (law_calls) ++*law_calls;
-    return film_force(f.law, f.geometry, f.viscosity, st, solver);
+    return film_force(f.law, f.geometry, f.viscosity, at, solver);
+  };
+  // A switching film held on one branch (outward: ε̇ >= 0, inward: ε̇ < 0) while the state
+  // is on the other side of ε̇ = 0: a Newton iterate, a difference quotient or the step
+  // that overshoots before the root finder locates the crossing and the run switches. The
+  // branch is continued to first order from ε̇ = 0±, F(ε̇) = F(0±) + ε̇ ∂F/∂ε̇(0±): C¹ across
+  // ε̇ = 0, so the integrator's Newton iteration and Jacobian see no kink. (Holding F at its
+  // ε̇ = 0± value instead left ∂F/∂ε̇ jumping from the squeeze film's damping, huge near
+  // the wall, to zero: a slowly sinking journal, ε̇ ~ 1e-5 1/s at 50 rpm, sat on that kink
+  // and the corrector failed at h ~ 1e-8 s.) The slope is a one-sided difference over
+  // δ = 1e-6 of the state's own ε̇ scale, the larger of |ε w|/2 and |ε̇|.
+  const auto continued = [&](const BearingState& at, double side) {
+    BearingState at0 = at;
+    at0.eps_dot = side > 0 ? 0.0 : -std::numeric_limits<double>::min();
+    const double delta = 1e-6 * std::max({0.5 * std::abs(at.eps * at.wedge), std::abs(at.eps_dot), 1e-12});
+    BearingState at1 = at;
+    at1.eps_dot = side * delta;
+    const FilmForce f0 = law(at0), f1 = law(at1);
+    const double x = at.eps_dot / (side * delta);  // (ε̇ − 0) / (δ₁ − 0), in units of the step
+    FilmForce out;
+    out.radial_N = f0.radial_N + x * (f1.radial_N - f0.radial_N);
+    out.tangential_N = f0.tangential_N + x * (f1.tangential_N - f0.tangential_N);
+    return out;
+  };
+  const auto film = [&](const BearingState& at) {
+    switch (mode) {
+      case FilmMode::natural: return law(at);
+      case FilmMode::outward: return at.eps_dot >= 0.0 ? law(at) : continued(at, +1.0);
+      case FilmMode::inward: return at.eps_dot < 0.0 ? law(at) : continued(at, -1.0);
+      case FilmMode::sliding: {
+        BearingState at0 = at;
+        at0.eps_dot = 0.0;
+        return law(at0);
+      }
+    }
+    return law(at);
   };
   // With contact: film weighted over the hand-over band (not evaluated above it) plus the
   // dry-contact force, whose damping sees the true ε̇.
-  return f.contact ? force_with_contact(*f.contact, f.clearance, state, film, &ws.contact_N[k]) : film(st);
+  return f.contact ? force_with_contact(*f.contact, f.clearance, state, film, &ws.contact_N[k]) : film(state);
 }
 
 bool film_element_load(const Model& m, Workspace& ws, int k, const BodyState& bi, const BodyState& bj,

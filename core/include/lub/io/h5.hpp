@@ -9,23 +9,28 @@
 //    is switched off (per thread, on first use of this module).
 //  - Files, groups, datasets and tables are move-only; the destructor closes the
 //    handle. A file stays open until the last object opened from it is closed.
-//  - Strings (attributes and table cells) are variable-length UTF-8: h5py returns
-//    attributes as `str`, table cells as `bytes` (decode with `.decode()`), and
-//    h5dump prints them as text. Fixed-length strings written by others read fine.
+//  - Strings (attributes, string datasets, table cells) are variable-length UTF-8:
+//    h5py returns attributes as `str`, dataset elements as `bytes` (`.asstr()[:]`),
+//    xarray (h5netcdf) as `str`, and h5dump prints them as text. Fixed-length strings
+//    written by others read fine.
 //  - Dataset names may be paths ("series/case_0007/t"); missing groups are created.
 //
-// ## Tables (the study file's `/cases`)
+// ## Tables (the study file's `/cases`, a run file's `/cycles`)
 //
-// A table is an extendible 1-D dataset of a compound type, one element per row, one
-// field per column (double → f8, int64 → i8, string → variable-length UTF-8). Its
-// attributes `columns` and `units` are string arrays aligned with the fields. From
-// h5py:  `t = f['/cases']; t['min_film_thickness_m']` → a numpy column;
-// `t[:]` → a structured array (`pandas.DataFrame(t[:])`); `t.attrs['units']`.
-// `Table::append` writes a batch of rows and flushes the file, so a process killed
-// after `append` returns leaves a file that opens with every row appended so far
-// (HDF5 1.10 offers no such guarantee for a kill *during* an append). Files use the
-// default (1.8-compatible) format, which has no "file open for write" flag, so a
-// killed writer never leaves a file that needs `h5clear`.
+// A table is a group holding one extendible 1-D dataset per column (double → f8,
+// int64 → i8, string → variable-length UTF-8), netCDF-4 style: the first column is the
+// table's dimension scale (its name is the dimension's: `case`, `cycle`) and every other
+// column has it attached, so `xarray.open_dataset(file, group="cases",
+// engine="h5netcdf")` gives one Dataset indexed by the first column (and
+// `.to_dataframe()` a pandas table). Each column carries `units` (numbers) and
+// `long_name` attributes when given; the group carries `columns` (names, in order) and
+// `units`. `Table::append` writes a batch of rows (every other column first, the
+// dimension column last) and flushes the file, so a process killed after `append`
+// returns leaves a file that opens with every row appended so far; the table's length is
+// the dimension column's, and readers ignore a longer column's tail (a kill *during* an
+// append), which the next append overwrites. Files use the default (1.8-compatible)
+// format, which has no "file open for write" flag, so a killed writer never leaves a
+// file that needs `h5clear`.
 #pragma once
 
 #include <cstddef>
@@ -33,6 +38,7 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -108,6 +114,8 @@ class Dataset : public Object {
   /// All elements, row-major, converted to double / int64.
   std::vector<double> read_doubles() const;
   std::vector<std::int64_t> read_int64s() const;
+  /// All elements of a string dataset, row-major.
+  std::vector<std::string> read_strings() const;
   /// The `units` attribute ("" if absent).
   std::string units() const;
 
@@ -127,9 +135,13 @@ class Dataset : public Object {
 enum class ColumnType { Float64, Int64, String };
 
 struct Column {
+  Column() = default;
+  Column(std::string name_, ColumnType type_, std::string units_ = "", std::string long_name_ = "")
+      : name(std::move(name_)), type(type_), units(std::move(units_)), long_name(std::move(long_name_)) {}
   std::string name;
   ColumnType type = ColumnType::Float64;
-  std::string units;  ///< "" for dimensionless / strings; "1" is fine too
+  std::string units;      ///< CF-style ("m", "Pa s", "m s-2", "1"); "" for strings
+  std::string long_name;  ///< a description ("" : none)
 };
 
 /// One cell; an int64 cell is accepted by a Float64 column (converted).
@@ -137,33 +149,7 @@ using Cell = std::variant<double, std::int64_t, std::string>;
 /// One row: one cell per column, in column order.
 using Row = std::vector<Cell>;
 
-/// An appendable table: see the header comment.
-class Table : public Dataset {
- public:
-  Table() = default;
-
-  const std::vector<Column>& columns() const { return columns_; }
-  /// Index of a column; throws if absent.
-  std::size_t column_index(const std::string& name) const;
-  bool has_column(const std::string& name) const;
-  std::size_t rows() const { return size(); }
-
-  /// Append rows (each with one cell per column, matching types), then flush the
-  /// file. An empty batch is a no-op (but still flushes).
-  void append(const std::vector<Row>& rows);
-  void append(const Row& row) { append(std::vector<Row>{row}); }
-
-  /// One column, all rows. The column must have the matching type (a Float64 read of
-  /// an Int64 column converts).
-  std::vector<double> read_doubles(const std::string& column) const;
-  std::vector<std::int64_t> read_int64s(const std::string& column) const;
-  std::vector<std::string> read_strings(const std::string& column) const;
-
- private:
-  friend class Group;
-  Table(Id id, std::vector<Column> columns) : Dataset(id), columns_(std::move(columns)) {}
-  std::vector<Column> columns_;
-};
+class Table;
 
 /// A group (also the base of File, whose id stands for its root group).
 class Group : public Object {
@@ -192,17 +178,56 @@ class Group : public Object {
   /// 1-D int64 dataset (no compression).
   Dataset write_dataset(const std::string& name, const std::vector<std::int64_t>& values,
                         const std::string& units);
+  /// N-D int64 dataset, row-major (no compression); `units` "" writes no attribute.
+  Dataset write_dataset(const std::string& name, const std::vector<std::int64_t>& values,
+                        const std::vector<std::size_t>& shape, const std::string& units);
+  /// Variable-length UTF-8 string dataset, row-major; `shape` {} means 1-D.
+  Dataset write_strings(const std::string& name, const std::vector<std::string>& values,
+                        const std::vector<std::size_t>& shape = {});
   Dataset open_dataset(const std::string& path) const;
 
-  /// Create an empty table; throws if `name` exists or the columns are invalid
-  /// (empty or duplicate names). `chunk_rows` rows per chunk.
+  /// Create an empty table (a group of columns, see the header comment); throws if
+  /// `name` exists or the columns are invalid (empty or duplicate names). `chunk_rows`
+  /// rows per chunk.
   Table create_table(const std::string& name, const std::vector<Column>& columns,
                      std::size_t chunk_rows = 64);
-  /// Open an existing table (columns recovered from its type and `units` attribute).
+  /// Open an existing table (columns from its `columns` attribute and their datasets).
+  /// Throws if `name` is not such a group (e.g. an older, compound-type table).
   Table open_table(const std::string& name) const;
 
  protected:
   explicit Group(Id id) : Object(id) {}
+};
+
+/// An appendable table of columns: see the header comment.
+class Table : public Group {
+ public:
+  Table() = default;
+
+  const std::vector<Column>& columns() const { return columns_; }
+  /// Index of a column; throws if absent.
+  std::size_t column_index(const std::string& name) const;
+  bool has_column(const std::string& name) const;
+  /// Rows: the length of the first (dimension) column.
+  std::size_t rows() const;
+  /// The dataset of one column (to add attributes).
+  Dataset column(const std::string& name) const;
+
+  /// Append rows (each with one cell per column, matching types), then flush the
+  /// file. An empty batch is a no-op (but still flushes).
+  void append(const std::vector<Row>& rows);
+  void append(const Row& row) { append(std::vector<Row>{row}); }
+
+  /// One column, all rows. The column must have the matching type (a Float64 read of
+  /// an Int64 column converts).
+  std::vector<double> read_doubles(const std::string& column) const;
+  std::vector<std::int64_t> read_int64s(const std::string& column) const;
+  std::vector<std::string> read_strings(const std::string& column) const;
+
+ private:
+  friend class Group;
+  Table(Id id, std::vector<Column> columns) : Group(id), columns_(std::move(columns)) {}
+  std::vector<Column> columns_;
 };
 
 /// An HDF5 file. `File` is a `Group`: its methods act on the root group.

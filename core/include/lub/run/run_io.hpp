@@ -13,9 +13,10 @@ namespace lub {
 /// One scalar a run reports.
 struct ResultField {
   const char* name;  ///< column / attribute name, unit in the name where it has one
-  const char* unit;  ///< SI unit, "1" for dimensionless, "" for counts and flags
+  const char* unit;  ///< SI unit, CF style ("m", "m s-2", "rad"); "1" for ratios, counts, flags
   bool integer;      ///< counts and flags
   double (*get)(const RunResult&);
+  const char* long_name = "";  ///< a description (netCDF `long_name`)
 };
 
 /// Steady-cycle metrics, in column order.
@@ -23,13 +24,31 @@ const std::vector<ResultField>& metric_fields();
 /// Solver statistics and cost, in column order.
 const std::vector<ResultField>& solver_fields();
 
+/// Version of the run file's layout, in the root attribute `format`.
+inline constexpr const char* kRunFormat = "lubsim-run-2";
+
 /// Program version and the build's revision.
 std::string program_version();
 std::string build_revision();
 
+/// CF-style unit of a scene key's suffix or a channel unit: "m/s^2" → "m s-2",
+/// "m/s" → "m s-1", "rad/s" → "rad s-1", "kg m^2" → "kg m2", "" → "1"; others unchanged.
+std::string cf_units(const std::string& unit);
+
+/// `long_name` of each channel of a series ("t": "time"), from the scene's
+/// outputs.channels ("eps of joint rod_slider: eccentricity ratio |e|/c").
+std::vector<std::string> channel_long_names(const std::string& scene_json,
+                                            const std::vector<std::string>& names);
+
+/// Writes a series into `group`: one 1-D dataset per channel with `units` and
+/// `long_name`, `t` (first) the dimension scale of every other channel, so xarray
+/// (h5netcdf) indexes the group by time; group attribute `channels`.
+void write_series(h5::Group& group, const Series& series, const std::vector<std::string>& long_names);
+
 /// Writes a run file (lubsim's run.h5): root attributes `scene` (the effective scene
-/// JSON), `program`, `version`, `revision`, `status`, `message`; /series/<channel>
-/// with `units`; /metrics and /solver attributes; /cycles, one row per crank cycle.
+/// JSON), `program`, `format`, `version`, `revision`, `status`, `message`;
+/// /series/<channel> on the dimension scale /series/t (write_series); /metrics and
+/// /solver attributes; /cycles, a table (one column per quantity, dimension `cycle`).
 /// Writes to PATH.partial and renames, so PATH is never left half-written.
 void write_run_file(const std::string& path, const std::string& scene_text, const std::string& program,
                     const RunResult& result);

@@ -1,17 +1,22 @@
-// The study file (HDF5), written by one rank. Layout (README, "The study file"):
+// The study file (HDF5), written by one rank. Layout (README, "The study file"), netCDF-4
+// style so that xarray (h5netcdf) and pandas read every group without custom code:
 //
 //   /                 attributes: program, format, version, revision, description, grid,
 //                     grid_file, base_scene, base_scene_file, on_failure, cases_total, complete
-//   /cases            one row per case: case_id, case, hash, <axes>, status, message,
-//                     <metric fields>, <solver fields>, rank, revision (units attribute)
-//   /scenes           [cases] the effective scene of each case (canonical JSON), by case id
-//   /grids/<name>/case_id   case ids over the sub-grid's axes, one dimension per axis, each
-//                     with a dimension scale /grids/<name>/<axis> (its values as listed)
-//   /series/<case>/<channel>  the channels the grid stores (t first), with units
+//   /scene, /scenes   the case ids of the grid (dimension scale) and the effective scene of
+//                     each case (canonical JSON)
+//   /cases            a table of columns (lub::h5::Table) on the dimension `case` (the case
+//                     id): name, hash, <axes>, status, message, <metric fields>, <solver
+//                     fields>, rank, revision; each with units and long_name
+//   /grids/<name>     a sub-grid: its axes as dimension scales (values as listed), case_id,
+//                     and (written when the sweep ends) every result field, status and
+//                     message as N-d variables over them; NaN metrics where not ok. An explicit
+//                     list of cases has the dimension `case` instead, and its axes as variables
+//   /series/<case>/<channel>  the channels the grid stores, on the dimension scale `t`
 //
 // While a sweep runs, rows are appended (and flushed) as results arrive, so a killed sweep
 // leaves a file that opens and resumes. At the end the file is rewritten canonically (rows
-// in case-id order, so case_id is also the row number) into PATH.partial and renamed.
+// in case-id order, so the case id is also the row number) into PATH.partial and renamed.
 #pragma once
 
 #include <map>
@@ -26,7 +31,7 @@
 namespace lub::sweep {
 
 /// Version of the layout above, in the root attribute `format`.
-inline constexpr const char* kStudyFormat = "lubsweep-study-1";
+inline constexpr const char* kStudyFormat = "lubsweep-study-2";
 
 /// Columns of /cases for a grid.
 std::vector<h5::Column> case_columns(const Grid& grid);
@@ -77,17 +82,12 @@ class StudyWriter {
   std::map<int, CaseResult> results_;  ///< every row, series dropped
 };
 
-/// Copies /series/<case> of `from` into `to` if present.
-void copy_series(const h5::File& from, h5::File& to, const std::string& case_name);
 
 /// Prints a table of the study (one line per case: axes, status, key metrics) to `out`.
 void print_summary(const std::string& path, std::FILE* out);
 
-/// 1-D variable-length UTF-8 string dataset (h5py: `.asstr()[:]`), and its reader.
-void write_strings(h5::Group& group, const std::string& name, const std::vector<std::string>& values);
-std::vector<std::string> read_strings(const h5::Group& group, const std::string& name);
-/// N-D int64 dataset, row-major.
-void write_int64s(h5::Group& group, const std::string& name, const std::vector<std::int64_t>& values,
-                  const std::vector<std::size_t>& shape);
+/// Throws lub::InputError (naming `what`, then `hint`) unless `f` has this build's study
+/// format (kStudyFormat): an older layout is refused, not misread.
+void check_format(const h5::File& f, const std::string& what, const std::string& hint);
 
 }  // namespace lub::sweep

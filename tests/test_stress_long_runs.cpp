@@ -1,0 +1,130 @@
+// Long runs on default settings: the paper's 16 cases and the full factorial's hardest
+// corners, for LUB_LONG_RUN_CYCLES crank cycles (60 in the default suite; 300 in the slow
+// one, `LUB_SLOW=1 bash tools/test.sh`, README "Tests"). A study runs cases for hundreds
+// of cycles; before the per-state tolerances and the partitioned default, 9 of the paper's
+// 27 cases ended solver_failure at the drift limit within 14 to 249 cycles, and a
+// partitioned run died at exactly 1301.5 cycles. What must hold for every case, however
+// long: the run ends ok; everything finite; no drift. The exception, named and checked: a
+// journal that sinks cycle after cycle at 50 rpm with the printed law (no steady cycle: its
+// film thins every cycle, 2.3 µm at cycle 17, 0.2 µm at 60) may end before the last cycle,
+// by film_collapse or, once ε is past 0.99, by solver_failure: the printed law
+// is not smooth where both ε̇ and the wedge speed vanish (q = hypot(εw/2, ε̇) in Eq. 14), the
+// sinking journal sits there, and near the wall its damping makes that kink a wall for the
+// corrector (README "Hard cases", D7). Issue "Steady cycles that are really steady" is to
+// classify such a case as drifting and stop it before the integrator gives up.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "lub/run/run.hpp"
+
+#ifndef LUB_LONG_RUN_CYCLES
+#define LUB_LONG_RUN_CYCLES 60
+#endif
+
+namespace {
+
+using lub::RunResult;
+using lub::RunStatus;
+using nlohmann::json;
+
+struct LongCase {
+  const char* name;
+  double clearance_m;
+  double viscosity_Pa_s;
+  double speed_rpm;
+  const char* law;
+  /// A journal that sinks cycle after cycle (no steady cycle) may end early near the wall.
+  bool sinks = false;
+};
+
+void PrintTo(const LongCase& c, std::ostream* os) { *os << c.name; }
+
+std::vector<LongCase> long_cases() {
+  return {
+      // The paper's study (configs/grids/paper.json): the reference case and one-axis studies.
+      {"reference", 0.5e-3, 0.4, 5000, "pinkus_sternlicht"},
+      {"clearance_0p2mm", 0.2e-3, 0.4, 5000, "pinkus_sternlicht"},
+      {"clearance_0p1mm", 0.1e-3, 0.4, 5000, "pinkus_sternlicht"},
+      {"clearance_0p05mm", 0.05e-3, 0.4, 5000, "pinkus_sternlicht"},
+      {"viscosity_200cP", 0.5e-3, 0.2, 5000, "pinkus_sternlicht"},
+      {"viscosity_100cP", 0.5e-3, 0.1, 5000, "pinkus_sternlicht"},
+      {"viscosity_40cP", 0.5e-3, 0.04, 5000, "pinkus_sternlicht"},
+      {"speed_2500rpm", 0.5e-3, 0.4, 2500, "pinkus_sternlicht"},
+      {"speed_500rpm", 0.5e-3, 0.4, 500, "pinkus_sternlicht"},
+      {"speed_50rpm", 0.5e-3, 0.4, 50, "pinkus_sternlicht", true},
+      {"frene_long", 0.5e-3, 0.4, 5000, "frene_long"},
+      {"frene_short", 0.5e-3, 0.4, 5000, "frene_short"},
+      {"ideal_5000rpm", 0.5e-3, 0.4, 5000, "ideal"},
+      {"ideal_2500rpm", 0.5e-3, 0.4, 2500, "ideal"},
+      {"ideal_500rpm", 0.5e-3, 0.4, 500, "ideal"},
+      {"ideal_50rpm", 0.5e-3, 0.4, 50, "ideal"},
+      // The full factorial's hardest corners: the thinnest oil, the smallest and largest
+      // clearance, the slowest and fastest crank, the printed law and Frêne short.
+      {"corner_c0p05mm_40cP_5000rpm_printed", 0.05e-3, 0.04, 5000, "pinkus_sternlicht"},
+      {"corner_c0p05mm_40cP_50rpm_printed", 0.05e-3, 0.04, 50, "pinkus_sternlicht", true},
+      {"corner_c0p05mm_40cP_5000rpm_frene_short", 0.05e-3, 0.04, 5000, "frene_short"},
+      {"corner_c0p05mm_40cP_50rpm_frene_short", 0.05e-3, 0.04, 50, "frene_short"},
+      {"corner_c0p5mm_40cP_50rpm_printed", 0.5e-3, 0.04, 50, "pinkus_sternlicht", true},
+      {"corner_c0p5mm_40cP_50rpm_frene_short", 0.5e-3, 0.04, 50, "frene_short"},
+      {"corner_c0p5mm_40cP_5000rpm_frene_short", 0.5e-3, 0.04, 5000, "frene_short"},
+      {"corner_c0p5mm_40cP_5000rpm_frene_long", 0.5e-3, 0.04, 5000, "frene_long"},
+  };
+}
+
+class LongRun : public testing::TestWithParam<LongCase> {};
+
+TEST_P(LongRun, EndsWithoutSolverFailureOrDrift) {
+  const LongCase& c = GetParam();
+  json doc = lub::read_json_file(std::string(LUB_SOURCE_DIR) + "/configs/scenes/slider_crank.json");
+  json& joint = doc["joints"][3];
+  joint["journal_radius_m"] = joint["bearing_radius_m"].get<double>() - c.clearance_m;
+  joint["viscosity_Pa_s"] = c.viscosity_Pa_s;
+  joint["force_law"] = c.law;
+  doc["drivers"][0]["speed_rpm"] = c.speed_rpm;
+  doc["simulation"]["max_cycles"] = LUB_LONG_RUN_CYCLES;
+  doc["outputs"]["channels"] = json::array();
+  const lub::Scene scene = lub::parse_scene(doc);
+  // Defaults only, beyond what the case varies: the paper's scene sets rtol 1e-8 and the
+  // Baumgarte constants (unused by the partitioned default); formulation, tolerances per
+  // state, eps_limit and the drift limit are the defaults.
+  ASSERT_EQ(scene.solver.formulation, lub::Formulation::partitioned);
+  const RunResult r = lub::run_scene(scene);
+  std::printf(
+      "%-40s %-14s cycles %4d  h_min %10.4g m  max_eps %.6f  peak_F %10.4g N  drift %.2g m  steps %9lld  %.2f s\n",
+      c.name, lub::to_string(r.status).c_str(), r.metrics.cycles_run, r.metrics.min_film_thickness_m, r.metrics.max_eps,
+      r.metrics.peak_reaction_N, r.stats.max_position_drift, r.stats.steps, r.stats.wall_time_s);
+  EXPECT_NE(r.status, RunStatus::budget_exceeded) << r.message;
+  if (!c.sinks || r.status == RunStatus::ok) {
+    EXPECT_EQ(r.status, RunStatus::ok) << r.message;
+    EXPECT_EQ(r.metrics.cycles_run, LUB_LONG_RUN_CYCLES);
+  } else {
+    // A sinking journal that ended early: it ended near the wall (ε > 0.99; measured
+    // 0.9934 to 0.99993) after thinning over its last ten cycles (a steady cycle would
+    // repeat, not thin).
+    EXPECT_GT(r.metrics.max_eps, 0.99) << r.message;
+    const auto& cy = r.cycles;
+    ASSERT_GE(cy.size(), 12u) << r.message;
+    const size_t last = cy.size() - 2;  // the last complete cycle
+    EXPECT_LT(cy[last].min_film_m, cy[last - 10].min_film_m) << r.message;
+  }
+  for (const double x : {r.metrics.min_film_thickness_m, r.metrics.max_eps, r.metrics.peak_reaction_N,
+                         r.metrics.peak_acceleration_m_s2, r.metrics.periodicity})
+    EXPECT_TRUE(std::isfinite(x));
+  // No drift: the partitioned formulation solves Φ = 0 to 1e-13 m at every evaluation,
+  // and the observers' states too (bound: 1e-12 m). The ideal mechanism has no degree of
+  // freedom and runs on baumgarte (nothing to partition): its drift is bounded by
+  // Baumgarte's terms, not removed; bound 1e-5 of the crank (5e-7 m... measured below).
+  if (std::string(c.law) != "ideal")
+    EXPECT_LT(r.stats.max_position_drift, 1e-12);
+  else
+    EXPECT_LT(r.stats.max_position_drift, 1e-3);
+}
+
+INSTANTIATE_TEST_SUITE_P(LongRuns, LongRun, testing::ValuesIn(long_cases()),
+                         [](const testing::TestParamInfo<LongCase>& i) { return std::string(i.param.name); });
+
+}  // namespace
