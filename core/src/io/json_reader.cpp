@@ -1,7 +1,11 @@
 #include "lub/io/json_reader.hpp"
 
 #include <cmath>
+#include <fstream>
+#include <set>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 namespace lub {
 
@@ -191,6 +195,124 @@ void ObjectReader::finish() const {
 const json& require_array(const json& value, const std::string& path) {
   if (!value.is_array()) fail(path, value, "must be an array");
   return value;
+}
+
+// --- JSON files ----------------------------------------------------------------------
+
+namespace {
+
+// Refuses a key that appears twice in one object (nlohmann-json would silently keep the
+// last one: `"mass_kg": 1, "mass_kg": -1` must not pass as a typo would not). Tracks the
+// path of the current value while the parser reports its events.
+class DuplicateKeyCheck {
+ public:
+  explicit DuplicateKeyCheck(std::string origin) : origin_(std::move(origin)) {}
+  bool operator()(json::parse_event_t event, const json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+      case json::parse_event_t::array_start:
+        frames_.push_back({event == json::parse_event_t::array_start, 0, {}, {}});
+        break;
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        frames_.pop_back();
+        element_done();
+        break;
+      case json::parse_event_t::key: {
+        Frame& f = frames_.back();  // an object; the event's value is the key
+        f.key = parsed.get<std::string>();
+        if (!f.keys.insert(f.key).second)
+          throw InputError(origin_ + ": " + path() + ": duplicate key (a key may appear only once in an object)");
+        break;
+      }
+      case json::parse_event_t::value:
+        element_done();
+        break;
+    }
+    return true;
+  }
+
+ private:
+  struct Frame {
+    bool array = false;
+    size_t index = 0;
+    std::string key;
+    std::set<std::string> keys;
+  };
+  void element_done() {
+    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
+  }
+  std::string path() const {
+    std::string p;
+    for (const Frame& f : frames_) {
+      if (f.array)
+        p += "[" + std::to_string(f.index) + "]";
+      else
+        p += (p.empty() ? "" : ".") + f.key;
+    }
+    return p;
+  }
+  std::string origin_;
+  std::vector<Frame> frames_;
+};
+
+}  // namespace
+
+json parse_json_text(const std::string& text, const std::string& origin) {
+  DuplicateKeyCheck check(origin);
+  const json::parser_callback_t cb = [&check](int /*depth*/, json::parse_event_t event, json& parsed) {
+    return check(event, parsed);
+  };
+  try {
+    return json::parse(text, cb);
+  } catch (const json::parse_error& e) {
+    throw InputError(origin + ": not valid JSON: " + e.what());
+  } catch (const json::exception& e) {  // e.g. out_of_range.406: a number overflows a double
+    throw InputError(origin + ": not valid JSON for a scene: " + e.what());
+  }
+}
+
+json read_json_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open the file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in.good() && !in.eof()) throw InputError(path + ": cannot read the file");
+  return parse_json_text(text.str(), path);
+}
+
+void apply_override(json& doc, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError("--set " + assignment + ": must be POINTER=VALUE, e.g. /joints/3/viscosity_Pa_s=0.1");
+  const std::string ptr_text = assignment.substr(0, eq);
+  const std::string value_text = assignment.substr(eq + 1);
+  json::json_pointer ptr;
+  try {
+    ptr = json::json_pointer(ptr_text);
+  } catch (const json::exception& e) {
+    throw InputError("--set " + assignment + ": " + ptr_text + " is not a JSON Pointer (RFC 6901): " + e.what());
+  }
+  if (ptr.empty()) throw InputError("--set " + assignment + ": the pointer must not be empty");
+  json value;
+  try {
+    value = json::parse(value_text);
+  } catch (const json::parse_error&) {
+    value = value_text;  // a bare word is a string
+  } catch (const json::exception& e) {
+    throw InputError("--set " + assignment + ": " + value_text + " is not a usable JSON value: " + e.what());
+  }
+  try {
+    if (!doc.contains(ptr)) {
+      const json::json_pointer parent = ptr.parent_pointer();
+      if (!doc.contains(parent) || !doc.at(parent).is_object())
+        throw InputError("--set " + assignment + ": " + ptr_text +
+                         " names no value of the scene, and its parent is not an object");
+    }
+    doc[ptr] = value;
+  } catch (const json::exception& e) {  // e.g. "/joints//x": an empty token on an array
+    throw InputError("--set " + assignment + ": " + ptr_text + " names no value of the scene: " + e.what());
+  }
 }
 
 }  // namespace lub

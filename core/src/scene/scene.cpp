@@ -204,6 +204,132 @@ DriverSpec parse_driver(const Scene& scene, const json& j, const std::string& pa
   return d;
 }
 
+// solver: the method, tolerances, formulation and its options, budgets.
+SolverSpec parse_solver(const json& j) {
+  ObjectReader r(j, "solver");
+  SolverSpec s;
+  s.method = r.choice_of<Method>("method", Method::cvode_bdf);
+  s.rtol = r.number_or("rtol", s.rtol, [](double v) { return v >= 1e-14 && v < 1.0; },
+                       "must be in [1e-14, 1)");
+  s.atol = r.number_optional("atol", positive, "must be > 0 (SI units of each state)");
+  s.max_step_s = r.number_or("max_step_s", 0.0, non_negative, "must be >= 0 s (0: no limit)");
+  s.initial_step_s =
+      r.number_or("initial_step_s", 0.0, non_negative, "must be >= 0 s (0: automatic)");
+  s.max_order = static_cast<int>(r.integer_or("max_order", 0, 0, 12));
+  s.baumgarte_alpha = r.number_or("baumgarte_alpha", 5.0, non_negative, "must be >= 0 1/s");
+  s.baumgarte_beta = r.number_or("baumgarte_beta", 5.0, non_negative, "must be >= 0 1/s");
+  s.max_steps = r.integer_or("max_steps", s.max_steps, 1, 1'000'000'000'000LL);
+  s.switching = r.choice_of<Switching>("switching", Switching::events);
+  const bool ida = s.method == Method::ida;
+  s.formulation = r.choice_of<Formulation>("formulation", ida ? Formulation::ggl : Formulation::partitioned);
+  const json form(std::string(name_of(s.formulation)));
+  const bool partitioned = s.formulation == Formulation::partitioned;
+  if (s.formulation == Formulation::ggl && !ida)
+    fail("solver.formulation", form, "ggl is a DAE: it requires solver.method = ida");
+  if (ida && s.formulation != Formulation::ggl)
+    fail("solver.formulation", form,
+         "solver.method = ida integrates the GGL index-2 DAE: the formulation must be ggl (or absent)");
+  s.projection = r.boolean_or("projection", false);
+  // IDA: the structured iteration matrix by default (README "Integration", Jacobian).
+  s.jacobian = ida ? JacobianKind::structured : JacobianKind::difference_quotients;
+  if (const json* jac = r.raw_optional("jacobian")) {
+    s.jacobian = r.choice_of<JacobianKind>("jacobian");
+    if (!is_newton(s.method))
+      fail("solver.jacobian", *jac,
+           "applies only to the methods with a Newton iteration (cvode_bdf, arkode_dirk, ida)");
+    if (s.jacobian == JacobianKind::structured && partitioned)
+      fail("solver.jacobian", *jac,
+           "structured requires solver.formulation = baumgarte (the partitioned formulation, the "
+           "default, uses difference quotients)");
+  }
+  if (s.projection && partitioned)
+    fail("solver.projection", json(true),
+         "does not apply to solver.formulation = partitioned, the default (no drift to project): "
+         "set solver.formulation = baumgarte to project");
+  if (s.projection && s.method != Method::cvode_bdf)
+    fail("solver.projection", json(true), "requires solver.method = cvode_bdf (CVODE projects only with BDF)");
+  s.max_wall_time_s = r.number_or("max_wall_time_s", s.max_wall_time_s, positive, "must be > 0 s");
+  r.finish();
+  return s;
+}
+
+// simulation: end time or cycles, the steady stop, limits.
+SimulationSpec parse_simulation(const json& j) {
+  ObjectReader r(j, "simulation");
+  SimulationSpec s;
+  s.duration_s = r.number_optional("duration_s", positive, "must be > 0 s");
+  s.max_cycles = static_cast<int>(r.integer_or("max_cycles", s.max_cycles, 1, 1'000'000));
+  s.cycle_period_s = r.number_optional("cycle_period_s", positive, "must be > 0 s");
+  s.stop_when_steady = r.boolean_or("stop_when_steady", s.stop_when_steady);
+  s.steady_tolerance = r.number_or("steady_tolerance", s.steady_tolerance, positive, "must be > 0");
+  const bool metric_cycles_given = r.has("metric_cycles");
+  s.metric_cycles = static_cast<int>(r.integer_or("metric_cycles", s.metric_cycles, 1, 1'000'000));
+  s.eps_limit = r.number_or("eps_limit", s.eps_limit,
+                            [](double v) { return v > 0.0 && v < 1.0; }, "must be in (0, 1)");
+  s.drift_limit_m = r.number_optional("drift_limit_m", positive, "must be > 0 m");
+  r.finish();
+  if (s.duration_s && r.has("max_cycles"))
+    fail("simulation.max_cycles", j["max_cycles"],
+         "must not be given together with simulation.duration_s (the run ends at duration_s)");
+  if (!metric_cycles_given) s.metric_cycles = std::min(s.metric_cycles, s.max_cycles);
+  if (!s.duration_s && s.metric_cycles > s.max_cycles)
+    fail("simulation.metric_cycles", json(s.metric_cycles),
+         "must be <= simulation.max_cycles = " + std::to_string(s.max_cycles));
+  return s;
+}
+
+// outputs: sampling, the channels (bodies and joints must already be parsed).
+OutputSpec parse_outputs(const Scene& scene, const json& j) {
+  ObjectReader r(j, "outputs");
+  OutputSpec o;
+  o.sample_interval_s = r.number_or("sample_interval_s", o.sample_interval_s, positive, "must be > 0 s");
+  o.energy_balance = r.boolean_or("energy_balance", false);
+  o.last_cycles = static_cast<int>(r.integer_or("last_cycles", 0, 0, 1'000'000));
+  if (const json* chans = r.raw_optional("channels")) {
+    require_array(*chans, "outputs.channels");
+    for (size_t i = 0; i < chans->size(); ++i) {
+      const std::string path = "outputs.channels[" + std::to_string(i) + "]";
+      ObjectReader cr((*chans)[i], path);
+      ChannelSpec c;
+      c.name = cr.string("name");
+      if (c.name.empty() || c.name == "t" || c.name.find('/') != std::string::npos)
+        fail(cr.child("name"), json(c.name), "must be a non-empty name without '/', other than \"t\"");
+      for (const auto& other : o.channels)
+        if (other.name == c.name) fail(cr.child("name"), json(c.name), "must be unique");
+      const bool by_body = cr.has("body"), by_joint = cr.has("joint");
+      if (by_body == by_joint) fail(path, (*chans)[i], "must name exactly one of \"body\" or \"joint\"");
+      if (by_body) {
+        c.source = ChannelSource::body;
+        c.index = resolve_body(scene, cr, "body", false);
+        c.body_quantity = cr.choice_of<BodyQuantity>("quantity");
+      } else {
+        c.source = ChannelSource::joint;
+        c.index = resolve_joint(scene, cr, "joint");
+        c.joint_quantity = cr.choice_of<JointQuantity>("quantity");
+        const JointSpec& jt = scene.joints[static_cast<size_t>(c.index)];
+        if (is_film_quantity(c.joint_quantity) && jt.type != JointType::lubricated_revolute)
+          fail(cr.child("quantity"), json(std::string(name_of(c.joint_quantity))),
+               "is a film quantity, but joint \"" + jt.name + "\" is " + std::string(name_of(jt.type)) +
+                   ", not lubricated_revolute (its quantities: reaction, reaction_x, reaction_y)");
+      }
+      cr.finish();
+      o.channels.push_back(std::move(c));
+    }
+  }
+  r.finish();
+  return o;
+}
+
+// metrics: which joint and body the steady-cycle metrics measure.
+MetricSpec parse_metrics(const Scene& scene, const json& j) {
+  MetricSpec m;
+  ObjectReader r(j, "metrics");
+  if (r.has("joint")) m.joint = resolve_joint(scene, r, "joint");
+  if (r.has("body")) m.body = resolve_body(scene, r, "body", false);
+  r.finish();
+  return m;
+}
+
 // Rules that involve several parts of the scene (each part is valid on its own).
 void check_whole_scene(const Scene& scene, const json& doc) {
   // More constraint equations than coordinates: over-constrained (the kinematic analysis
@@ -380,126 +506,17 @@ Scene parse_scene(const json& doc) {
     r.finish();
   }
 
-  if (const json* solver = top.raw_optional("solver")) {
-    ObjectReader r(*solver, "solver");
-    SolverSpec& s = scene.solver;
-    s.method = r.choice_of<Method>("method", Method::cvode_bdf);
-    s.rtol = r.number_or("rtol", s.rtol, [](double v) { return v >= 1e-14 && v < 1.0; },
-                         "must be in [1e-14, 1)");
-    s.atol = r.number_optional("atol", positive, "must be > 0 (SI units of each state)");
-    s.max_step_s = r.number_or("max_step_s", 0.0, non_negative, "must be >= 0 s (0: no limit)");
-    s.initial_step_s =
-        r.number_or("initial_step_s", 0.0, non_negative, "must be >= 0 s (0: automatic)");
-    s.max_order = static_cast<int>(r.integer_or("max_order", 0, 0, 12));
-    s.baumgarte_alpha = r.number_or("baumgarte_alpha", 5.0, non_negative, "must be >= 0 1/s");
-    s.baumgarte_beta = r.number_or("baumgarte_beta", 5.0, non_negative, "must be >= 0 1/s");
-    s.max_steps = r.integer_or("max_steps", s.max_steps, 1, 1'000'000'000'000LL);
-    s.switching = r.choice_of<Switching>("switching", Switching::events);
-    const bool ida = s.method == Method::ida;
-    s.formulation = r.choice_of<Formulation>("formulation", ida ? Formulation::ggl : Formulation::partitioned);
-    const json form(std::string(name_of(s.formulation)));
-    const bool partitioned = s.formulation == Formulation::partitioned;
-    if (s.formulation == Formulation::ggl && !ida)
-      fail("solver.formulation", form, "ggl is a DAE: it requires solver.method = ida");
-    if (ida && s.formulation != Formulation::ggl)
-      fail("solver.formulation", form,
-           "solver.method = ida integrates the GGL index-2 DAE: the formulation must be ggl (or absent)");
-    s.projection = r.boolean_or("projection", false);
-    // IDA: the structured iteration matrix by default (README "Integration", Jacobian).
-    s.jacobian = ida ? JacobianKind::structured : JacobianKind::difference_quotients;
-    if (const json* jac = r.raw_optional("jacobian")) {
-      s.jacobian = r.choice_of<JacobianKind>("jacobian");
-      if (!is_newton(s.method))
-        fail("solver.jacobian", *jac,
-             "applies only to the methods with a Newton iteration (cvode_bdf, arkode_dirk, ida)");
-      if (s.jacobian == JacobianKind::structured && partitioned)
-        fail("solver.jacobian", *jac,
-             "structured requires solver.formulation = baumgarte (the partitioned formulation, the "
-             "default, uses difference quotients)");
-    }
-    if (s.projection && partitioned)
-      fail("solver.projection", json(true),
-           "does not apply to solver.formulation = partitioned, the default (no drift to project): "
-           "set solver.formulation = baumgarte to project");
-    if (s.projection && s.method != Method::cvode_bdf)
-      fail("solver.projection", json(true), "requires solver.method = cvode_bdf (CVODE projects only with BDF)");
-    s.max_wall_time_s = r.number_or("max_wall_time_s", s.max_wall_time_s, positive, "must be > 0 s");
-    r.finish();
-  }
+  if (const json* solver = top.raw_optional("solver")) scene.solver = parse_solver(*solver);
   if ((scene.solver.method == Method::cvode_bdf || scene.solver.method == Method::ida) &&
       scene.solver.max_order > 5)
     fail("solver.max_order", json(scene.solver.max_order),
          "must be <= 5 for " + std::string(name_of(scene.solver.method)) + " (BDF orders 1 to 5)");
 
-  if (const json* sim = top.raw_optional("simulation")) {
-    ObjectReader r(*sim, "simulation");
-    SimulationSpec& s = scene.simulation;
-    s.duration_s = r.number_optional("duration_s", positive, "must be > 0 s");
-    s.max_cycles = static_cast<int>(r.integer_or("max_cycles", s.max_cycles, 1, 1'000'000));
-    s.cycle_period_s = r.number_optional("cycle_period_s", positive, "must be > 0 s");
-    s.stop_when_steady = r.boolean_or("stop_when_steady", s.stop_when_steady);
-    s.steady_tolerance = r.number_or("steady_tolerance", s.steady_tolerance, positive, "must be > 0");
-    const bool metric_cycles_given = r.has("metric_cycles");
-    s.metric_cycles = static_cast<int>(r.integer_or("metric_cycles", s.metric_cycles, 1, 1'000'000));
-    s.eps_limit = r.number_or("eps_limit", s.eps_limit,
-                              [](double v) { return v > 0.0 && v < 1.0; }, "must be in (0, 1)");
-    s.drift_limit_m = r.number_optional("drift_limit_m", positive, "must be > 0 m");
-    r.finish();
-    if (s.duration_s && r.has("max_cycles"))
-      fail("simulation.max_cycles", (*sim)["max_cycles"],
-           "must not be given together with simulation.duration_s (the run ends at duration_s)");
-    if (!metric_cycles_given) s.metric_cycles = std::min(s.metric_cycles, s.max_cycles);
-    if (!s.duration_s && s.metric_cycles > s.max_cycles)
-      fail("simulation.metric_cycles", json(s.metric_cycles),
-           "must be <= simulation.max_cycles = " + std::to_string(s.max_cycles));
-  }
+  if (const json* sim = top.raw_optional("simulation")) scene.simulation = parse_simulation(*sim);
 
-  if (const json* out = top.raw_optional("outputs")) {
-    ObjectReader r(*out, "outputs");
-    OutputSpec& o = scene.output;
-    o.sample_interval_s = r.number_or("sample_interval_s", o.sample_interval_s, positive, "must be > 0 s");
-    o.energy_balance = r.boolean_or("energy_balance", false);
-    o.last_cycles = static_cast<int>(r.integer_or("last_cycles", 0, 0, 1'000'000));
-    if (const json* chans = r.raw_optional("channels")) {
-      require_array(*chans, "outputs.channels");
-      for (size_t i = 0; i < chans->size(); ++i) {
-        const std::string path = "outputs.channels[" + std::to_string(i) + "]";
-        ObjectReader cr((*chans)[i], path);
-        ChannelSpec c;
-        c.name = cr.string("name");
-        if (c.name.empty() || c.name == "t" || c.name.find('/') != std::string::npos)
-          fail(cr.child("name"), json(c.name), "must be a non-empty name without '/', other than \"t\"");
-        for (const auto& other : o.channels)
-          if (other.name == c.name) fail(cr.child("name"), json(c.name), "must be unique");
-        const bool by_body = cr.has("body"), by_joint = cr.has("joint");
-        if (by_body == by_joint) fail(path, (*chans)[i], "must name exactly one of \"body\" or \"joint\"");
-        if (by_body) {
-          c.source = ChannelSource::body;
-          c.index = resolve_body(scene, cr, "body", false);
-          c.body_quantity = cr.choice_of<BodyQuantity>("quantity");
-        } else {
-          c.source = ChannelSource::joint;
-          c.index = resolve_joint(scene, cr, "joint");
-          c.joint_quantity = cr.choice_of<JointQuantity>("quantity");
-          const JointSpec& jt = scene.joints[static_cast<size_t>(c.index)];
-          if (is_film_quantity(c.joint_quantity) && jt.type != JointType::lubricated_revolute)
-            fail(cr.child("quantity"), json(std::string(name_of(c.joint_quantity))),
-                 "is a film quantity, but joint \"" + jt.name + "\" is " + std::string(name_of(jt.type)) +
-                     ", not lubricated_revolute (its quantities: reaction, reaction_x, reaction_y)");
-        }
-        cr.finish();
-        o.channels.push_back(std::move(c));
-      }
-    }
-    r.finish();
-  }
+  if (const json* out = top.raw_optional("outputs")) scene.output = parse_outputs(scene, *out);
 
-  if (const json* met = top.raw_optional("metrics")) {
-    ObjectReader r(*met, "metrics");
-    if (r.has("joint")) scene.metrics.joint = resolve_joint(scene, r, "joint");
-    if (r.has("body")) scene.metrics.body = resolve_body(scene, r, "body", false);
-    r.finish();
-  }
+  if (const json* met = top.raw_optional("metrics")) scene.metrics = parse_metrics(scene, *met);
   top.finish();
 
   // Whole-scene rules.
@@ -520,122 +537,6 @@ Scene parse_scene(const json& doc) {
          "needs duration_s, or cycle_period_s, or a driver with non-zero speed to define a cycle");
   check_whole_scene(scene, doc);
   return scene;
-}
-
-namespace {
-
-// Refuses a key that appears twice in one object (nlohmann-json would silently keep the
-// last one: `"mass_kg": 1, "mass_kg": -1` must not pass as a typo would not). Tracks the
-// path of the current value while the parser reports its events.
-class DuplicateKeyCheck {
- public:
-  explicit DuplicateKeyCheck(std::string origin) : origin_(std::move(origin)) {}
-  bool operator()(json::parse_event_t event, const json& parsed) {
-    switch (event) {
-      case json::parse_event_t::object_start:
-      case json::parse_event_t::array_start:
-        frames_.push_back({event == json::parse_event_t::array_start, 0, {}, {}});
-        break;
-      case json::parse_event_t::object_end:
-      case json::parse_event_t::array_end:
-        frames_.pop_back();
-        element_done();
-        break;
-      case json::parse_event_t::key: {
-        Frame& f = frames_.back();  // an object; the event's value is the key
-        f.key = parsed.get<std::string>();
-        if (!f.keys.insert(f.key).second)
-          throw InputError(origin_ + ": " + path() + ": duplicate key (a key may appear only once in an object)");
-        break;
-      }
-      case json::parse_event_t::value:
-        element_done();
-        break;
-    }
-    return true;
-  }
-
- private:
-  struct Frame {
-    bool array = false;
-    size_t index = 0;
-    std::string key;
-    std::set<std::string> keys;
-  };
-  void element_done() {
-    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
-  }
-  std::string path() const {
-    std::string p;
-    for (const Frame& f : frames_) {
-      if (f.array)
-        p += "[" + std::to_string(f.index) + "]";
-      else
-        p += (p.empty() ? "" : ".") + f.key;
-    }
-    return p;
-  }
-  std::string origin_;
-  std::vector<Frame> frames_;
-};
-
-}  // namespace
-
-json parse_json_text(const std::string& text, const std::string& origin) {
-  DuplicateKeyCheck check(origin);
-  const json::parser_callback_t cb = [&check](int /*depth*/, json::parse_event_t event, json& parsed) {
-    return check(event, parsed);
-  };
-  try {
-    return json::parse(text, cb);
-  } catch (const json::parse_error& e) {
-    throw InputError(origin + ": not valid JSON: " + e.what());
-  } catch (const json::exception& e) {  // e.g. out_of_range.406: a number overflows a double
-    throw InputError(origin + ": not valid JSON for a scene: " + e.what());
-  }
-}
-
-json read_json_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in.good() && !in.eof()) throw InputError(path + ": cannot read the file");
-  return parse_json_text(text.str(), path);
-}
-
-void apply_override(json& doc, const std::string& assignment) {
-  const auto eq = assignment.find('=');
-  if (eq == std::string::npos || eq == 0)
-    throw InputError("--set " + assignment + ": must be POINTER=VALUE, e.g. /joints/3/viscosity_Pa_s=0.1");
-  const std::string ptr_text = assignment.substr(0, eq);
-  const std::string value_text = assignment.substr(eq + 1);
-  json::json_pointer ptr;
-  try {
-    ptr = json::json_pointer(ptr_text);
-  } catch (const json::exception& e) {
-    throw InputError("--set " + assignment + ": " + ptr_text + " is not a JSON Pointer (RFC 6901): " + e.what());
-  }
-  if (ptr.empty()) throw InputError("--set " + assignment + ": the pointer must not be empty");
-  json value;
-  try {
-    value = json::parse(value_text);
-  } catch (const json::parse_error&) {
-    value = value_text;  // a bare word is a string
-  } catch (const json::exception& e) {
-    throw InputError("--set " + assignment + ": " + value_text + " is not a usable JSON value: " + e.what());
-  }
-  try {
-    if (!doc.contains(ptr)) {
-      const json::json_pointer parent = ptr.parent_pointer();
-      if (!doc.contains(parent) || !doc.at(parent).is_object())
-        throw InputError("--set " + assignment + ": " + ptr_text +
-                         " names no value of the scene, and its parent is not an object");
-    }
-    doc[ptr] = value;
-  } catch (const json::exception& e) {  // e.g. "/joints//x": an empty token on an array
-    throw InputError("--set " + assignment + ": " + ptr_text + " names no value of the scene: " + e.what());
-  }
 }
 
 }  // namespace lub

@@ -93,4 +93,14 @@ const nlohmann::json& require_array(const nlohmann::json& value, const std::stri
 inline bool positive(double v) { return v > 0.0; }
 inline bool non_negative(double v) { return v >= 0.0; }
 
+/// Reads a JSON file; errors (missing file, syntax, a key twice in one object, a number
+/// too large for a double) throw InputError naming the file.
+nlohmann::json read_json_file(const std::string& path);
+/// The same for JSON text; `origin` (a file name) prefixes the messages.
+nlohmann::json parse_json_text(const std::string& text, const std::string& origin);
+
+/// Applies `--set POINTER=VALUE`: VALUE parsed as JSON, or taken as a string if it is not
+/// JSON. The pointer must name an existing value or a new key of an existing object.
+void apply_override(nlohmann::json& doc, const std::string& assignment);
+
 }  // namespace lub

@@ -223,16 +223,6 @@ struct Scene {
 /// Parses and validates a scene. Throws InputError naming the JSON path, value and rule.
 Scene parse_scene(const nlohmann::json& doc);
 
-/// Reads a JSON file; errors (missing file, syntax, a key twice in one object, a number
-/// too large for a double) throw InputError naming the file.
-nlohmann::json read_json_file(const std::string& path);
-/// The same for JSON text; `origin` (a file name) prefixes the messages.
-nlohmann::json parse_json_text(const std::string& text, const std::string& origin);
-
-/// Applies `--set POINTER=VALUE`: VALUE parsed as JSON, or taken as a string if it is not
-/// JSON. The pointer must name an existing value or a new key of an existing object.
-void apply_override(nlohmann::json& doc, const std::string& assignment);
-
 /// True for the joint quantities only a lubricated joint has (e_x, eps, h_min, ...).
 bool is_film_quantity(JointQuantity q);
 /// SI unit of a channel ("s", "m", "rad", "N", "1", ...).
