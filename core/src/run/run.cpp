@@ -11,6 +11,7 @@
 #include "lub/mechanism/builder.hpp"
 #include "lub/mechanism/model.hpp"
 #include "lub/formulation/multibody_system.hpp"
+#include "run/metrics.hpp"
 
 namespace lub {
 
@@ -571,47 +572,9 @@ RunResult Runner::run() {
   res_.stats.film_law_evals = ws_.counters.film + obs_ws_.counters.film;
   res_.stats.film_law_evals_jac = ws_.counters.film_jacobian;
 
-  // Steady-cycle metrics over the last metric_cycles cycles.
+  // Steady-cycle metrics over the last metric_cycles cycles (run/metrics.cpp).
   Metrics& mt = res_.metrics;
-  mt.cycles_run = cycles_done;
-  const int M = std::min<int>(sim.metric_cycles, static_cast<int>(res_.cycles.size()));
-  mt.min_film_thickness_m = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < M; ++i) {
-    const CycleMetrics& c = res_.cycles[res_.cycles.size() - 1 - i];
-    if (c.min_film_m < mt.min_film_thickness_m) {
-      mt.min_film_thickness_m = c.min_film_m;
-      mt.angle_at_min_film_rad = c.angle_at_min_film_rad;
-    }
-    mt.max_eps = std::max(mt.max_eps, c.max_eps);
-    if (c.peak_reaction_N > mt.peak_reaction_N) {
-      mt.peak_reaction_N = c.peak_reaction_N;
-      mt.angle_at_peak_reaction_rad = c.angle_at_peak_reaction_rad;
-    }
-    mt.peak_acceleration_m_s2 = std::max(mt.peak_acceleration_m_s2, c.peak_acceleration_m_s2);
-    mt.periodicity = std::max(mt.periodicity, c.periodicity);
-  }
-  const int mj = scene_.metrics.joint;
-  mt.has_film = mj >= 0 && scene_.joints[mj].type == JointType::lubricated_revolute;
-  if (!mt.has_film || !std::isfinite(mt.min_film_thickness_m)) mt.min_film_thickness_m = 0.0;
-  if (mt.has_film) {
-    mt.safe_film_m = scene_.metrics.safe_film_per_diameter * 2.0 * scene_.joints[mj].bearing.bearing_radius_m;
-    mt.below_safe_film = mt.min_film_thickness_m < mt.safe_film_m;
-  }
-  for (size_t k = 0; k < res_.cycles.size(); ++k) {
-    // cycles_to_steady: the first time the last metric_cycles cycles all repeated
-    const int n = static_cast<int>(k) + 1;
-    if (n < sim.metric_cycles + 1) continue;
-    bool ok = true;
-    for (int i = 0; i < sim.metric_cycles; ++i) {
-      const double p = res_.cycles[k - i].periodicity;
-      ok = ok && p >= 0 && p < sim.steady_tolerance;
-    }
-    if (ok) {
-      mt.steady = true;
-      mt.cycles_to_steady = n;
-      break;
-    }
-  }
+  mt = detail::steady_cycle_metrics(scene_, res_.cycles, cycles_done);
   if (energy) {
     double Q[2] = {0, 0};
     integ->quadratures(Q);
