@@ -146,6 +146,27 @@ void write_series(h5::Group& g, const Series& s, const std::vector<std::string>&
     if (ds[i].shape() == ds.front().shape()) ds[i].attach_scale(ds.front(), 0);
 }
 
+const std::vector<CycleField>& cycle_fields() {
+  static const std::vector<CycleField> f = {
+      {"t_start_s", "s", "start of the cycle", [](const CycleMetrics& c) { return c.t_start_s; }},
+      {"t_end_s", "s", "end of the cycle", [](const CycleMetrics& c) { return c.t_end_s; }},
+      {"min_film_thickness_m", "m", "minimum film thickness in the cycle",
+       [](const CycleMetrics& c) { return c.min_film_m; }},
+      {"crank_angle_at_min_film_rad", "rad", "crank angle at the minimum film thickness",
+       [](const CycleMetrics& c) { return c.angle_at_min_film_rad; }},
+      {"max_eps", "1", "largest eccentricity ratio in the cycle", [](const CycleMetrics& c) { return c.max_eps; }},
+      {"peak_reaction_N", "N", "peak force transmitted by the metric joint",
+       [](const CycleMetrics& c) { return c.peak_reaction_N; }},
+      {"crank_angle_at_peak_reaction_rad", "rad", "crank angle at the peak joint force",
+       [](const CycleMetrics& c) { return c.angle_at_peak_reaction_rad; }},
+      {"peak_acceleration_m_s2", "m s-2", "peak acceleration of the metric body",
+       [](const CycleMetrics& c) { return c.peak_acceleration_m_s2; }},
+      {"periodicity", "1", "largest orbit distance to the previous cycle / clearance (-1: first cycle)",
+       [](const CycleMetrics& c) { return c.periodicity; }},
+  };
+  return f;
+}
+
 std::string program_version() { return LUB_VERSION; }
 std::string build_revision() { return LUB_GIT_REVISION; }
 
@@ -192,24 +213,18 @@ void write_run_file(const std::string& path, const std::string& scene_text, cons
     sv.set_attribute("atol", r.stats.atol);
     for (const auto& fld : solver_fields()) put(sv, fld, r);
 
-    h5::Table c = f.create_table(
-        "cycles", {{"cycle", h5::ColumnType::Int64, "1", "crank cycle number (1: the first)"},
-                   {"t_start_s", h5::ColumnType::Float64, "s", "start of the cycle"},
-                   {"t_end_s", h5::ColumnType::Float64, "s", "end of the cycle"},
-                   {"min_film_thickness_m", h5::ColumnType::Float64, "m", "minimum film thickness in the cycle"},
-                   {"crank_angle_at_min_film_rad", h5::ColumnType::Float64, "rad", "crank angle at the minimum film thickness"},
-                   {"max_eps", h5::ColumnType::Float64, "1", "largest eccentricity ratio in the cycle"},
-                   {"peak_reaction_N", h5::ColumnType::Float64, "N", "peak force transmitted by the metric joint"},
-                   {"crank_angle_at_peak_reaction_rad", h5::ColumnType::Float64, "rad", "crank angle at the peak joint force"},
-                   {"peak_acceleration_m_s2", h5::ColumnType::Float64, "m s-2", "peak acceleration of the metric body"},
-                   {"periodicity", h5::ColumnType::Float64, "1",
-                    "largest orbit distance to the previous cycle / clearance (-1: first cycle)"}});
+    std::vector<h5::Column> columns = {{"cycle", h5::ColumnType::Int64, "1", "crank cycle number (1: the first)"}};
+    for (const CycleField& fld : cycle_fields())
+      columns.push_back({fld.name, h5::ColumnType::Float64, fld.unit, fld.long_name});
+    h5::Table c = f.create_table("cycles", columns);
     std::vector<h5::Row> rows;
     std::int64_t number = 0;
-    for (const CycleMetrics& cy : r.cycles)
-      rows.push_back({++number, cy.t_start_s, cy.t_end_s, cy.min_film_m, cy.angle_at_min_film_rad, cy.max_eps,
-                      cy.peak_reaction_N, cy.angle_at_peak_reaction_rad, cy.peak_acceleration_m_s2,
-                      cy.periodicity});
+    for (const CycleMetrics& cy : r.cycles) {
+      h5::Row& row = rows.emplace_back();
+      row.reserve(columns.size());
+      row.emplace_back(std::in_place_type<std::int64_t>, ++number);
+      for (const CycleField& fld : cycle_fields()) row.emplace_back(std::in_place_type<double>, fld.get(cy));
+    }
     c.append(rows);
     f.close();
   }

@@ -24,6 +24,16 @@ const std::vector<ResultField>& metric_fields();
 /// Solver statistics and cost, in column order.
 const std::vector<ResultField>& solver_fields();
 
+/// One column of the run file's /cycles (after `cycle`, the cycle number): the one list
+/// behind the file and the Python module's `cycle_*` variables.
+struct CycleField {
+  const char* name;       ///< column name, unit in the name where it has one
+  const char* unit;       ///< CF-style SI unit
+  const char* long_name;  ///< a description (netCDF `long_name`)
+  double (*get)(const CycleMetrics&);
+};
+const std::vector<CycleField>& cycle_fields();
+
 /// Version of the run file's layout, in the root attribute `format`.
 inline constexpr const char* kRunFormat = "lubsim-run-2";
 

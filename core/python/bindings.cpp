@@ -1,0 +1,281 @@
+// lubjoint._lubjoint: the compiled half of the Python module `lubjoint`.
+//
+// Thin bindings over lubcore: the scene is read, overridden, validated and run by the same
+// functions lubsim calls (read_json_file / parse_json_text, apply_override, parse_scene,
+// run_scene, write_run_file), and a force law or a steady bearing by the same functions
+// lubbearing calls (film_force, solve_steady_bearing). The Python half
+// (core/python/lubjoint/__init__.py) turns the plain results into xarray objects.
+//
+// Bad input throws lub::InputError, seen in Python as lubjoint.InputError (a ValueError)
+// with the same message as the command line (JSON path, value, rule). The GIL is released
+// while a scene is parsed, run and written, and while a force law is evaluated, so Python
+// threads can run cases side by side.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lub/bearing/film_force.hpp"
+#include "lub/io/json_reader.hpp"
+#include "lub/io/output_path.hpp"
+#include "lub/bearing/reynolds.hpp"
+#include "lub/run/run.hpp"
+#include "lub/run/run_io.hpp"
+#include "lub/scene/scene.hpp"
+#include "lub/bearing/steady_bearing.hpp"
+
+namespace py = pybind11;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+py::array_t<double> to_array(const std::vector<double>& v) {
+  return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
+}
+
+// One run, as lubsim does it: output path check, scene (file or JSON text), overrides in
+// order, validation, run, and the run file only when `output` is given. Returns plain Python values.
+py::dict simulate(const std::optional<std::string>& scene_path, const std::optional<std::string>& scene_text,
+                  const std::string& origin, const std::vector<std::string>& assignments,
+                  const std::optional<std::string>& output, const std::string& program) {
+  lub::RunResult r;
+  std::string effective;
+  {
+    py::gil_scoped_release release;
+    // The output path first, as lubsim: refused before any work, nothing created.
+    if (output)
+      if (const auto problem = lub::output_path_problem(*output, "output")) throw lub::InputError(*problem);
+    lub::Scene scene;
+    try {
+      nlohmann::json doc = scene_path ? lub::read_json_file(*scene_path) : lub::parse_json_text(*scene_text, origin);
+      for (const auto& s : assignments) lub::apply_override(doc, s);
+      scene = lub::parse_scene(doc);
+      effective = doc.dump(2);
+      r = lub::run_scene(scene);  // throws InputError only if the mechanism cannot assemble
+    } catch (const lub::InputError& e) {
+      // lubsim prints "lubsim: SCENE: message"; the message here is "SCENE: message".
+      throw lub::InputError(origin + ": " + e.what());
+    }
+    if (output) lub::write_run_file(*output, effective, program, r);
+  }
+  py::dict out;
+  out["status"] = lub::to_string(r.status);
+  out["message"] = r.message;
+  out["scene"] = effective;
+  out["program"] = program;
+  out["version"] = lub::program_version();
+  out["revision"] = lub::build_revision();
+  py::list metrics, solver;  // (name, value, CF unit, integer, long_name)
+  for (const auto& f : lub::metric_fields())
+    metrics.append(py::make_tuple(f.name, f.get(r), f.unit, f.integer, f.long_name));
+  if (r.metrics.driver_work_J != 0.0 || r.metrics.film_dissipation_J != 0.0) {  // as the run file
+    metrics.append(py::make_tuple("driver_work_J", r.metrics.driver_work_J, "J", false, "work of the drivers"));
+    metrics.append(py::make_tuple("film_dissipation_J", r.metrics.film_dissipation_J, "J", false,
+                                  "energy dissipated by the films"));
+    metrics.append(py::make_tuple("energy_change_J", r.metrics.energy_change_J, "J", false,
+                                  "change of kinetic and potential energy"));
+    metrics.append(py::make_tuple("energy_residual_J", r.metrics.energy_residual_J, "J", false,
+                                  "driver work - energy change - film dissipation"));
+  }
+  for (const auto& f : lub::solver_fields())
+    solver.append(py::make_tuple(f.name, f.get(r), f.unit, f.integer, f.long_name));
+  out["metrics"] = metrics;
+  out["solver"] = solver;
+  py::dict solver_settings;
+  solver_settings["method"] = r.stats.method;
+  solver_settings["formulation"] = r.stats.formulation;
+  solver_settings["jacobian"] = r.stats.jacobian;
+  solver_settings["rtol"] = r.stats.rtol;
+  solver_settings["atol"] = r.stats.atol;
+  out["solver_settings"] = solver_settings;
+  // The channels as the run file's /series: CF units, long names from the scene.
+  py::list series;  // (name, CF unit, long_name, values), "t" first
+  const std::vector<std::string> long_names = lub::channel_long_names(effective, r.series.names);
+  for (size_t i = 0; i < r.series.names.size(); ++i)
+    series.append(py::make_tuple(r.series.names[i], lub::cf_units(r.series.units[i]),
+                                 i < long_names.size() ? long_names[i] : std::string(),
+                                 to_array(r.series.data[i])));
+  out["series"] = series;
+  // /cycles of the run file, as columns (name, CF unit, long_name, values).
+  py::list cycles;
+  for (const lub::CycleField& f : lub::cycle_fields()) {
+    std::vector<double> values;
+    values.reserve(r.cycles.size());
+    for (const lub::CycleMetrics& cy : r.cycles) values.push_back(f.get(cy));
+    cycles.append(py::make_tuple(f.name, f.unit, f.long_name, to_array(values)));
+  }
+  out["cycles"] = cycles;
+  return out;
+}
+
+// The bearing of lubbearing's read_common: R_B = R_J + c, with the same rules and messages
+// (named after the Python arguments).
+struct Bearing {
+  lub::ForceLaw law = lub::ForceLaw::gumbel_short;
+  lub::BearingGeometry geometry;
+  double viscosity = 0.0;
+  lub::FiniteBearingOptions finite;
+};
+
+Bearing read_bearing(const std::string& law, double radius_m, double clearance_m, double length_m,
+                     double viscosity_Pa_s, const std::optional<std::string>& cavitation,
+                     std::optional<int> n_theta, std::optional<int> n_z, bool groove) {
+  Bearing b;
+  if (const auto parsed = lub::parse_name<lub::ForceLaw>(law))
+    b.law = *parsed;
+  else
+    lub::fail("law", law, "must be one of " + lub::names_list<lub::ForceLaw>());
+  const auto positive = [](const char* name, double v, const char* unit) {
+    if (!std::isfinite(v) || !(v > 0.0)) lub::fail(name, v, std::string("must be > 0 ") + unit);
+  };
+  positive("radius_m", radius_m, "m");
+  positive("clearance_m", clearance_m, "m");
+  positive("length_m", length_m, "m");
+  positive("viscosity_Pa_s", viscosity_Pa_s, "Pa s");
+  b.geometry.journal_radius_m = radius_m;
+  b.geometry.bearing_radius_m = radius_m + clearance_m;
+  b.geometry.length_m = length_m;
+  b.viscosity = viscosity_Pa_s;
+  const bool finite = b.law == lub::ForceLaw::finite_reynolds;
+  const std::string only = "applies only to law finite_reynolds (got " + law + ")";
+  if (cavitation) {
+    if (!finite) lub::fail("cavitation", *cavitation, only);
+    if (const auto parsed = lub::parse_name<lub::Cavitation>(*cavitation))
+      b.finite.cavitation = *parsed;
+    else
+      lub::fail("cavitation", *cavitation, "must be one of " + lub::names_list<lub::Cavitation>());
+  }
+  if (n_theta) {
+    if (!finite) lub::fail("n_theta", *n_theta, only);
+    if (*n_theta < 8 || *n_theta > 4096) lub::fail("n_theta", *n_theta, "must be in [8, 4096]");
+    b.finite.n_theta = *n_theta;
+  }
+  if (n_z) {
+    if (!finite) lub::fail("n_z", *n_z, only);
+    if (*n_z < 1 || *n_z > 1024) lub::fail("n_z", *n_z, "must be in [1, 1024]");
+    b.finite.n_z = *n_z;
+  }
+  if (groove && !finite) lub::fail("groove_at_max_film", true, only);
+  b.finite.groove_at_max_film = groove;
+  return b;
+}
+
+using Flat = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+// Film force at n states (the arrays already broadcast and flattened by the Python half).
+py::tuple force(const std::string& law, const Flat& eps, const Flat& eps_dot, const Flat& wedge,
+                double radius_m, double clearance_m, double length_m, double viscosity_Pa_s,
+                const std::optional<std::string>& cavitation, std::optional<int> n_theta,
+                std::optional<int> n_z, bool groove) {
+  const Bearing b = read_bearing(law, radius_m, clearance_m, length_m, viscosity_Pa_s, cavitation, n_theta, n_z,
+                                 groove);
+  const py::ssize_t n = eps.size();
+  if (eps_dot.size() != n || wedge.size() != n)
+    throw lub::InputError("eps, eps_dot, wedge_rad_s: must have the same number of elements after broadcasting");
+  py::array_t<double> fr(n), ft(n);
+  const double* e = eps.data();
+  const double* ed = eps_dot.data();
+  const double* w = wedge.data();
+  double* r_out = fr.mutable_data();
+  double* t_out = ft.mutable_data();
+  {
+    py::gil_scoped_release release;
+    // lubbearing force's rules, element by element (index into the broadcast, flattened arrays)
+    const auto at = [](const char* name, py::ssize_t i) { return std::string(name) + "[" + std::to_string(i) + "]"; };
+    for (py::ssize_t i = 0; i < n; ++i) {
+      if (!(e[i] >= 0.0 && e[i] < 1.0))  // NaN fails too
+        lub::fail(at("eps", i), e[i],
+                  "must be in [0, 1) (eps >= 1: the journal touches the bearing, no film law applies)");
+      if (!std::isfinite(ed[i])) lub::fail(at("eps_dot", i), ed[i], "must be finite");
+      if (!std::isfinite(w[i])) lub::fail(at("wedge_rad_s", i), w[i], "must be finite");
+    }
+    lub::FiniteBearingSolver solver(b.finite);
+    for (py::ssize_t i = 0; i < n; ++i) {
+      lub::BearingState s;
+      s.eps = e[i];
+      s.eps_dot = ed[i];
+      s.wedge = w[i];
+      const lub::FilmForce f = lub::film_force(b.law, b.geometry, b.viscosity, s, &solver);
+      r_out[i] = f.radial_N;
+      t_out[i] = f.tangential_N;
+    }
+  }
+  return py::make_tuple(fr, ft);
+}
+
+// lubbearing steady: the same inputs, the same keys as its JSON.
+py::dict steady_bearing(const std::string& law, double load_N, double speed_rpm, double radius_m,
+                        double clearance_m, double length_m, double viscosity_Pa_s,
+                        const std::optional<std::string>& cavitation, std::optional<int> n_theta,
+                        std::optional<int> n_z, bool groove) {
+  const Bearing b = read_bearing(law, radius_m, clearance_m, length_m, viscosity_Pa_s, cavitation, n_theta, n_z,
+                                 groove);
+  if (!std::isfinite(load_N) || !(load_N > 0.0)) lub::fail("load_N", load_N, "must be > 0 N");
+  if (!std::isfinite(speed_rpm) || speed_rpm == 0.0) lub::fail("speed_rpm", speed_rpm, "must be != 0 rpm");
+  lub::SteadyBearingInput in;
+  in.law = b.law;
+  in.finite = b.finite;
+  in.geometry = b.geometry;
+  in.viscosity_Pa_s = b.viscosity;
+  in.load_N = load_N;
+  in.speed_rad_s = speed_rpm * 2.0 * kPi / 60.0;
+  lub::SteadyBearingResult r;
+  {
+    py::gil_scoped_release release;
+    r = lub::solve_steady_bearing(in);
+  }
+  py::dict out;
+  out["model"] = std::string(lub::name_of(b.law));
+  out["radius_m"] = radius_m;
+  out["clearance_m"] = clearance_m;
+  out["length_m"] = length_m;
+  out["viscosity_Pa_s"] = viscosity_Pa_s;
+  if (b.law == lub::ForceLaw::finite_reynolds) {
+    out["cavitation"] = std::string(lub::name_of(b.finite.cavitation));
+    out["n_theta"] = b.finite.n_theta;
+    out["n_z"] = b.finite.n_z;
+    out["groove_at_max_film"] = b.finite.groove_at_max_film;
+  }
+  out["load_N"] = load_N;
+  out["speed_rpm"] = speed_rpm;
+  out["sommerfeld_number"] = lub::sommerfeld_number(b.geometry, b.viscosity, load_N, in.speed_rad_s);
+  out["converged"] = r.converged;
+  if (!r.converged) {
+    out["message"] = r.message;
+    return out;
+  }
+  out["eps"] = r.eps;
+  out["attitude_angle_deg"] = r.attitude_rad * 180.0 / kPi;
+  out["min_film_thickness_m"] = r.min_film_m;
+  out["radial_N"] = r.force.radial_N;
+  out["tangential_N"] = r.force.tangential_N;
+  out["force_law_evaluations"] = r.evaluations;
+  return out;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_lubjoint, m) {
+  m.doc() = "Compiled core of lubjoint (lubcore bindings); use the lubjoint package, not this module.";
+  py::register_exception<lub::InputError>(m, "InputError", PyExc_ValueError);
+  m.def("simulate", &simulate, py::arg("scene_path"), py::arg("scene_text"), py::arg("origin"),
+        py::arg("assignments"), py::arg("output"), py::arg("program") = "lubjoint",
+        "Runs one scene as lubsim does (GIL released); returns plain values. See lubjoint.simulate.");
+  m.def("force", &force, py::arg("law"), py::arg("eps"), py::arg("eps_dot"), py::arg("wedge_rad_s"),
+        py::arg("radius_m"), py::arg("clearance_m"), py::arg("length_m"), py::arg("viscosity_Pa_s"),
+        py::arg("cavitation") = py::none(), py::arg("n_theta") = py::none(), py::arg("n_z") = py::none(),
+        py::arg("groove_at_max_film") = false,
+        "Film force [N] (radial, tangential) at flat, equally long arrays (GIL released). See lubjoint.force.");
+  m.def("steady_bearing", &steady_bearing, py::arg("law"), py::arg("load_N"), py::arg("speed_rpm"),
+        py::arg("radius_m"), py::arg("clearance_m"), py::arg("length_m"), py::arg("viscosity_Pa_s"),
+        py::arg("cavitation") = py::none(), py::arg("n_theta") = py::none(), py::arg("n_z") = py::none(),
+        py::arg("groove_at_max_film") = false, "lubbearing steady. See lubjoint.steady_bearing.");
+  m.def("force_law_names", [] { return lub::names_list<lub::ForceLaw>(); }, "The force laws a scene can name, comma separated.");
+  m.def("version", [] { return lub::program_version(); });
+  m.def("revision", [] { return lub::build_revision(); });
+}

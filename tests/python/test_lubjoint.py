@@ -1,0 +1,331 @@
+"""Tests of the Python module lubjoint (core/python), run by ctest (label python):
+
+    PYTHONPATH=build/python /usr/bin/python3 -m pytest tests/python
+
+Cross-checks against the programs of the same build (lubsim, lubbearing, lubsweep): their
+paths come from LUB_BUILD_DIR (set by ctest; default: build/ next to the sources).
+"""
+
+import json
+import math
+import os
+import subprocess
+import sys
+import threading
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+import h5py
+import numpy as np
+import pytest
+import xarray as xr
+
+import lubjoint
+
+SOURCE = Path(os.environ.get("LUB_SOURCE_DIR") or Path(__file__).resolve().parents[2])
+BINARY = Path(os.environ.get("LUB_BUILD_DIR", SOURCE / "build"))
+LUBSIM = BINARY / "core" / "lubsim"
+LUBBEARING = BINARY / "core" / "lubbearing"
+LUBSWEEP = BINARY / "sweep" / "lubsweep"
+SCENE = SOURCE / "configs" / "scenes" / "slider_crank.json"
+
+# The paper's bearing (configs/scenes/slider_crank.json, joint rod_slider).
+BEARING = dict(radius_m=0.0095, clearance_m=0.0005, length_m=0.040, viscosity_Pa_s=0.400)
+# A short scene for the tests that run several simulations: two crank cycles.
+SHORT = {"/simulation/max_cycles": 2, "/simulation/metric_cycles": 1}
+
+
+def run(cmd, **kw):
+    return subprocess.run([str(c) for c in cmd], capture_output=True, text=True, **kw)
+
+
+# --- force laws ----------------------------------------------------------------------------
+
+
+def lubbearing_force(law, eps, eps_dot, wedge):
+    # --gamma-dot 0: lubbearing's wedge speed --omega − 2 --gamma-dot is then --omega exactly.
+    p = run([LUBBEARING, "force", "--model", law, "--eps", repr(eps), "--eps-dot", repr(eps_dot),
+             "--omega", repr(wedge), "--gamma-dot", "0", "--radius-m", repr(BEARING["radius_m"]),
+             "--clearance-m", repr(BEARING["clearance_m"]), "--length-m", repr(BEARING["length_m"]),
+             "--viscosity-Pa-s", repr(BEARING["viscosity_Pa_s"])])
+    assert p.returncode == 0, p.stderr
+    return json.loads(p.stdout)
+
+
+STATES = [(0.0, 0.0, 0.0), (0.0, 3.0, 500.0), (0.3, -10.0, 0.0), (0.5, 2.5, 523.6), (0.9, 0.0, -300.0),
+          (0.999, 1e-3, 1e3)]
+
+
+@pytest.mark.parametrize("law", lubjoint.FORCE_LAWS)
+def test_force_equals_lubbearing(law):
+    # Same functions (film_force), same geometry construction (R_B = R_J + c), and
+    # lubbearing prints doubles with round-trip precision: equal to the last bit.
+    states = STATES if law != "finite_reynolds" else STATES[:4]
+    eps, eps_dot, wedge = (np.array(x) for x in zip(*states))
+    f = lubjoint.force(law, eps, eps_dot, wedge, **BEARING)
+    for i, (e, ed, w) in enumerate(states):
+        ref = lubbearing_force(law, e, ed, w)
+        assert f.radial_N[i] == ref["radial_N"], (law, states[i])
+        assert f.tangential_N[i] == ref["tangential_N"], (law, states[i])
+
+
+@pytest.mark.parametrize("law", ["frene_long", "frene_short"])
+def test_force_closed_form(law):
+    eps = np.linspace(0.0, 0.99, 34)[:, None]
+    eps_dot = np.array([-50.0, -1.0, 0.0, 0.7, 20.0])[None, :]
+    w = 523.6 - 2.0 * eps_dot  # any wedge speed, one per column
+    f = lubjoint.force(law, eps, eps_dot, w, **BEARING)
+    mu, L, R = BEARING["viscosity_Pa_s"], BEARING["length_m"], BEARING["radius_m"]
+    c = (R + BEARING["clearance_m"]) - R  # the module's clearance: R_B − R_J, as lubbearing's
+    s2 = (1.0 - eps) * (1.0 + eps)
+    if law == "frene_long":  # paper Eqs. (8)-(9)
+        C = mu * L * R**3 / c**2
+        fr = -12.0 * math.pi * C * eps_dot / s2**1.5
+        ft = 12.0 * math.pi * C * eps * w / ((2.0 + eps**2) * np.sqrt(s2))
+    else:  # paper Eqs. (6)-(7)
+        C = mu * L**3 * R / c**2
+        fr = -math.pi * C * eps_dot * (1.0 + 2.0 * eps**2) / s2**2.5
+        ft = math.pi * C * eps * w / (2.0 * s2**1.5)
+    # Closed forms: the same formula evaluated in another order, ~10 roundings each, and
+    # (1 − ε²)^(5/2) near ε = 0.99 amplifies the relative error of 1 − ε² by 2.5:
+    # 1e-13 ≈ 450 ulp leaves a wide margin; atol for the exact zeros (ε = 0 or ε̇ = 0).
+    np.testing.assert_allclose(f.radial_N, fr, rtol=1e-13, atol=1e-300)
+    np.testing.assert_allclose(f.tangential_N, ft, rtol=1e-13, atol=1e-300)
+    assert f.radial_N.shape == (34, 5)
+
+
+def test_force_broadcasting_shapes():
+    eps = np.array([0.1, 0.5, 0.8]).reshape(3, 1)
+    eps_dot = np.array([-1.0, 0.0, 1.0, 4.0])
+    f = lubjoint.force("pinkus_sternlicht", eps, eps_dot, 100.0, **BEARING)
+    assert isinstance(f, lubjoint.FilmForce)
+    assert f.radial_N.shape == (3, 4) and f.tangential_N.shape == (3, 4)
+    for i in range(3):
+        for j in range(4):
+            one = lubjoint.force("pinkus_sternlicht", eps[i, 0], eps_dot[j], 100.0, **BEARING)
+            assert one.radial_N.shape == ()
+            assert one.radial_N == f.radial_N[i, j] and one.tangential_N == f.tangential_N[i, j]
+    assert lubjoint.force("frene_long", [], [], [], **BEARING).radial_N.shape == (0,)
+    assert lubjoint.force("frene_long", np.zeros((2, 1, 3)), 1.0, np.ones(3), **BEARING).radial_N.shape == (2, 1, 3)
+    with pytest.raises(ValueError):  # NumPy: shapes (3,) and (4,) do not broadcast
+        lubjoint.force("frene_long", np.zeros(3), np.zeros(4), 0.0, **BEARING)
+
+
+def test_force_bad_input_names_argument_value_rule():
+    with pytest.raises(lubjoint.InputError, match=r"^eps\[2\] = 1\.0: must be in \[0, 1\)"):
+        lubjoint.force("frene_long", [0.1, 0.2, 1.0], 0.0, 0.0, **BEARING)
+    with pytest.raises(ValueError, match=r"^viscosity_Pa_s = -0\.4: must be > 0 Pa s$"):
+        lubjoint.force("frene_long", 0.1, 0.0, 0.0, **{**BEARING, "viscosity_Pa_s": -0.4})
+    with pytest.raises(ValueError, match=r"^law = \"nope\": must be one of pinkus_sternlicht, "):
+        lubjoint.force("nope", 0.1, 0.0, 0.0, **BEARING)
+    with pytest.raises(TypeError):  # the geometry is keyword-only
+        lubjoint.force("frene_long", 0.1, 0.0, 0.0, 0.0095, 0.0005, 0.04, 0.4)
+
+
+def test_steady_bearing_equals_lubbearing():
+    for law in ["gumbel_short", "frene_long", "pinkus_sternlicht_continuous"]:
+        args = dict(load_N=2000.0, speed_rpm=3000.0, **BEARING)
+        r = lubjoint.steady_bearing(law, **args)
+        p = run([LUBBEARING, "steady", "--model", law, "--load-N", "2000", "--speed-rpm", "3000",
+                 "--radius-m", "0.0095", "--clearance-m", "0.0005", "--length-m", "0.04",
+                 "--viscosity-Pa-s", "0.4"])
+        assert p.returncode == 0, p.stderr
+        assert r == json.loads(p.stdout)  # the same keys and values, to the last bit
+        assert r["converged"] and 0.0 < r["eps"] < 1.0
+        assert math.hypot(r["radial_N"], r["tangential_N"]) == pytest.approx(2000.0, rel=1e-8)
+    with pytest.raises(ValueError, match=r"^speed_rpm = 0\.0: must be != 0 rpm$"):
+        lubjoint.steady_bearing("gumbel_short", load_N=1.0, speed_rpm=0.0, **BEARING)
+
+
+# --- simulation --------------------------------------------------------------------------
+
+
+def h5_attrs(obj):
+    return {k: (v.decode() if isinstance(v, bytes) else v) for k, v in obj.attrs.items()}
+
+
+def test_simulate_matches_lubsim(tmp_path):
+    ref_file = tmp_path / "lubsim.h5"
+    p = run([LUBSIM, SCENE, "-o", ref_file, "--quiet"])
+    assert p.returncode == 0, p.stderr
+    out = tmp_path / "lubjoint.h5"
+    ds = lubjoint.simulate(str(SCENE), output=out)
+    assert ds.attrs["status"] == "ok" and ds.attrs["message"] == ""
+    with h5py.File(ref_file, "r") as ref, h5py.File(out, "r") as mine:
+        # The same scene, the same functions, the same build: a deterministic run gives the
+        # same bits, so metrics, counters and series compare with ==; only wall_time_s differs.
+        root = h5_attrs(ref)
+        assert ds.attrs["scene"] == root["scene"]
+        assert ds.attrs["revision"] == root["revision"], "lubsim and the module from different builds"
+        for name, value in h5_attrs(ref["metrics"]).items():
+            assert ds[name].item() == value, name
+        for name, value in h5_attrs(ref["solver"]).items():
+            if name == "wall_time_s":
+                continue
+            got = ds[name].item() if name in ds else ds.attrs["solver_" + name]
+            assert got == value, name
+        for name in ref["series"]:
+            got = ds[name].values if name != "t" else ds["t"].values
+            np.testing.assert_array_equal(got, ref["series"][name][()], err_msg=name)
+            assert (ds[name].attrs["units"] if name != "t" else ds["t"].attrs["units"]) == \
+                h5_attrs(ref["series"][name])["units"]
+        cycles = ref["cycles"]  # a compound table, or (issue 15's layout) a group of columns
+        names = cycles.dtype.names if isinstance(cycles, h5py.Dataset) else \
+            [k for k in cycles if k not in ("cycle", "row")]
+        for name in names:
+            np.testing.assert_array_equal(ds["cycle_" + name].values, cycles[name][()], err_msg=name)
+        for name in names:  # units and long names as the file's
+            assert ds["cycle_" + name].attrs["units"] == h5_attrs(cycles[name])["units"], name
+        for name in ref["series"]:
+            if name != "t":
+                assert ds[name].attrs.get("long_name") == h5_attrs(ref["series"][name]).get("long_name"), name
+        # The run file written from Python: the C++ writer, same content but program.
+        assert h5_attrs(mine)["program"] == "lubjoint"
+        assert {k: v for k, v in h5_attrs(mine["metrics"]).items()} == h5_attrs(ref["metrics"])
+        np.testing.assert_array_equal(mine["series/h_min"][()], ref["series/h_min"][()])
+    assert ds["min_film_thickness_m"].attrs["units"] == "m"
+    assert ds["eps"].dims == ("t",) and ds["h_min"].attrs["units"] == "m"
+    assert ds["slider_a"].attrs["units"] == "m s-2" and ds["h_min"].attrs["long_name"]
+    assert ds["steps"].dtype == np.int64 and ds["steps"].attrs["units"] == "1"
+
+
+def test_simulate_dict_and_overrides_as_set(tmp_path):
+    overrides = {"/joints/3/force_law": "frene_long", "/joints/3/viscosity_Pa_s": 0.04, **SHORT}
+    ref_file = tmp_path / "ref.h5"
+    sets = [a for k, v in overrides.items() for a in ("--set", f"{k}={v}")]
+    p = run([LUBSIM, SCENE, "-o", ref_file, "--quiet", *sets])
+    assert p.returncode in (0, 3), p.stderr
+    scene = json.loads(SCENE.read_text())
+    ds = lubjoint.simulate(scene, overrides)
+    with h5py.File(ref_file, "r") as ref:
+        assert json.loads(ds.attrs["scene"]) == json.loads(h5_attrs(ref)["scene"])
+        assert ds.attrs["status"] == h5_attrs(ref)["status"]
+        for name, value in h5_attrs(ref["metrics"]).items():
+            assert ds[name].item() == value, name
+    assert "output" not in ds.attrs  # no file without output=
+    assert list(tmp_path.iterdir()) == [ref_file]
+
+
+def test_invalid_scene_raises_lubsim_message(tmp_path):
+    scene = json.loads(SCENE.read_text())
+    scene["joints"][3]["viscosity_Pa_s"] = -0.4
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps(scene))
+    out = tmp_path / "run.h5"
+    p = run([LUBSIM, bad, "-o", out])
+    assert p.returncode == 2 and not out.exists()
+    cli = p.stderr.splitlines()[0]
+    assert cli.startswith("lubsim: ")
+    with pytest.raises(lubjoint.SceneError) as e:
+        lubjoint.simulate(bad, output=out)
+    assert str(e.value) == cli[len("lubsim: "):]  # "BAD.json: joints[3].viscosity_Pa_s = -0.4: must be > 0 Pa s"
+    assert "joints[3].viscosity_Pa_s = -0.4" in str(e.value) and "must be > 0" in str(e.value)
+    assert isinstance(e.value, ValueError) and not out.exists()
+    # The same through overrides (lubsim --set), and from a dict.
+    p = run([LUBSIM, SCENE, "-o", out, "--set", "/joints/3/force_law=nope"])
+    assert p.returncode == 2
+    with pytest.raises(ValueError) as e:
+        lubjoint.simulate(SCENE, {"/joints/3/force_law": "nope"})
+    assert str(e.value) == p.stderr.splitlines()[0][len("lubsim: "):]
+    with pytest.raises(ValueError, match=r"^<scene dict>: joints\[3\]\.viscosity_Pa_s = -0\.4: must be > 0 Pa s"):
+        lubjoint.simulate(scene)
+    with pytest.raises(ValueError, match=r"names no value of the scene"):
+        lubjoint.simulate(SCENE, {"/nowhere/x": 1})
+    # A bad output path: lubsim's rule and message (option `output` for `-o`), before any work.
+    missing = tmp_path / "no" / "run.h5"
+    p = run([LUBSIM, SCENE, "-o", missing])
+    assert p.returncode == 2
+    with pytest.raises(ValueError) as e:
+        lubjoint.simulate(SCENE, output=missing)
+    assert str(e.value) == p.stderr.splitlines()[0].replace("lubsim: -o ", "output ", 1)
+    with pytest.raises(ValueError, match=r"must name a file, not a directory"):
+        lubjoint.simulate(SCENE, output=tmp_path)
+
+
+def scalars(ds):
+    return {k: v.item() for k, v in ds.data_vars.items() if v.ndim == 0 and k != "wall_time_s"}
+
+
+def test_threads_run_side_by_side_same_as_serial():
+    cases = [{**SHORT, "/joints/3/viscosity_Pa_s": mu} for mu in (0.4, 0.1)]
+    serial = [lubjoint.simulate(SCENE, c) for c in cases]
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        threaded = list(pool.map(lambda c: lubjoint.simulate(SCENE, c), cases))
+    for s, t in zip(serial, threaded):
+        assert scalars(s) == scalars(t)
+        for name in s.data_vars:
+            if s[name].ndim:
+                np.testing.assert_array_equal(s[name].values, t[name].values, err_msg=name)
+    assert scalars(serial[0]) != scalars(serial[1])
+
+
+def test_gil_released_during_run():
+    # While a run holds the GIL, no other Python thread executes a bytecode: count how far
+    # this thread gets while a 12-cycle run (~0.3 s) proceeds on another.
+    done = threading.Event()
+    t = threading.Thread(target=lambda: (lubjoint.simulate(SCENE, {"/simulation/max_cycles": 12}), done.set()))
+    count = 0
+    t.start()
+    while not done.is_set() and t.is_alive():
+        count += 1
+    t.join()
+    assert done.is_set()
+    assert count > 10000, count  # held GIL: a handful of iterations at most
+
+
+# --- study files ---------------------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def study_file(tmp_path_factory):
+    d = tmp_path_factory.mktemp("study")
+    grid = {"scene": str(SCENE), "study": {"max_cycles": 1, "metric_cycles": 1, "channels": ["h_min"]},
+            "axes": [{"name": "viscosity_Pa_s", "values": [0.4, 0.2]}]}
+    (d / "grid.json").write_text(json.dumps(grid))
+    env = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"}
+    p = run([LUBSWEEP, d / "grid.json", "-o", d / "study.h5"], env=env, timeout=300)
+    assert p.returncode == 0, p.stderr
+    return d / "study.h5"
+
+
+def test_load_study(study_file):
+    assert lubjoint.study_format(study_file) == "lubsweep-study-2"  # the xarray layout (issue 15)
+    s = lubjoint.load_study(study_file)
+    assert list(s) == ["grid"]
+    g = s["grid"]
+    assert "viscosity_Pa_s" in g.dims
+    np.testing.assert_array_equal(g["viscosity_Pa_s"].values, [0.4, 0.2])
+    assert g["viscosity_Pa_s"].attrs["units"] == "Pa s"
+    assert s.cases.sizes["case"] == 2
+    assert list(s.cases["status"].values.astype(str)) == ["ok", "ok"]
+    # A case's metric equals simulate's on the case's effective scene (/scenes, if the
+    # layout keeps it): the same functions, bit for bit.
+    with h5py.File(study_file, "r") as f:
+        if "scenes" not in f:
+            return
+        text = f["scenes"][0]
+    one = lubjoint.simulate(json.loads(text.decode() if isinstance(text, bytes) else text))
+    assert s.cases["max_eps"].values[0] == one["max_eps"].item()
+
+
+def test_load_study_reads_xarray_layout(tmp_path):
+    # The reader alone, on a file in the layout issue 15 describes (netCDF-4 groups, written
+    # here with xarray/h5netcdf): /grids/<name> labelled variables over the axes, /cases
+    # columns over `case`.
+    path = tmp_path / "s.h5"
+    c = xr.Dataset({"max_eps": ("case", [0.5, 0.6, 0.7]), "status": ("case", ["ok", "ok", "film_collapse"])})
+    g = xr.Dataset({"max_eps": (("clearance_m",), [0.5, 0.6], {"units": "1"})},
+                   coords={"clearance_m": ("clearance_m", [5e-4, 1e-4], {"units": "m"})})
+    c.to_netcdf(path, group="cases", engine="h5netcdf")
+    g.to_netcdf(path, group="grids/clearance", engine="h5netcdf", mode="a")
+    with h5py.File(path, "a") as f:
+        f.attrs["program"] = "lubsweep"
+        f.attrs["format"] = "lubsweep-study-2"
+    s = lubjoint.load_study(path)
+    assert list(s) == ["clearance"] and s.attrs["format"] == "lubsweep-study-2"
+    np.testing.assert_array_equal(s["clearance"]["max_eps"].sel(clearance_m=1e-4).values, 0.6)
+    assert s.cases.to_dataframe()["status"].tolist() == ["ok", "ok", "film_collapse"]
+    with h5py.File(path, "a") as f:
+        f.attrs["format"] = "lubsweep-study-1"
+    with pytest.raises(lubjoint.StudyFormatError):
+        lubjoint.load_study(path)
