@@ -17,6 +17,7 @@ MultibodySystem::MultibodySystem(const Model& m, Workspace& ws, double eps_limit
       nz_(f == Formulation::partitioned ? m.nq - m.nc : m.nq) {
   check_workspace(m, ws);
   acc_.assign(m.nq, 0.0);
+  switch_acc_.assign(m.nq, 0.0);
   scratch_.assign(2 * m.nq, 0.0);
   int next_slot = m.nc;
   for (const FilmElement& film : m.films) slot_of_switching_.push_back(film.switching ? next_slot++ : -1);
@@ -191,60 +192,6 @@ int MultibodySystem::rhs(double t, const double* y, double* ydot) {
     ydot[nd + i] = acc_[ind_[i]];
   }
   return 0;
-}
-
-int MultibodySystem::roots(double t, const double* y, double* g) {
-  const int nq = m_.nq;
-  if (expand(t, y, scratch_.data()) != 0) return 1;
-  const double* q = scratch_.data();
-  const double* v = q + nq;
-  const int nf = static_cast<int>(m_.films.size());
-  bool evaluated = false;
-  int j = nf;
-  for (int k = 0; k < nf; ++k) {
-    const FilmKinematics fk = film_kinematics(m_, k, q, v);
-    // With the contact effect the journal may reach the wall: no film collapse.
-    g[k] = m_.films[k].contact ? 1.0 : eps_limit_ - fk.state.eps;
-    if (!m_.films[k].switching) continue;
-    if (ws_.film_mode[k] != FilmMode::sliding) {
-      g[j] = fk.state.eps_dot;
-      g[j + 1] = 1.0;
-    } else {
-      if (!evaluated) {
-        if (evaluate(m_, ws_, t, q, v, acc_.data()) != 0) return 1;
-        evaluated = true;
-      }
-      const auto [F_out, F_in] = sliding_limits(k, ws_.films[k].state);
-      const double F = ws_.films[k].force.radial_N;
-      g[j] = F - F_out;      // < 0: the load pulls the journal outwards off ε̇ = 0
-      g[j + 1] = F_in - F;   // < 0: the load pushes it inwards
-    }
-    j += 2;
-  }
-  return 0;
-}
-
-std::pair<double, double> MultibodySystem::sliding_limits(int k, BearingState st) {
-  st.eps_dot = 0.0;
-  return {film_element_force(m_, ws_, k, st, FilmMode::outward).radial_N,
-          film_element_force(m_, ws_, k, st, FilmMode::inward).radial_N};
-}
-
-std::vector<int> MultibodySystem::root_directions() const {
-  std::vector<int> d(static_cast<size_t>(num_roots()), 0);
-  const int nf = static_cast<int>(m_.films.size());
-  for (int k = 0; k < nf; ++k) d[k] = -1;
-  int j = nf;
-  for (int k = 0; k < nf; ++k) {
-    if (!m_.films[k].switching) continue;
-    switch (ws_.film_mode[k]) {
-      case FilmMode::outward: d[j] = -1; break;
-      case FilmMode::inward: d[j] = +1; break;
-      default: d[j] = -1; d[j + 1] = -1; break;
-    }
-    j += 2;
-  }
-  return d;
 }
 
 int MultibodySystem::quadrature_rhs(double t, const double* y, double* qdot) {

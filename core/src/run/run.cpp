@@ -103,8 +103,6 @@ class Runner {
     return kTwoPi * (x - std::floor(x));
   }
   bool steady_now() const;
-  void switch_modes(MultibodySystem& sys, const std::vector<int>& flags, double t, const double* y);
-  bool resync_modes(MultibodySystem& sys, double t, const double* y);
 
   const Scene& scene_;
   Model m_;
@@ -232,88 +230,6 @@ bool Runner::steady_now() const {
     if (c.periodicity < 0 || c.periodicity >= scene_.simulation.steady_tolerance) return false;
   }
   return true;
-}
-
-void Runner::switch_modes(MultibodySystem& sys, const std::vector<int>& flags, double t, const double* y) {
-  const int nf = static_cast<int>(m_.films.size());
-  int j = nf;
-  for (int k = 0; k < nf; ++k) {
-    if (!m_.films[k].switching) continue;
-    const bool fired_a = flags[j] != 0, fired_b = flags[j + 1] != 0;
-    j += 2;
-    if (!fired_a && !fired_b) continue;
-    const FilmMode from = ws_.film_mode[k];
-    FilmMode to = from;
-    if (from == FilmMode::sliding) {
-      to = fired_a ? FilmMode::outward : FilmMode::inward;
-    } else {
-      // ε̇ reached 0. Would a sliding motion hold? Evaluate with |e| held: its multiplier
-      // is the radial film force that keeps ε̇ = 0; it must lie within the jump.
-      const FilmKinematics fk = film_kinematics(m_, k, y, y + m_.nq);
-      const bool can_slide = fk.state.eps > 1e-9;
-      if (can_slide) {
-        ws_.film_mode[k] = FilmMode::sliding;
-        ws_.slide_radius[k] = fk.e.norm();
-        if (evaluate(m_, ws_, t, y, y + m_.nq, qdd_.data()) != 0) {
-          ws_.film_mode[k] = from;
-          continue;
-        }
-        const double F = ws_.films[k].force.radial_N;
-        const auto [F_out, F_in] = sys.sliding_limits(k, fk.state);
-        if (from == FilmMode::outward)
-          to = F <= F_in ? FilmMode::sliding : FilmMode::inward;
-        else
-          to = F >= F_out ? FilmMode::sliding : FilmMode::outward;
-      } else {
-        to = from == FilmMode::outward ? FilmMode::inward : FilmMode::outward;
-      }
-    }
-    ws_.film_mode[k] = to;  // sliding: slide_radius was set to |e| when the decision was made
-    ++res_.stats.mode_switches;
-  }
-}
-
-bool Runner::resync_modes(MultibodySystem& sys, double t, const double* y) {
-  // A mismatch beyond round-off: 1e-6 1/s is far below any motion the film responds to
-  // (the reference case's ε̇ swings over ±1e3 1/s).
-  constexpr double kTol = 1e-6;
-  bool changed = false;
-  bool evaluated = false;
-  for (size_t k = 0; k < m_.films.size(); ++k) {
-    if (!m_.films[k].switching) continue;
-    const FilmMode mode = ws_.film_mode[k];
-    if (mode == FilmMode::sliding) {
-      // A sliding motion whose force has left the jump: an exit the root finder missed
-      // (its root function was already past zero when the motion began, so no sign change
-      // ever came). Leave by the side the force points to. Margin: 1e-9 of the jump, far
-      // above the multiplier's round-off and far below any force the motion responds to.
-      if (!evaluated) {
-        if (evaluate(m_, ws_, t, y, y + m_.nq, qdd_.data()) != 0) continue;
-        evaluated = true;
-      }
-      const double F = ws_.films[k].force.radial_N;
-      const auto [F_out, F_in] = sys.sliding_limits(static_cast<int>(k), ws_.films[k].state);
-      const double margin = 1e-9 * std::abs(F_in - F_out);
-      FilmMode to = mode;
-      if (F < F_out - margin) to = FilmMode::outward;
-      if (F > F_in + margin) to = FilmMode::inward;
-      if (to == mode) continue;
-      ws_.film_mode[k] = to;
-      ++res_.stats.mode_switches;
-      changed = true;
-      continue;
-    }
-    if (mode != FilmMode::outward && mode != FilmMode::inward) continue;
-    const double ed = film_kinematics(m_, static_cast<int>(k), y, y + m_.nq).state.eps_dot;
-    FilmMode to = mode;
-    if (mode == FilmMode::outward && ed < -kTol) to = FilmMode::inward;
-    if (mode == FilmMode::inward && ed > kTol) to = FilmMode::outward;
-    if (to == mode) continue;
-    ws_.film_mode[k] = to;
-    ++res_.stats.mode_switches;
-    changed = true;
-  }
-  return changed;
 }
 
 RunResult Runner::run() {
@@ -513,7 +429,7 @@ RunResult Runner::run() {
                        std::to_string(t) + " s";
         break;
       }
-      switch_modes(sys, flags, t, yfull_.data());
+      res_.stats.mode_switches += sys.switch_modes(flags, t, yfull_.data());
       integ->reinit(t, integ->y());
       integ->set_root_directions(sys.root_directions());
     } else if (have_state && sys.partition_degraded()) {
@@ -525,10 +441,12 @@ RunResult Runner::run() {
       integ->set_abs_tolerances(is.atol);
       integ->set_root_directions(sys.root_directions());
       ++res_.stats.repartitions;
-    } else if (have_state && m_.n_switching > 0 && resync_modes(sys, t, yfull_.data())) {
+    } else if (int resynced = have_state && m_.n_switching > 0 ? sys.resync_modes(t, yfull_.data()) : 0;
+               resynced > 0) {
       // A free mode that no longer matches the sign of ε̇: a crossing the root finder
       // could not see (ε̇ left zero from an exact zero at a restart). Restart on the
       // branch that applies.
+      res_.stats.mode_switches += resynced;
       integ->reinit(t, integ->y());
       integ->set_root_directions(sys.root_directions());
     }

@@ -85,6 +85,15 @@ class MultibodySystem final : public OdeSystem {
   /// the force that keeps ε̇ = 0 lies between them.
   std::pair<double, double> sliding_limits(int k, BearingState st);
   std::vector<int> root_directions() const;
+  /// At a root return: switches each switching film whose roots fired (`flags`, as the
+  /// integrator reports them) at the consistent state y = (q, v): at ε̇ = 0 into sliding
+  /// if the force that holds ε̇ = 0 lies within the jump, else across; out of sliding by
+  /// the side the load points to. Returns the number of switches.
+  int switch_modes(const std::vector<int>& flags, double t, const double* y);
+  /// Modes that no longer match the state at y = (q, v) (a crossing or a sliding exit the
+  /// root finder could not see), switched to the branch that applies. Returns the number
+  /// of switches (0: none; the integrator must be restarted otherwise).
+  int resync_modes(double t, const double* y);
   void set_projection_tolerance(double tol) { projection_tol_ = tol; }
 
  private:
@@ -96,6 +105,7 @@ class MultibodySystem final : public OdeSystem {
   int nz_;  // integrated coordinates
   double projection_tol_ = 1e-12;
   std::vector<double> scratch_, acc_;
+  std::vector<double> switch_acc_;  // accelerations of the mode decisions' evaluations (discarded)
   // partitioned
   std::vector<int> ind_, dep_;
   /// One context of the partitioned recovery (see Context).
