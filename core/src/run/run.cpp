@@ -103,6 +103,10 @@ class Runner {
     return kTwoPi * (x - std::floor(x));
   }
   bool steady_now() const;
+  /// Sampling: the observations due in the step (t_prev, t] from the integrator's dense
+  /// output, in time order (series samples, orbit phase points, cycle ends). True if the
+  /// run is to stop (steady).
+  bool sample_step(Integrator& integ, MultibodySystem& sys, double t_prev, double t, double t_end);
 
   const Scene& scene_;
   Model m_;
@@ -122,6 +126,10 @@ class Runner {
   int phase_index_ = 0;
   std::vector<size_t> cycle_first_sample_;  // samples recorded (ever) before each cycle end
   size_t dropped_samples_ = 0;
+  // Sampling (sample_step): the next series sample and phase point, cycles closed.
+  double dt_sample_ = 0.0, dt_phase_ = 0.0;
+  long long sample_k_ = 0, phase_k_ = 0;
+  int cycles_done_ = 0;
 };
 
 void Runner::observe(double t, const double* y, bool record) {
@@ -230,6 +238,44 @@ bool Runner::steady_now() const {
     if (c.periodicity < 0 || c.periodicity >= scene_.simulation.steady_tolerance) return false;
   }
   return true;
+}
+
+bool Runner::sample_step(Integrator& integ, MultibodySystem& sys, double t_prev, double t, double t_end) {
+  const SimulationSpec& sim = scene_.simulation;
+  const double inf = std::numeric_limits<double>::infinity();
+  // The state at tt within the last step, as (q, v): false if it cannot be had.
+  auto state_at = [&](double tt) {
+    return integ.dense(tt, 0, yint_.data()) &&
+           sys.expand(tt, yint_.data(), ytmp_.data(), MultibodySystem::Context::observer) == 0;
+  };
+  bool stop = false;
+  const bool sampling = !res_.series.names.empty();
+  const double t_reach = t * (1 + 1e-15);
+  while (!stop) {
+    const double ts = sampling ? t0_ + sample_k_ * dt_sample_ : inf;
+    const double tp = period_ ? t0_ + phase_k_ * dt_phase_ : inf;
+    const bool sample_due = ts <= t_reach && ts <= t_end;
+    const bool phase_due = tp <= t_reach && tp <= t_end + 0.5 * dt_phase_;
+    if (!sample_due && !phase_due) break;
+    if (phase_due && (!sample_due || tp <= ts)) {
+      ++phase_k_;
+      if ((phase_k_ - 1) % kPhasePoints == 0) {
+        // A cycle ends at tp: close it before the first phase point of the next.
+        close_cycle(tp);
+        ++cycles_done_;
+        if (sim.stop_when_steady && steady_now()) stop = true;
+      }
+      if (!stop && state_at(tp)) {
+        observe_phase(tp, ytmp_.data());
+        observe(tp, ytmp_.data(), sample_due && ts == tp);
+        if (sample_due && ts == tp) ++sample_k_;
+      }
+    } else {
+      ++sample_k_;
+      if (ts > t_prev && state_at(ts)) observe(ts, ytmp_.data(), true);
+    }
+  }
+  return stop;
 }
 
 RunResult Runner::run() {
@@ -352,19 +398,11 @@ RunResult Runner::run() {
   }
   const double E0 = energy ? mechanical_energy(m_, q0.data(), v0.data()) : 0.0;
 
-  const double dt_sample = scene_.output.sample_interval_s;
-  long long sample_k = 0;
-  const double dt_phase = period_ ? *period_ / kPhasePoints : 0.0;
-  long long phase_k = 0;
-  int cycles_done = 0;
+  dt_sample_ = scene_.output.sample_interval_s;
+  dt_phase_ = period_ ? *period_ / kPhasePoints : 0.0;
   observe(t0_, qv0.data(), !res_.series.names.empty());
-  if (!res_.series.names.empty()) sample_k = 1;
-  if (period_) observe_phase(t0_, qv0.data()), phase_k = 1;
-  // The state at t within the last step, as (q, v): false if it cannot be had.
-  auto state_at = [&](double tt) {
-    return integ->dense(tt, 0, yint_.data()) &&
-           sys.expand(tt, yint_.data(), ytmp_.data(), MultibodySystem::Context::observer) == 0;
-  };
+  if (!res_.series.names.empty()) sample_k_ = 1;
+  if (period_) observe_phase(t0_, qv0.data()), phase_k_ = 1;
 
   integ->set_root_directions(sys.root_directions());
   std::vector<int> flags;
@@ -372,7 +410,6 @@ RunResult Runner::run() {
   if (!drift_limit && scene_.min_clearance_m()) drift_limit = 0.1 * *scene_.min_clearance_m();
   double t = t0_;
   bool stop = false;
-  const double inf = std::numeric_limits<double>::infinity();
   while (!stop) {
     const double t_prev = t;
     const StepOutcome out = integ->step(t);
@@ -383,32 +420,7 @@ RunResult Runner::run() {
     }
     // Dense output inside (t_prev, t], in time order: series samples, orbit phase points
     // and cycle ends.
-    const bool sampling = !res_.series.names.empty();
-    const double t_reach = t * (1 + 1e-15);
-    while (!stop) {
-      const double ts = sampling ? t0_ + sample_k * dt_sample : inf;
-      const double tp = period_ ? t0_ + phase_k * dt_phase : inf;
-      const bool sample_due = ts <= t_reach && ts <= t_end;
-      const bool phase_due = tp <= t_reach && tp <= t_end + 0.5 * dt_phase;
-      if (!sample_due && !phase_due) break;
-      if (phase_due && (!sample_due || tp <= ts)) {
-        ++phase_k;
-        if ((phase_k - 1) % kPhasePoints == 0) {
-          // A cycle ends at tp: close it before the first phase point of the next.
-          close_cycle(tp);
-          ++cycles_done;
-          if (sim.stop_when_steady && steady_now()) stop = true;
-        }
-        if (!stop && state_at(tp)) {
-          observe_phase(tp, ytmp_.data());
-          observe(tp, ytmp_.data(), sample_due && ts == tp);
-          if (sample_due && ts == tp) ++sample_k;
-        }
-      } else {
-        ++sample_k;
-        if (ts > t_prev && state_at(ts)) observe(ts, ytmp_.data(), true);
-      }
-    }
+    stop = sample_step(*integ, sys, t_prev, t, t_end);
     const bool have_state = sys.expand(t, integ->y(), yfull_.data()) == 0;
     if (have_state) observe(t, yfull_.data(), false);
     if (out == StepOutcome::root) {
@@ -492,7 +504,7 @@ RunResult Runner::run() {
 
   // Steady-cycle metrics over the last metric_cycles cycles (run/metrics.cpp).
   Metrics& mt = res_.metrics;
-  mt = detail::steady_cycle_metrics(scene_, res_.cycles, cycles_done);
+  mt = detail::steady_cycle_metrics(scene_, res_.cycles, cycles_done_);
   if (energy) {
     double Q[2] = {0, 0};
     integ->quadratures(Q);
