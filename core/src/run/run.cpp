@@ -84,6 +84,70 @@ double characteristic_rate(const Scene& scene) {
   return 1.0;
 }
 
+// How a scene is integrated: the integrator's settings (t_stop aside: the run loop moves
+// it), the formulation actually integrated and the absolute tolerances in each state's
+// units (README "Integration").
+struct IntegrationPlan {
+  IntegratorSettings settings;
+  Formulation formulation = Formulation::baumgarte;
+  bool newton = false;              ///< the method iterates with Newton (uses a Jacobian)
+  double atol = 0.0;                ///< the scalar reported in the run's statistics
+  std::vector<double> atol_full;    ///< per component of the full state (q, v)
+};
+
+IntegrationPlan plan_integration(const Scene& scene, const Model& m) {
+  const SolverSpec& sol = scene.solver;
+  IntegrationPlan plan;
+  IntegratorSettings& is = plan.settings;
+  is.method = sol.method;
+  is.rtol = sol.rtol;
+  // Absolute tolerances in each state's own units (README "Integration", tolerances):
+  // lengths from the smallest clearance, angles from it over each body's size, rates
+  // from those times the driver's speed. solver.atol overrides them all with one number.
+  const double length_scale = scene.min_clearance_m().value_or(1e-3);
+  const Eigen::VectorXd scales = state_scales(m, length_scale, characteristic_rate(scene));
+  plan.atol = sol.atol ? *sol.atol : sol.rtol * length_scale;
+  plan.atol_full.assign(static_cast<size_t>(2 * m.nq), 0.0);
+  for (int i = 0; i < 2 * m.nq; ++i) plan.atol_full[static_cast<size_t>(i)] = sol.atol ? *sol.atol : sol.rtol * scales(i);
+  is.max_step = sol.max_step_s;
+  is.initial_step = sol.initial_step_s;
+  is.max_order = sol.max_order;
+  is.projection = sol.projection;
+  plan.newton = is_newton(sol.method);
+  // A mechanism without a degree of freedom (every coordinate fixed by joints and drivers:
+  // the ideal slider-crank) leaves partitioning nothing to integrate: it runs on the
+  // baumgarte formulation, whose states are all the coordinates.
+  plan.formulation = sol.formulation == Formulation::partitioned && m.nq <= m.nc
+                                      ? Formulation::baumgarte
+                                      : sol.formulation;
+  const bool partitioned = plan.formulation == Formulation::partitioned;
+  is.user_jacobian = plan.newton && sol.jacobian == JacobianKind::structured && !partitioned;
+  // Partitioned: the integrated coordinates are the mechanism's degrees of freedom (e.g. a
+  // rod's angle and the slider's x), and the squeeze film's stiff mode lies almost along
+  // one of them. Its Jacobian terms (∝ the journal's whirl rate and the rod's rate) change
+  // by their own size within a few degrees of crank; with CVODE's Jacobian reuse the
+  // modified Newton stalls in that mode and its first iterate is accepted on a stale rate
+  // estimate, so accepted states carry an unconverged stiff component (f(y_n) − y'_n up to
+  // ~0.1 rad/s² in the rod's angular acceleration). The error test cannot see it at large
+  // h·λ; when the rod's angular velocity crosses zero (90° and 270° of crank) its weight
+  // becomes 1/atol, the step is cut to h·λ ~ 1, the component shows as a transient and the
+  // error test fails until CVODE gives up. Four states: a Jacobian costs four evaluations.
+  // Projection (baumgarte + CVODE's projection) fails the same way at the dead centres,
+  // where a step lands on a velocity's zero (the slider's at each cycle boundary) and its
+  // weight becomes 1/atol: there the step's local error stays ~3e-10 m/s (~100 atol) in
+  // the slider's velocity while h falls from 1e-4 to 3e-8 s, a stiff film transient that
+  // no step above 1/λ resolves. Both the stale Jacobian and the projected error estimate
+  // (integrator_cvode.cpp) feed it: full factorial on projection, 192 cases, 4 not ok
+  // before; 1 with only the Jacobian refreshed, 2 with only the error estimate
+  // unprojected, 0 with both (README "Defects", D6). 18 states: 18 evaluations a step.
+  // Not with switching none: difference quotients across the printed law's jump make a
+  // fresh Jacobian worse than a reused one (hard case law_pinkus_sternlicht_no_events:
+  // 38518 Newton failures and the 100000-step budget at 0.8 cycle, against ok in 17795
+  // steps with the reused one).
+  is.jacobian_every_step = partitioned || (sol.projection && sol.switching == Switching::events);
+  return plan;
+}
+
 class Runner {
  public:
   explicit Runner(const Scene& scene)
@@ -307,20 +371,11 @@ RunResult Runner::run() {
   std::copy(v0.data(), v0.data() + m_.nq, qv0.begin() + m_.nq);
 
   const double t_end = sim.duration_s ? *sim.duration_s : sim.max_cycles * *period_;
-  IntegratorSettings is;
-  is.method = sol.method;
-  is.rtol = sol.rtol;
-  // Absolute tolerances in each state's own units (README "Integration", tolerances):
-  // lengths from the smallest clearance, angles from it over each body's size, rates
-  // from those times the driver's speed. solver.atol overrides them all with one number.
-  const double length_scale = scene_.min_clearance_m().value_or(1e-3);
-  const Eigen::VectorXd scales = state_scales(m_, length_scale, characteristic_rate(scene_));
-  const double atol = sol.atol ? *sol.atol : sol.rtol * length_scale;
-  std::vector<double> atol_full(static_cast<size_t>(2 * m_.nq));
-  for (int i = 0; i < 2 * m_.nq; ++i) atol_full[static_cast<size_t>(i)] = sol.atol ? *sol.atol : sol.rtol * scales(i);
-  is.max_step = sol.max_step_s;
-  is.initial_step = sol.initial_step_s;
-  is.max_order = sol.max_order;
+  const IntegrationPlan plan = plan_integration(scene_, m_);
+  IntegratorSettings is = plan.settings;
+  const Formulation formulation = plan.formulation;
+  const double atol = plan.atol;
+  const std::vector<double>& atol_full = plan.atol_full;
   // The stop time: the next cycle boundary (never the end of the run, which would bound
   // SUNDIALS' initial-step estimates at every restart and so make the steps depend on
   // max_cycles), or the end of the run in its last cycle.
@@ -332,46 +387,13 @@ RunResult Runner::run() {
   };
   double t_stop = next_stop(t0_);
   is.t_stop = t_stop;
-  is.projection = sol.projection;
-  const bool newton = is_newton(sol.method);
-  // A mechanism without a degree of freedom (every coordinate fixed by joints and drivers:
-  // the ideal slider-crank) leaves partitioning nothing to integrate: it runs on the
-  // baumgarte formulation, whose states are all the coordinates.
-  const Formulation formulation = sol.formulation == Formulation::partitioned && m_.nq <= m_.nc
-                                      ? Formulation::baumgarte
-                                      : sol.formulation;
-  const bool partitioned = formulation == Formulation::partitioned;
-  is.user_jacobian = newton && sol.jacobian == JacobianKind::structured && !partitioned;
-  // Partitioned: the integrated coordinates are the mechanism's degrees of freedom (e.g. a
-  // rod's angle and the slider's x), and the squeeze film's stiff mode lies almost along
-  // one of them. Its Jacobian terms (∝ the journal's whirl rate and the rod's rate) change
-  // by their own size within a few degrees of crank; with CVODE's Jacobian reuse the
-  // modified Newton stalls in that mode and its first iterate is accepted on a stale rate
-  // estimate, so accepted states carry an unconverged stiff component (f(y_n) − y'_n up to
-  // ~0.1 rad/s² in the rod's angular acceleration). The error test cannot see it at large
-  // h·λ; when the rod's angular velocity crosses zero (90° and 270° of crank) its weight
-  // becomes 1/atol, the step is cut to h·λ ~ 1, the component shows as a transient and the
-  // error test fails until CVODE gives up. Four states: a Jacobian costs four evaluations.
-  // Projection (baumgarte + CVODE's projection) fails the same way at the dead centres,
-  // where a step lands on a velocity's zero (the slider's at each cycle boundary) and its
-  // weight becomes 1/atol: there the step's local error stays ~3e-10 m/s (~100 atol) in
-  // the slider's velocity while h falls from 1e-4 to 3e-8 s, a stiff film transient that
-  // no step above 1/λ resolves. Both the stale Jacobian and the projected error estimate
-  // (integrator_cvode.cpp) feed it: full factorial on projection, 192 cases, 4 not ok
-  // before; 1 with only the Jacobian refreshed, 2 with only the error estimate
-  // unprojected, 0 with both (README "Defects", D6). 18 states: 18 evaluations a step.
-  // Not with switching none: difference quotients across the printed law's jump make a
-  // fresh Jacobian worse than a reused one (hard case law_pinkus_sternlicht_no_events:
-  // 38518 Newton failures and the 100000-step budget at 0.8 cycle, against ok in 17795
-  // steps with the reused one).
-  is.jacobian_every_step = partitioned || (sol.projection && sol.switching == Switching::events);
   res_.stats.rtol = sol.rtol;
   res_.stats.atol = atol;
   res_.stats.method = name_of(sol.method);
   res_.stats.formulation = name_of(formulation);
-  res_.stats.jacobian = !newton ? std::string("none")
-                                : std::string(name_of(is.user_jacobian ? JacobianKind::structured
-                                                                       : JacobianKind::difference_quotients));
+  res_.stats.jacobian = !plan.newton ? std::string("none")
+                                     : std::string(name_of(is.user_jacobian ? JacobianKind::structured
+                                                                            : JacobianKind::difference_quotients));
 
   const bool energy = scene_.output.energy_balance;
   MultibodySystem sys(m_, ws_, sim.eps_limit, energy, formulation);
