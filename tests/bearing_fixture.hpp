@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "lub/force_laws.hpp"
+#include "lub/bearing/force_laws.hpp"
 
 namespace bearing_fixture {
 

@@ -24,7 +24,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "lub/force_laws.hpp"
+#include "lub/bearing/film_force.hpp"
 
 namespace floor_model {
 

@@ -9,10 +9,11 @@
 #include <memory>
 #include <string>
 
-#include "../core/src/multibody_system.hpp"
-#include "lub/json_reader.hpp"
-#include "lub/model.hpp"
-#include "lub/run.hpp"
+#include "lub/formulation/multibody_system.hpp"
+#include "lub/io/json_reader.hpp"
+#include "lub/mechanism/builder.hpp"
+#include "lub/mechanism/model.hpp"
+#include "lub/run/run.hpp"
 
 namespace lub_test {
 

@@ -1,4 +1,4 @@
-// Tests of the dry-contact effect (core/src/contact.cpp) and of its wiring: scene keys
+// Tests of the dry-contact effect (core/src/bearing/contact.cpp) and of its wiring: scene keys
 // (effects.contact, and the finite_reynolds options on a lubricated joint), the model applying
 // contact only to the joints the scene names, the film law never evaluated above the hand-over
 // band, and the restitution of a free impact.
@@ -8,8 +8,9 @@
 #include <cmath>
 #include <string>
 
-#include "lub/contact.hpp"
-#include "lub/model.hpp"
+#include "lub/bearing/contact.hpp"
+#include "lub/mechanism/builder.hpp"
+#include "lub/mechanism/model.hpp"
 #include "bearing_fixture.hpp"
 
 namespace {

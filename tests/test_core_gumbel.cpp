@@ -1,4 +1,4 @@
-// Tests of the laws added beyond the paper (core/src/force_laws.cpp): the Gümbel
+// Tests of the laws added beyond the paper (core/src/bearing/force_laws.cpp): the Gümbel
 // (half-Sommerfeld) long and short bearings and the exact Pinkus–Sternlicht π film
 // (`pinkus_sternlicht_continuous`), each against quadrature of its own pressure field
 // transcribed here from the paper (Eqs. 3 and 5), plus their limits, continuity and the
@@ -15,7 +15,7 @@
 
 #include "film_quadrature.hpp"
 #include "bearing_fixture.hpp"
-#include "lub/force_laws.hpp"
+#include "lub/bearing/film_force.hpp"
 
 namespace {
 
@@ -346,8 +346,8 @@ TEST(NewLaws, ContinuousAcrossZeroRateAndAtZeroEccentricity) {
         const double sc = coef * (1.0 + std::fabs(w)) / std::pow(1.0 - eps * eps, 2.5);
         for (double sgn : {1.0, -1.0}) {
           const FilmForce f = law(l, eps, sgn * 1e-9, w);
-          EXPECT_NEAR(f.radial_N, f0.radial_N, 1e-6 * sc) << lub::to_string(l) << " eps=" << eps << " w=" << w;
-          EXPECT_NEAR(f.tangential_N, f0.tangential_N, 1e-6 * sc) << lub::to_string(l);
+          EXPECT_NEAR(f.radial_N, f0.radial_N, 1e-6 * sc) << lub::name_of(l) << " eps=" << eps << " w=" << w;
+          EXPECT_NEAR(f.tangential_N, f0.tangential_N, 1e-6 * sc) << lub::name_of(l);
         }
       }
     }
@@ -355,8 +355,8 @@ TEST(NewLaws, ContinuousAcrossZeroRateAndAtZeroEccentricity) {
       const FilmForce f0 = law(l, 0.0, m[0], m[1]);
       const FilmForce f1 = law(l, 1e-9, m[0], m[1]);
       const double sc = coef * (std::fabs(m[0]) + std::fabs(m[1]));
-      EXPECT_NEAR(f1.radial_N, f0.radial_N, 1e-6 * sc) << lub::to_string(l) << " ed=" << m[0] << " w=" << m[1];
-      EXPECT_NEAR(f1.tangential_N, f0.tangential_N, 1e-6 * sc) << lub::to_string(l);
+      EXPECT_NEAR(f1.radial_N, f0.radial_N, 1e-6 * sc) << lub::name_of(l) << " ed=" << m[0] << " w=" << m[1];
+      EXPECT_NEAR(f1.tangential_N, f0.tangential_N, 1e-6 * sc) << lub::name_of(l);
     }
   }
 }
@@ -375,10 +375,10 @@ TEST(NewLaws, PositivelyHomogeneousAndMirrorSymmetric) {
         const FilmForce f3 = law(l, eps, 3.0 * m[0], 3.0 * m[1]);
         const FilmForce fm = law(l, eps, m[0], -m[1]);
         const double sc = scale_of(f, coef, m[0], m[1]);
-        EXPECT_NEAR(f3.radial_N, 3.0 * f.radial_N, 3e-13 * sc) << lub::to_string(l);
-        EXPECT_NEAR(f3.tangential_N, 3.0 * f.tangential_N, 3e-13 * sc) << lub::to_string(l);
-        EXPECT_NEAR(fm.radial_N, f.radial_N, 1e-13 * sc) << lub::to_string(l);
-        EXPECT_NEAR(fm.tangential_N, -f.tangential_N, 1e-13 * sc) << lub::to_string(l);
+        EXPECT_NEAR(f3.radial_N, 3.0 * f.radial_N, 3e-13 * sc) << lub::name_of(l);
+        EXPECT_NEAR(f3.tangential_N, 3.0 * f.tangential_N, 3e-13 * sc) << lub::name_of(l);
+        EXPECT_NEAR(fm.radial_N, f.radial_N, 1e-13 * sc) << lub::name_of(l);
+        EXPECT_NEAR(fm.tangential_N, -f.tangential_N, 1e-13 * sc) << lub::name_of(l);
       }
     }
   }
@@ -394,7 +394,7 @@ TEST(NewLaws, NeverNanOrInfOverLimitGrid) {
         for (double w : wedge_grid) {
           const FilmForce f = law(l, e, ed, w);
           EXPECT_TRUE(std::isfinite(f.radial_N) && std::isfinite(f.tangential_N))
-              << lub::to_string(l) << " eps=" << e << " ed=" << ed << " w=" << w;
+              << lub::name_of(l) << " eps=" << e << " ed=" << ed << " w=" << w;
         }
 }
 

@@ -1,7 +1,7 @@
 // Tests of the HDF5 wrapper lub::h5: files, groups, attributes, datasets, tables
 // (append, reopen, resume, survival of a killed writer) and dimension scales.
-#include "lub/h5.hpp"
-#include "lub/run_io.hpp"
+#include "lub/io/h5.hpp"
+#include "lub/run/run_io.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The structured Jacobian of the baumgarte formulation (core/src/multibody_jacobian.cpp)
+// The structured Jacobian of the baumgarte formulation (core/src/formulation/multibody_jacobian.cpp)
 // against a central-difference Jacobian of the full right-hand side near the wall, for
 // every force law, in sliding mode and with the contact hand-over; no allocation inside
 // it (nor inside the GGL DAE's, test_core_ida.cpp); and whole runs with it against runs with SUNDIALS' difference quotients.

@@ -21,8 +21,8 @@
 #include <string>
 #include <vector>
 
-#include "lub/force_laws.hpp"
-#include "lub/reynolds.hpp"
+#include "lub/bearing/film_force.hpp"
+#include "lub/bearing/reynolds.hpp"
 #include "bearing_fixture.hpp"
 
 namespace {
@@ -112,8 +112,8 @@ TEST(LawDeviation, PapersBearingTableForTheReadme) {
         EXPECT_GT(r.hi, 10.0);
       }
     }
-    std::printf("| %s | %s | %s | %s | %s |\n", std::string(lub::to_string(l)).c_str(),
-                std::string(lub::to_string(cav)).c_str(), cells[0].c_str(), cells[1].c_str(), cells[2].c_str());
+    std::printf("| %s | %s | %s | %s | %s |\n", std::string(lub::name_of(l)).c_str(),
+                std::string(lub::name_of(cav)).c_str(), cells[0].c_str(), cells[1].c_str(), cells[2].c_str());
   }
 }
 

@@ -10,7 +10,7 @@
 #include <cstdio>
 #include <string>
 
-#include "lub/force_laws.hpp"
+#include "lub/bearing/film_force.hpp"
 
 namespace {
 

@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "floor_slider_crank.hpp"
-#include "lub/run.hpp"
+#include "lub/run/run.hpp"
 
 namespace {
 

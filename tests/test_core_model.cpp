@@ -3,8 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <vector>
 
-#include "lub/model.hpp"
+#include "lub/bearing/film_force.hpp"
+#include "lub/common/check.hpp"
+#include "lub/mechanism/builder.hpp"
+#include "lub/mechanism/model.hpp"
 
 namespace {
 
@@ -159,3 +164,25 @@ TEST(SceneValidation, ErrorsNameThePathTheValueAndTheRule) {
 }
 
 }  // namespace
+
+// A workspace is built for one model: handing it another is a bug (an internal invariant,
+// lub::InternalError, always checked), not bad input (lub::InputError).
+TEST(ModelWorkspace, AWorkspaceOfAnotherModelIsAnInternalError) {
+  json doc = two_body_scene("frene_long", {0, 0}, {0, 0});
+  const lub::Model m = lub::build_model(lub::parse_scene(doc));
+  doc["bodies"].push_back({{"name", "extra"}, {"mass_kg", 1.0}, {"inertia_kg_m2", 0.01}});
+  const lub::Model other = lub::build_model(lub::parse_scene(doc));
+  lub::Workspace ws(other);
+  std::vector<double> q(static_cast<size_t>(m.nq), 0.0), v(q), a(q);
+  q[3] = 1e-5;  // journal off centre
+  EXPECT_THROW(lub::evaluate(m, ws, 0.0, q.data(), v.data(), a.data()), lub::InternalError);
+  try {
+    lub::evaluate(m, ws, 0.0, q.data(), v.data(), a.data());
+  } catch (const lub::InputError&) {
+    ADD_FAILURE() << "a broken invariant must not read as bad input";
+  } catch (const lub::InternalError& e) {
+    EXPECT_NE(std::string(e.what()).find("workspace built for a model"), std::string::npos) << e.what();
+  }
+  lub::Workspace own(m);
+  EXPECT_EQ(lub::evaluate(m, own, 0.0, q.data(), v.data(), a.data()), 0);
+}

@@ -11,10 +11,11 @@
 #include <string>
 #include <vector>
 
-#include "lub/json_reader.hpp"
-#include "lub/model.hpp"
-#include "lub/scene.hpp"
-#include "multibody_system.hpp"
+#include "lub/io/json_reader.hpp"
+#include "lub/mechanism/builder.hpp"
+#include "lub/mechanism/model.hpp"
+#include "lub/scene/scene.hpp"
+#include "lub/formulation/multibody_system.hpp"
 
 namespace {
 std::atomic<long long> g_allocations{0};

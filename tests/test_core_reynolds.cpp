@@ -1,4 +1,4 @@
-// Tests of the finite-length bearing (core/src/reynolds.cpp, law `finite_reynolds`):
+// Tests of the finite-length bearing (core/src/bearing/reynolds.cpp, law `finite_reynolds`):
 //  - its limits L/D → ∞ and L/D → 0 against the long and short closed forms (full film,
 //    Gümbel and Reynolds cavitation), with the expected rate of approach;
 //  - second-order convergence under grid refinement, for each cavitation condition;
@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "film_quadrature.hpp"
-#include "lub/force_laws.hpp"
-#include "lub/reynolds.hpp"
+#include "lub/bearing/film_force.hpp"
+#include "lub/bearing/reynolds.hpp"
 #include "bearing_fixture.hpp"
 
 namespace {
@@ -78,12 +78,12 @@ TEST(FiniteBearing, ShortLimitIsOcvirkForEveryCavitationCondition) {
         const auto g = geometry(ld);
         const double dev = rel_dev(finite(g, s, cav, 512, 8), lub::film_force(ref, g, kMu, s));
         if (dev_prev > 0.0) {
-          EXPECT_GT(dev_prev / dev, 3.0) << to_string(cav) << " eps=" << s.eps << " ld=" << ld;
-          EXPECT_LT(dev_prev / dev, 4.8) << to_string(cav) << " eps=" << s.eps << " ld=" << ld;
+          EXPECT_GT(dev_prev / dev, 3.0) << name_of(cav) << " eps=" << s.eps << " ld=" << ld;
+          EXPECT_LT(dev_prev / dev, 4.8) << name_of(cav) << " eps=" << s.eps << " ld=" << ld;
         }
         dev_prev = dev;
       }
-      EXPECT_LT(dev_prev, 0.01) << to_string(cav) << " eps=" << s.eps;
+      EXPECT_LT(dev_prev, 0.01) << name_of(cav) << " eps=" << s.eps;
     }
   }
 }
@@ -135,12 +135,12 @@ TEST(FiniteBearing, LongLimitIsSommerfeldAndTheHalfFilmGaugeIsTheCubedFilmMean) 
         }
         const double dev = rel_dev(f, ref);
         if (dev_prev > 0.0) {
-          EXPECT_GT(dev_prev / dev, 1.6) << to_string(cav) << " eps=" << s.eps << " ed=" << s.eps_dot;
-          EXPECT_LT(dev_prev / dev, 2.6) << to_string(cav) << " eps=" << s.eps << " ed=" << s.eps_dot;
+          EXPECT_GT(dev_prev / dev, 1.6) << name_of(cav) << " eps=" << s.eps << " ed=" << s.eps_dot;
+          EXPECT_LT(dev_prev / dev, 2.6) << name_of(cav) << " eps=" << s.eps << " ed=" << s.eps_dot;
         }
         dev_prev = dev;
       }
-      EXPECT_LT(dev_prev, 0.04) << to_string(cav) << " eps=" << s.eps << " ed=" << s.eps_dot;
+      EXPECT_LT(dev_prev, 0.04) << name_of(cav) << " eps=" << s.eps << " ed=" << s.eps_dot;
     }
     if (s.eps_dot == 0.0) {
       // Pure wedge: the re-gauging is zero and the long limit is gumbel_long itself.
@@ -175,9 +175,9 @@ TEST(FiniteBearing, ConvergesAtSecondOrderUnderRefinement) {
       const double order = std::log2(d(1, 2) / d(2, 3));
       const double err64 = d(1, 3) / std::hypot(f[3].radial_N, f[3].tangential_N);
       std::printf("[ measured ] finite_reynolds %-10s eps=%.1f: order %.2f, |F(64x8) - F(256x32)|/|F| = %.2e\n",
-                  std::string(to_string(cav)).c_str(), s.eps, order, err64);
-      EXPECT_GT(order, 1.6) << to_string(cav) << " eps=" << s.eps;
-      EXPECT_LT(order, 2.6) << to_string(cav) << " eps=" << s.eps;
+                  std::string(name_of(cav)).c_str(), s.eps, order, err64);
+      EXPECT_GT(order, 1.6) << name_of(cav) << " eps=" << s.eps;
+      EXPECT_LT(order, 2.6) << name_of(cav) << " eps=" << s.eps;
     }
   }
 }
@@ -294,11 +294,11 @@ TEST(FiniteBearing, SymmetriesAndZeroState) {
     const FilmForce f3 = finite(g, state(0.6, 12.0, 900.0), cav, 48, 6);
     const FilmForce fm = finite(g, state(0.6, 4.0, -300.0), cav, 48, 6);
     const double sc = std::hypot(f.radial_N, f.tangential_N);
-    EXPECT_NEAR(f3.radial_N, 3.0 * f.radial_N, 3e-12 * sc) << to_string(cav);
-    EXPECT_NEAR(f3.tangential_N, 3.0 * f.tangential_N, 3e-12 * sc) << to_string(cav);
+    EXPECT_NEAR(f3.radial_N, 3.0 * f.radial_N, 3e-12 * sc) << name_of(cav);
+    EXPECT_NEAR(f3.tangential_N, 3.0 * f.tangential_N, 3e-12 * sc) << name_of(cav);
     // The ψ grid is symmetric about θ = 0: the mirror is exact up to rounding.
-    EXPECT_NEAR(fm.radial_N, f.radial_N, 1e-12 * sc) << to_string(cav);
-    EXPECT_NEAR(fm.tangential_N, -f.tangential_N, 1e-12 * sc) << to_string(cav);
+    EXPECT_NEAR(fm.radial_N, f.radial_N, 1e-12 * sc) << name_of(cav);
+    EXPECT_NEAR(fm.tangential_N, -f.tangential_N, 1e-12 * sc) << name_of(cav);
     const FilmForce z = finite(g, state(0.6, 0.0, 0.0), cav, 48, 6);
     EXPECT_EQ(z.radial_N, 0.0);
     EXPECT_EQ(z.tangential_N, 0.0);

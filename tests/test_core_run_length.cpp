@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "lub/run.hpp"
+#include "lub/run/run.hpp"
 
 namespace {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "lub/run.hpp"
+#include "lub/run/run.hpp"
 
 namespace {
 

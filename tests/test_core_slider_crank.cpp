@@ -7,8 +7,8 @@
 #include <cmath>
 #include <string>
 
-#include "lub/model.hpp"
-#include "lub/run.hpp"
+#include "lub/mechanism/model.hpp"
+#include "lub/run/run.hpp"
 
 namespace {
 

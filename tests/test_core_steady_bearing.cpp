@@ -1,4 +1,4 @@
-// Tests of the steadily loaded bearing (core/src/steady_bearing.cpp): for each law, the
+// Tests of the steadily loaded bearing (core/src/bearing/steady_bearing.cpp): for each law, the
 // equilibrium eccentricity and attitude angle under a static load against the classical
 // results, and the finite bearing against Raimondi & Boyd's table through the same solver.
 //
@@ -12,8 +12,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "lub/force_laws.hpp"
-#include "lub/steady_bearing.hpp"
+#include "lub/bearing/force_laws.hpp"
+#include "lub/bearing/steady_bearing.hpp"
 
 namespace {
 
@@ -77,9 +77,9 @@ Classical short_full(const BearingGeometry& g, double e) {  // short, full film:
 
 void expect_equilibrium(ForceLaw law, const BearingGeometry& g, double e0, const Classical& cl) {
   const SteadyBearingResult r = solve(law, g, cl.load_N);
-  ASSERT_TRUE(r.converged) << lub::to_string(law) << ": " << r.message;
-  EXPECT_NEAR(r.eps, e0, 1e-11 * e0) << lub::to_string(law) << " eps0=" << e0;
-  EXPECT_NEAR(r.attitude_rad, cl.attitude_rad, 1e-10) << lub::to_string(law) << " eps0=" << e0;
+  ASSERT_TRUE(r.converged) << lub::name_of(law) << ": " << r.message;
+  EXPECT_NEAR(r.eps, e0, 1e-11 * e0) << lub::name_of(law) << " eps0=" << e0;
+  EXPECT_NEAR(r.attitude_rad, cl.attitude_rad, 1e-10) << lub::name_of(law) << " eps0=" << e0;
   EXPECT_NEAR(r.min_film_m, g.clearance_m() * (1.0 - e0), 1e-11 * g.clearance_m());
   EXPECT_NEAR(std::hypot(r.force.radial_N, r.force.tangential_N), cl.load_N, 1e-12 * cl.load_N);
 }

@@ -9,8 +9,8 @@
 
 #include <string>
 
-#include "lub/run.hpp"
-#include "lub/scene.hpp"
+#include "lub/run/run.hpp"
+#include "lub/scene/scene.hpp"
 
 namespace {
 

@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "lub/run.hpp"
+#include "lub/run/run.hpp"
 
 namespace {
 

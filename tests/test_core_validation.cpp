@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "lub/force_laws.hpp"
-#include "lub/run.hpp"
+#include "lub/bearing/force_laws.hpp"
+#include "lub/run/run.hpp"
 
 namespace {
 
@@ -419,26 +419,28 @@ TEST(Validation, ErrorMessagesStayShortForHugeValues) {
 
 json schema() { return lub::read_json_file(std::string(LUB_SOURCE_DIR) + "/configs/scene.schema.json"); }
 
-std::vector<std::string> split_names(const std::string& list) {
-  std::vector<std::string> out;
-  std::stringstream ss(list);
-  std::string item;
-  while (std::getline(ss, item, ',')) out.push_back(item.substr(item.find_first_not_of(' ')));
-  return out;
-}
-
 std::vector<std::string> strings(const json& enumeration) { return enumeration.get<std::vector<std::string>>(); }
 
 TEST(SceneSchema, EnumerationsMatchTheParser) {
   const json defs = schema()["$defs"];
-  std::vector<std::string> laws = split_names(lub::force_law_names());
+  std::vector<std::string> laws = lub::names_of<lub::ForceLaw>();
   laws.insert(laws.begin(), "ideal");
   EXPECT_EQ(strings(defs["lubricated_revolute"]["properties"]["force_law"]["enum"]), laws);
   EXPECT_EQ(strings(defs["lubricated_revolute"]["properties"]["cavitation"]["enum"]),
-            split_names(lub::cavitation_names()));
-  EXPECT_EQ(strings(defs["solver"]["properties"]["method"]["enum"]), lub::method_names());
-  EXPECT_EQ(strings(defs["channel"]["oneOf"][0]["properties"]["quantity"]["enum"]), lub::body_quantities());
-  EXPECT_EQ(strings(defs["channel"]["oneOf"][1]["properties"]["quantity"]["enum"]), lub::joint_quantities());
+            lub::names_of<lub::Cavitation>());
+  EXPECT_EQ(strings(defs["solver"]["properties"]["method"]["enum"]), lub::names_of<lub::Method>());
+  EXPECT_EQ(strings(defs["channel"]["oneOf"][0]["properties"]["quantity"]["enum"]), lub::names_of<lub::BodyQuantity>());
+  EXPECT_EQ(strings(defs["channel"]["oneOf"][1]["properties"]["quantity"]["enum"]), lub::names_of<lub::JointQuantity>());
+  EXPECT_EQ(strings(defs["solver"]["properties"]["formulation"]["enum"]), lub::names_of<lub::Formulation>());
+  EXPECT_EQ(strings(defs["solver"]["properties"]["jacobian"]["enum"]), lub::names_of<lub::JacobianKind>());
+  EXPECT_EQ(strings(defs["solver"]["properties"]["switching"]["enum"]), lub::names_of<lub::Switching>());
+  EXPECT_EQ(strings(defs["driver"]["properties"]["type"]["enum"]), lub::names_of<lub::DriverType>());
+  EXPECT_EQ(strings(defs["contact"]["properties"]["model"]["enum"]), lub::names_of<lub::ContactModel>());
+  // Joint types: one schema branch per type, each with its constant.
+  std::vector<std::string> joint_types;
+  for (const char* branch : {"revolute", "translational", "ground", "lubricated_revolute"})
+    joint_types.push_back(defs[branch]["properties"]["type"]["const"].get<std::string>());
+  EXPECT_EQ(joint_types, lub::names_of<lub::JointType>());
 }
 
 // Every key the schema lists is one the parser reads: each is set in turn to a value of

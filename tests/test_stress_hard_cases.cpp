@@ -22,9 +22,9 @@
 #include <utility>
 #include <vector>
 
-#include "lub/force_laws.hpp"
-#include "lub/run.hpp"
-#include "lub/scene.hpp"
+#include "lub/bearing/force_laws.hpp"
+#include "lub/run/run.hpp"
+#include "lub/scene/scene.hpp"
 
 namespace {
 
@@ -604,7 +604,7 @@ TEST(HardGravity, FreneLongSettlingMatchesTheQuasiStaticClosedForm) {
 
 std::vector<std::string> law_names() {
   std::vector<std::string> out;
-  std::stringstream ss(lub::force_law_names());
+  std::stringstream ss(lub::names_list<lub::ForceLaw>());
   for (std::string n; std::getline(ss, n, ',');) out.push_back(n.substr(n.find_first_not_of(' ')));
   return out;
 }

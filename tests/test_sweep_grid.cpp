@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "lub/json_reader.hpp"
-#include "lub/scene.hpp"
+#include "lub/io/json_reader.hpp"
+#include "lub/scene/scene.hpp"
 #include "lub/sweep/hash.hpp"
 
 using lub::sweep::Grid;

@@ -14,9 +14,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "lub/json_reader.hpp"
+#include "lub/io/json_reader.hpp"
 #include "lub/sweep/case_result.hpp"
-#include "lub/output_path.hpp"
+#include "lub/io/output_path.hpp"
 #include "lub/sweep/grid.hpp"
 #include "lub/sweep/output_lock.hpp"
 #include "lub/sweep/progress.hpp"

@@ -22,9 +22,9 @@
 #include <string>
 #include <vector>
 
-#include "lub/force_laws.hpp"
-#include "lub/reynolds.hpp"
-#include "lub/steady_bearing.hpp"
+#include "lub/bearing/film_force.hpp"
+#include "lub/bearing/reynolds.hpp"
+#include "lub/bearing/steady_bearing.hpp"
 
 namespace {
 
@@ -68,7 +68,7 @@ struct UsageError : std::runtime_error {
 std::string usage() {
   std::string u = kUsage;
   const std::string key = "%MODELS%";
-  u.replace(u.find(key), key.size(), lub::force_law_names());
+  u.replace(u.find(key), key.size(), lub::names_list<lub::ForceLaw>());
   return u;
 }
 
@@ -148,7 +148,10 @@ struct Common {
 Common read_common(const Args& a) {
   Common c;
   const std::string model = a.text("--model");
-  if (!lub::parse_force_law(model, c.law)) bad("--model", model, "must be one of " + lub::force_law_names());
+  if (const auto law = lub::parse_name<lub::ForceLaw>(model))
+    c.law = *law;
+  else
+    bad("--model", model, "must be one of " + lub::names_list<lub::ForceLaw>());
   const double r = a.number("--radius-m", kPositive, "must be > 0 m");
   const double cl = a.number("--clearance-m", kPositive, "must be > 0 m");
   c.geometry.journal_radius_m = r;
@@ -163,8 +166,10 @@ Common read_common(const Args& a) {
   if (a.has("--groove") && !finite) bad("--groove", "set", only);
   if (a.has("--cavitation")) {
     const std::string cav = a.text("--cavitation");
-    if (!lub::parse_cavitation(cav, c.finite.cavitation))
-      bad("--cavitation", cav, "must be one of " + lub::cavitation_names());
+    if (const auto parsed = lub::parse_name<lub::Cavitation>(cav))
+      c.finite.cavitation = *parsed;
+    else
+      bad("--cavitation", cav, "must be one of " + lub::names_list<lub::Cavitation>());
   }
   if (a.has("--n-theta")) c.finite.n_theta = a.integer("--n-theta", 8, 4096);
   if (a.has("--n-z")) c.finite.n_z = a.integer("--n-z", 1, 1024);
@@ -174,13 +179,13 @@ Common read_common(const Args& a) {
 
 nlohmann::json describe(const Common& c) {
   nlohmann::json j;
-  j["model"] = std::string(lub::to_string(c.law));
+  j["model"] = std::string(lub::name_of(c.law));
   j["radius_m"] = c.geometry.journal_radius_m;
   j["clearance_m"] = c.clearance;
   j["length_m"] = c.geometry.length_m;
   j["viscosity_Pa_s"] = c.viscosity;
   if (c.law == lub::ForceLaw::finite_reynolds) {
-    j["cavitation"] = std::string(lub::to_string(c.finite.cavitation));
+    j["cavitation"] = std::string(lub::name_of(c.finite.cavitation));
     j["n_theta"] = c.finite.n_theta;
     j["n_z"] = c.finite.n_z;
     j["groove_at_max_film"] = c.finite.groove_at_max_film;

@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "lub/output_path.hpp"
-#include "lub/run.hpp"
-#include "lub/run_io.hpp"
-#include "lub/scene.hpp"
+#include "lub/io/output_path.hpp"
+#include "lub/run/run.hpp"
+#include "lub/run/run_io.hpp"
+#include "lub/scene/scene.hpp"
 
 namespace {
 

@@ -19,14 +19,14 @@
 #include <string>
 #include <vector>
 
-#include "lub/force_laws.hpp"
-#include "lub/json_reader.hpp"
-#include "lub/output_path.hpp"
-#include "lub/reynolds.hpp"
-#include "lub/run.hpp"
-#include "lub/run_io.hpp"
-#include "lub/scene.hpp"
-#include "lub/steady_bearing.hpp"
+#include "lub/bearing/film_force.hpp"
+#include "lub/io/json_reader.hpp"
+#include "lub/io/output_path.hpp"
+#include "lub/bearing/reynolds.hpp"
+#include "lub/run/run.hpp"
+#include "lub/run/run_io.hpp"
+#include "lub/scene/scene.hpp"
+#include "lub/bearing/steady_bearing.hpp"
 
 namespace py = pybind11;
 
@@ -126,7 +126,10 @@ Bearing read_bearing(const std::string& law, double radius_m, double clearance_m
                      double viscosity_Pa_s, const std::optional<std::string>& cavitation,
                      std::optional<int> n_theta, std::optional<int> n_z, bool groove) {
   Bearing b;
-  if (!lub::parse_force_law(law, b.law)) lub::fail("law", law, "must be one of " + lub::force_law_names());
+  if (const auto parsed = lub::parse_name<lub::ForceLaw>(law))
+    b.law = *parsed;
+  else
+    lub::fail("law", law, "must be one of " + lub::names_list<lub::ForceLaw>());
   const auto positive = [](const char* name, double v, const char* unit) {
     if (!std::isfinite(v) || !(v > 0.0)) lub::fail(name, v, std::string("must be > 0 ") + unit);
   };
@@ -142,8 +145,10 @@ Bearing read_bearing(const std::string& law, double radius_m, double clearance_m
   const std::string only = "applies only to law finite_reynolds (got " + law + ")";
   if (cavitation) {
     if (!finite) lub::fail("cavitation", *cavitation, only);
-    if (!lub::parse_cavitation(*cavitation, b.finite.cavitation))
-      lub::fail("cavitation", *cavitation, "must be one of " + lub::cavitation_names());
+    if (const auto parsed = lub::parse_name<lub::Cavitation>(*cavitation))
+      b.finite.cavitation = *parsed;
+    else
+      lub::fail("cavitation", *cavitation, "must be one of " + lub::names_list<lub::Cavitation>());
   }
   if (n_theta) {
     if (!finite) lub::fail("n_theta", *n_theta, only);
@@ -225,13 +230,13 @@ py::dict steady_bearing(const std::string& law, double load_N, double speed_rpm,
     r = lub::solve_steady_bearing(in);
   }
   py::dict out;
-  out["model"] = std::string(lub::to_string(b.law));
+  out["model"] = std::string(lub::name_of(b.law));
   out["radius_m"] = radius_m;
   out["clearance_m"] = clearance_m;
   out["length_m"] = length_m;
   out["viscosity_Pa_s"] = viscosity_Pa_s;
   if (b.law == lub::ForceLaw::finite_reynolds) {
-    out["cavitation"] = std::string(lub::to_string(b.finite.cavitation));
+    out["cavitation"] = std::string(lub::name_of(b.finite.cavitation));
     out["n_theta"] = b.finite.n_theta;
     out["n_z"] = b.finite.n_z;
     out["groove_at_max_film"] = b.finite.groove_at_max_film;
@@ -270,7 +275,7 @@ PYBIND11_MODULE(_lubjoint, m) {
         py::arg("radius_m"), py::arg("clearance_m"), py::arg("length_m"), py::arg("viscosity_Pa_s"),
         py::arg("cavitation") = py::none(), py::arg("n_theta") = py::none(), py::arg("n_z") = py::none(),
         py::arg("groove_at_max_film") = false, "lubbearing steady. See lubjoint.steady_bearing.");
-  m.def("force_law_names", [] { return lub::force_law_names(); }, "The force laws a scene can name, comma separated.");
+  m.def("force_law_names", [] { return lub::names_list<lub::ForceLaw>(); }, "The force laws a scene can name, comma separated.");
   m.def("version", [] { return lub::program_version(); });
   m.def("revision", [] { return lub::build_revision(); });
 }

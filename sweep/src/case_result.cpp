@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lub/scene.hpp"
+#include "lub/scene/scene.hpp"
 
 namespace lub::sweep {
 

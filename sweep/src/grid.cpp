@@ -9,9 +9,9 @@
 #include <optional>
 #include <sstream>
 
-#include "lub/json_reader.hpp"
-#include "lub/run_io.hpp"
-#include "lub/scene.hpp"
+#include "lub/io/json_reader.hpp"
+#include "lub/run/run_io.hpp"
+#include "lub/scene/scene.hpp"
 #include "lub/sweep/hash.hpp"
 
 namespace lub::sweep {

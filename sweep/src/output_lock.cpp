@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "lub/json_reader.hpp"
+#include "lub/io/json_reader.hpp"
 
 namespace lub::sweep {
 

@@ -7,8 +7,8 @@
 #include <map>
 #include <stdexcept>
 
-#include "lub/json_reader.hpp"
-#include "lub/run_io.hpp"
+#include "lub/io/json_reader.hpp"
+#include "lub/run/run_io.hpp"
 
 namespace lub::sweep {
 

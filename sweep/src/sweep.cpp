@@ -14,9 +14,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "lub/json_reader.hpp"
-#include "lub/output_path.hpp"
-#include "lub/run_io.hpp"
+#include "lub/io/json_reader.hpp"
+#include "lub/io/output_path.hpp"
+#include "lub/run/run_io.hpp"
 #include "lub/sweep/case_result.hpp"
 #include "lub/sweep/grid.hpp"
 #include "lub/sweep/mpi_transport.hpp"

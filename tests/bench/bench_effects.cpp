@@ -13,8 +13,9 @@
 
 #include <string>
 
-#include "lub/model.hpp"
-#include "lub/run.hpp"
+#include "lub/mechanism/builder.hpp"
+#include "lub/mechanism/model.hpp"
+#include "lub/run/run.hpp"
 
 namespace {
 

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "../floor_slider_crank.hpp"
-#include "lub/run.hpp"
+#include "lub/run/run.hpp"
 
 namespace {
 

@@ -13,8 +13,8 @@
 #include <cmath>
 #include <vector>
 
-#include "lub/force_laws.hpp"
-#include "lub/reynolds.hpp"
+#include "lub/bearing/film_force.hpp"
+#include "lub/bearing/reynolds.hpp"
 #include "../bearing_fixture.hpp"
 
 namespace {
@@ -63,7 +63,7 @@ void BM_ClosedForm(benchmark::State& state) {
     benchmark::DoNotOptimize(f);
     k = (k + 1) & 63;
   }
-  state.SetLabel(std::string(lub::to_string(law)));
+  state.SetLabel(std::string(lub::name_of(law)));
 }
 BENCHMARK(BM_ClosedForm)->DenseRange(0, 5);
 
@@ -88,7 +88,7 @@ void BM_FiniteReynolds(benchmark::State& state) {
   }
   state.counters["active_set_iterations"] =
       benchmark::Counter(double(iterations), benchmark::Counter::kAvgIterations);
-  state.SetLabel(std::string(lub::to_string(o.cavitation)) + (jumps ? " jumps" : " trajectory"));
+  state.SetLabel(std::string(lub::name_of(o.cavitation)) + (jumps ? " jumps" : " trajectory"));
 }
 BENCHMARK(BM_FiniteReynolds)
     ->ArgsProduct({{0, 1, 2}, {48}, {8}, {0, 1}})

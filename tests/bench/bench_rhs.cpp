@@ -5,7 +5,8 @@
 //   build/tests/bench/bench_rhs
 #include <benchmark/benchmark.h>
 
-#include "lub/model.hpp"
+#include "lub/mechanism/builder.hpp"
+#include "lub/mechanism/model.hpp"
 
 namespace {
 

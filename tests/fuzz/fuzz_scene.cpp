@@ -16,8 +16,9 @@
 #include <cstdlib>
 #include <string>
 
-#include "lub/model.hpp"
-#include "lub/scene.hpp"
+#include "lub/mechanism/builder.hpp"
+#include "lub/mechanism/model.hpp"
+#include "lub/scene/scene.hpp"
 
 namespace {
 

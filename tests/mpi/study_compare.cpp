@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "lub/h5.hpp"
+#include "lub/io/h5.hpp"
 #include "lub/sweep/case_result.hpp"
 
 namespace {

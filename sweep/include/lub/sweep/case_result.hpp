@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "lub/run.hpp"
-#include "lub/run_io.hpp"
+#include "lub/run/run.hpp"
+#include "lub/run/run_io.hpp"
 
 namespace lub::sweep {
 

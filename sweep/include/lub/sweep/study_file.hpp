@@ -24,7 +24,7 @@
 #include <string>
 #include <vector>
 
-#include "lub/h5.hpp"
+#include "lub/io/h5.hpp"
 #include "lub/sweep/case_result.hpp"
 #include "lub/sweep/grid.hpp"
 

@@ -1,0 +1,49 @@
+// A steadily loaded journal bearing: the equilibrium of a journal turning at constant speed
+// under a constant load, for any force law — the `lubbearing steady` computation.
+//
+// Journal speed ω (bearing at rest), load W [N] fixed in direction. At equilibrium the journal
+// centre is at rest (ε̇ = 0, γ̇ = 0, so the wedge speed is w = ω) and the film force balances
+// the load: |F(ε)| = W, solved for ε ∈ (0, 1) by bracketed secant/bisection on log |F| (|F|
+// grows monotonically from 0 at ε = 0 to ∞ as ε → 1 for every law here). Then:
+//   attitude angle φ = atan2(F_t, −F_r): the angle between the load line and the line of centres
+//     (90° for the full-film laws, tan φ = π(1−ε²)^(1/2)/(4ε) for Ocvirk's π film, ...);
+//   minimum film thickness h_min = c (1 − ε);
+//   Sommerfeld number S = (R_J/c)² μ N/P, N = ω/(2π) [rev/s], P = W/(L D), D = 2R_J
+//     (Raimondi & Boyd's definition).
+#pragma once
+
+#include <string>
+
+#include "lub/bearing/force_laws.hpp"
+
+namespace lub {
+
+struct SteadyBearingInput {
+  ForceLaw law = ForceLaw::gumbel_short;
+  FiniteBearingOptions finite;  ///< for finite_reynolds
+  BearingGeometry geometry;
+  double viscosity_Pa_s = 0.0;
+  double load_N = 0.0;        ///< W > 0
+  double speed_rad_s = 0.0;   ///< ω ≠ 0 (journal, relative to the bearing)
+};
+
+struct SteadyBearingResult {
+  bool converged = false;
+  std::string message;       ///< why not, if not converged
+  double eps = 0.0;
+  double attitude_rad = 0.0;
+  double min_film_m = 0.0;
+  double sommerfeld = 0.0;
+  FilmForce force;           ///< film force at the equilibrium (|F| = W)
+  int evaluations = 0;       ///< force-law evaluations
+};
+
+/// Equilibrium of the steadily loaded bearing. Requires positive geometry, viscosity and
+/// load and a non-zero speed (the caller validates).
+SteadyBearingResult solve_steady_bearing(const SteadyBearingInput& in);
+
+/// Sommerfeld number S = (R_J/c)² μ N/P of a bearing (N = ω/(2π), P = W/(2 R_J L)).
+double sommerfeld_number(const BearingGeometry& g, double viscosity_Pa_s, double load_N,
+                         double speed_rad_s);
+
+}  // namespace lub

@@ -1,0 +1,106 @@
+// Strict reading of JSON input (scenes, grids): every value is checked where it is read,
+// and every error names the path, the value and the rule, e.g.
+//   joints[2].viscosity_Pa_s = -0.4: must be > 0 Pa s
+// Unknown keys are errors (a typo must not silently fall back to a default).
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <functional>
+#include <optional>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "lub/common/name_table.hpp"
+
+namespace lub {
+
+/// Bad user input: the message names the field, the value and the rule. Programs map it
+/// to exit status 2 and create no output file.
+class InputError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+/// Short rendering of a JSON value for messages (long values are cut).
+std::string brief(const nlohmann::json& value);
+
+/// Throws InputError("<path> = <value>: <rule>").
+[[noreturn]] void fail(const std::string& path, const nlohmann::json& value,
+                       const std::string& rule);
+
+/// Reads the members of one JSON object, checking types and rules, and at `finish()`
+/// refuses any member that was not read.
+class ObjectReader {
+ public:
+  ObjectReader(const nlohmann::json& object, std::string path);
+
+  const std::string& path() const { return path_; }
+  std::string child(const std::string& key) const;
+  bool has(const std::string& key) const;
+  /// The raw member (marks it read); throws if missing.
+  const nlohmann::json& raw(const std::string& key);
+  /// The raw member if present (marks it read).
+  const nlohmann::json* raw_optional(const std::string& key);
+
+  std::string string(const std::string& key);
+  std::string string_or(const std::string& key, const std::string& fallback);
+  /// A string that must be one of `choices`.
+  std::string choice(const std::string& key, const std::vector<std::string>& choices,
+                     const std::optional<std::string>& fallback = std::nullopt);
+  /// A string that must name an enumerator of E (its NameTable); `fallback` if absent.
+  template <class E>
+  E choice_of(const std::string& key, std::optional<E> fallback = std::nullopt) {
+    std::optional<std::string> fb;
+    if (fallback) fb = std::string(name_of(*fallback));
+    return *parse_name<E>(choice(key, names_of<E>(), fb));
+  }
+  bool boolean_or(const std::string& key, bool fallback);
+
+  /// A finite number; `rule` checks it (nullptr: any finite number) and `rule_text` says
+  /// the rule with its unit ("must be > 0 m").
+  double number(const std::string& key, const std::function<bool(double)>& rule = nullptr,
+                const std::string& rule_text = "");
+  double number_or(const std::string& key, double fallback,
+                   const std::function<bool(double)>& rule = nullptr,
+                   const std::string& rule_text = "");
+  std::optional<double> number_optional(const std::string& key,
+                                        const std::function<bool(double)>& rule = nullptr,
+                                        const std::string& rule_text = "");
+  long long integer(const std::string& key, long long min, long long max);
+  long long integer_or(const std::string& key, long long fallback, long long min, long long max);
+  /// [x, y], finite.
+  Eigen::Vector2d vec2(const std::string& key);
+  Eigen::Vector2d vec2_or(const std::string& key, const Eigen::Vector2d& fallback);
+
+  /// Errors on any member not read.
+  void finish() const;
+
+ private:
+  const nlohmann::json& object_;
+  std::string path_;
+  std::set<std::string> read_;
+};
+
+/// Checks `value` is an array and returns it; error names `path`.
+const nlohmann::json& require_array(const nlohmann::json& value, const std::string& path);
+
+// Common rules.
+inline bool positive(double v) { return v > 0.0; }
+inline bool non_negative(double v) { return v >= 0.0; }
+
+/// Reads a JSON file; errors (missing file, syntax, a key twice in one object, a number
+/// too large for a double) throw InputError naming the file.
+nlohmann::json read_json_file(const std::string& path);
+/// The same for JSON text; `origin` (a file name) prefixes the messages.
+nlohmann::json parse_json_text(const std::string& text, const std::string& origin);
+
+/// Applies `--set POINTER=VALUE`: VALUE parsed as JSON, or taken as a string if it is not
+/// JSON. The pointer must name an existing value or a new key of an existing object.
+void apply_override(nlohmann::json& doc, const std::string& assignment);
+
+}  // namespace lub

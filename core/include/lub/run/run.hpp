@@ -1,0 +1,107 @@
+// One run of a scene: integrate, observe, measure. The outcome is a value (status,
+// message, statistics, metrics, series), never an exception: one failed case must not
+// stop a sweep. Only bad input throws (InputError), before any work.
+#pragma once
+
+#include <array>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "lub/integrators/integrator.hpp"
+#include "lub/scene/scene.hpp"
+
+namespace lub {
+
+enum class RunStatus {
+  ok,               ///< completed
+  film_collapse,    ///< ε reached simulation.eps_limit
+  solver_failure,   ///< SUNDIALS gave up (its message is in RunResult::message)
+  budget_exceeded,  ///< solver.max_steps or solver.max_wall_time_s reached
+};
+template <>
+struct NameTable<RunStatus> {
+  static constexpr std::array<std::pair<RunStatus, std::string_view>, 4> entries{{
+      {RunStatus::ok, "ok"},
+      {RunStatus::film_collapse, "film_collapse"},
+      {RunStatus::solver_failure, "solver_failure"},
+      {RunStatus::budget_exceeded, "budget_exceeded"},
+  }};
+};
+inline std::string to_string(RunStatus s) { return std::string(name_of(s)); }
+
+/// What the integrator did and what it cost: the integrator's counters and the run's.
+struct SolverStats : IntegratorStats {
+  long long film_law_evals_jac = 0; ///< force-law calls spent on structured Jacobians
+  long long observer_evals = 0;     ///< extra evaluations for metrics and series
+  long long repartitions = 0;       ///< new choices of independent coordinates (partitioned)
+  long long mode_switches = 0;      ///< switches of a discontinuous law (ε̇ = 0 crossings, sliding)
+  // What the model evaluated (integrator and observers together): an effect the scene
+  // does not name is never evaluated.
+  long long model_evals = 0;        ///< evaluations of the equations of motion
+  long long gravity_evals = 0;      ///< of which added gravity
+  long long film_law_evals = 0;     ///< force-law calls (all lubricated joints)
+  double wall_time_s = 0.0;
+  double final_time_s = 0.0;
+  double max_position_drift = 0.0;  ///< max |Φ| over the run (m or rad)
+  double max_velocity_drift = 0.0;  ///< max |Φ̇| over the run (m/s or rad/s)
+  double rtol = 0.0, atol = 0.0;
+  std::string method;
+  /// The formulation integrated: the scene's, except that a mechanism without a degree of
+  /// freedom runs partitioned scenes on baumgarte (nothing to partition).
+  std::string formulation;
+  std::string jacobian;             ///< "structured", "difference_quotients" or "none" (no Newton)
+};
+
+/// Extremes over one crank cycle (or the whole run without cycles).
+struct CycleMetrics {
+  double t_start_s = 0.0, t_end_s = 0.0;
+  double min_film_m = 0.0, angle_at_min_film_rad = 0.0;
+  double max_eps = 0.0;
+  double peak_reaction_N = 0.0, angle_at_peak_reaction_rad = 0.0;
+  double peak_acceleration_m_s2 = 0.0;
+  double periodicity = -1.0;  ///< max orbit distance to the previous cycle / c (-1: first cycle)
+};
+
+/// Steady-cycle metrics: extremes over the last `metric_cycles` cycles.
+struct Metrics {
+  bool has_film = false;             ///< the metric joint is lubricated (film metrics valid)
+  double min_film_thickness_m = 0.0; ///< h_min = c (1 − ε), the smallest
+  double angle_at_min_film_rad = 0.0;///< crank angle there, in [0, 2π)
+  double max_eps = 0.0;
+  double peak_reaction_N = 0.0;      ///< |force| transmitted by the metric joint
+  double angle_at_peak_reaction_rad = 0.0;
+  double peak_acceleration_m_s2 = 0.0;  ///< |a| of the metric body
+  double periodicity = -1.0;         ///< the largest over the metric cycles (-1: unknown)
+  bool steady = false;
+  int cycles_to_steady = -1;         ///< cycles run when the criterion first held
+  int cycles_run = 0;
+  double safe_film_m = 0.0;          ///< 0.00015 mm per mm of bearing diameter
+  bool below_safe_film = false;
+  // Energy balance (outputs.energy_balance): W_driver = ΔE + D_film + W_drift
+  double driver_work_J = 0.0;
+  double film_dissipation_J = 0.0;   ///< −∫ F·ė dt
+  double energy_change_J = 0.0;
+  double energy_residual_J = 0.0;    ///< W_driver − ΔE − D_film
+};
+
+struct Series {
+  std::vector<std::string> names;  ///< "t" first
+  std::vector<std::string> units;
+  std::vector<std::vector<double>> data;
+};
+
+struct RunResult {
+  RunStatus status = RunStatus::ok;
+  std::string message;
+  SolverStats stats;
+  Metrics metrics;
+  std::vector<CycleMetrics> cycles;
+  Series series;
+};
+
+/// Runs a validated scene. Never throws for a case that cannot be integrated.
+RunResult run_scene(const Scene& scene);
+
+}  // namespace lub

@@ -1,0 +1,66 @@
+// What a run reports, by name and unit: the one list behind the run file's /metrics and
+// /solver, lubsim's summary and the sweep's /cases columns, so they cannot disagree.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "lub/io/h5.hpp"
+#include "lub/run/run.hpp"
+
+namespace lub {
+
+/// One scalar a run reports.
+struct ResultField {
+  const char* name;  ///< column / attribute name, unit in the name where it has one
+  const char* unit;  ///< SI unit, CF style ("m", "m s-2", "rad"); "1" for ratios, counts, flags
+  bool integer;      ///< counts and flags
+  double (*get)(const RunResult&);
+  const char* long_name = "";  ///< a description (netCDF `long_name`)
+};
+
+/// Steady-cycle metrics, in column order.
+const std::vector<ResultField>& metric_fields();
+/// Solver statistics and cost, in column order.
+const std::vector<ResultField>& solver_fields();
+
+/// One column of the run file's /cycles (after `cycle`, the cycle number): the one list
+/// behind the file and the Python module's `cycle_*` variables.
+struct CycleField {
+  const char* name;       ///< column name, unit in the name where it has one
+  const char* unit;       ///< CF-style SI unit
+  const char* long_name;  ///< a description (netCDF `long_name`)
+  double (*get)(const CycleMetrics&);
+};
+const std::vector<CycleField>& cycle_fields();
+
+/// Version of the run file's layout, in the root attribute `format`.
+inline constexpr const char* kRunFormat = "lubsim-run-2";
+
+/// Program version and the build's revision.
+std::string program_version();
+std::string build_revision();
+
+/// CF-style unit of a scene key's suffix or a channel unit: "m/s^2" → "m s-2",
+/// "m/s" → "m s-1", "rad/s" → "rad s-1", "kg m^2" → "kg m2", "" → "1"; others unchanged.
+std::string cf_units(const std::string& unit);
+
+/// `long_name` of each channel of a series ("t": "time"), from the scene's
+/// outputs.channels ("eps of joint rod_slider: eccentricity ratio |e|/c").
+std::vector<std::string> channel_long_names(const std::string& scene_json,
+                                            const std::vector<std::string>& names);
+
+/// Writes a series into `group`: one 1-D dataset per channel with `units` and
+/// `long_name`, `t` (first) the dimension scale of every other channel, so xarray
+/// (h5netcdf) indexes the group by time; group attribute `channels`.
+void write_series(h5::Group& group, const Series& series, const std::vector<std::string>& long_names);
+
+/// Writes a run file (lubsim's run.h5): root attributes `scene` (the effective scene
+/// JSON), `program`, `format`, `version`, `revision`, `status`, `message`;
+/// /series/<channel> on the dimension scale /series/t (write_series); /metrics and
+/// /solver attributes; /cycles, a table (one column per quantity, dimension `cycle`).
+/// Writes to PATH.partial and renames, so PATH is never left half-written.
+void write_run_file(const std::string& path, const std::string& scene_text, const std::string& program,
+                    const RunResult& result);
+
+}  // namespace lub

@@ -1,0 +1,231 @@
+// A scene: the mechanism, its effects, the solver settings and what to record, parsed
+// and validated once from JSON into typed values in SI units. See README "Scene format".
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "lub/bearing/contact.hpp"
+#include "lub/bearing/force_laws.hpp"
+#include "lub/common/name_table.hpp"
+#include "lub/formulation/options.hpp"
+#include "lub/integrators/method.hpp"
+#include "lub/io/json_reader.hpp"
+#include "lub/mechanism/driver.hpp"
+#include "lub/mechanism/planar.hpp"
+
+namespace lub {
+
+struct BodySpec {
+  std::string name;
+  double mass_kg = 0.0;
+  double inertia_kg_m2 = 0.0;      ///< about the centre of mass
+  Eigen::Vector2d position_m{0, 0};  ///< initial guess of the centre of mass (global)
+  double angle_rad = 0.0;          ///< initial guess of the orientation
+};
+
+enum class JointType { revolute, translational, ground, lubricated_revolute };
+
+template <>
+struct NameTable<JointType> {
+  static constexpr std::array<std::pair<JointType, std::string_view>, 4> entries{{
+      {JointType::revolute, "revolute"},
+      {JointType::translational, "translational"},
+      {JointType::ground, "ground"},
+      {JointType::lubricated_revolute, "lubricated_revolute"},
+  }};
+};
+
+struct JointSpec {
+  std::string name;
+  JointType type = JointType::revolute;
+  int body_i = kGround;  ///< revolute/translational: first body; lubricated: bearing body
+  int body_j = kGround;  ///< second body; lubricated: journal body; ground joint: the body
+  Eigen::Vector2d point_i_m{0, 0};  ///< joint point in body i's frame (bearing centre)
+  Eigen::Vector2d point_j_m{0, 0};  ///< joint point in body j's frame (journal centre)
+  Eigen::Vector2d axis_i{1, 0};     ///< translational: sliding direction in body i (unit)
+  // Lubricated revolute only.
+  BearingGeometry bearing;
+  double viscosity_Pa_s = 0.0;
+  bool ideal = false;  ///< force_law "ideal": the joint is an ideal revolute
+  ForceLaw law = ForceLaw::pinkus_sternlicht;
+  FiniteBearingOptions finite;  ///< finite_reynolds: cavitation, reynolds_n_theta/_n_z, groove
+  Eigen::Vector2d initial_eccentricity_m{0, 0};  ///< journal centre − bearing centre at t0
+};
+
+/// Prescribes a body's angle: φ(t) = φ0 + ω t (constant_speed), or
+/// φ(t) = φ0 + (ω/Ω) sin(Ω t) (reversing: speed ω cos Ω t changes sign).
+struct DriverSpec {
+  std::string name;
+  DriverType type = DriverType::constant_speed;
+  int body = kGround;
+  double speed_rad_s = 0.0;                 ///< ω
+  double reversal_frequency_rad_s = 0.0;    ///< Ω (reversing only)
+  std::optional<double> initial_angle_rad;  ///< φ0; default: the body's initial angle
+};
+
+struct SolverSpec {
+  Method method = Method::cvode_bdf;
+  /// Relative tolerance. Default 1e-8, as every shipped scene sets (README "Work-precision"):
+  /// at 1e-6 the default formulation's orbit error is 3e-4–1.2e-2 c over the six film laws
+  /// and 0.31 c on the 40 cP contact case, its min-film error up to 4.9e-3; 1e-8 gives
+  /// 2.5e-6–7e-4 c, 3.9e-3 c and ≤ 4.2e-5 for 1.9× the evaluations.
+  double rtol = 1e-8;
+  std::optional<double> atol;  ///< default: rtol × smallest clearance (or × 1e-3 m)
+  double max_step_s = 0.0;     ///< 0: no limit
+  double initial_step_s = 0.0; ///< 0: SUNDIALS' estimate
+  int max_order = 0;           ///< 0: the method's default (Adams 12, BDF 5)
+  double baumgarte_alpha = 5.0;
+  double baumgarte_beta = 5.0;
+  /// Discontinuous force laws (the printed Pinkus–Sternlicht law): `events` locates each
+  /// crossing of ε̇ = 0 by root finding, restarts the integrator on the branch that
+  /// applies and integrates Filippov sliding motion on ε̇ = 0; `none` lets the
+  /// integrator step across the jump (it chatters: kept to show the difference).
+  Switching switching = Switching::events;
+  /// Project positions and velocities onto Φ = 0, Φ̇ = 0 after every step (CVODE's
+  /// projection, cvode_bdf only), on top of Baumgarte: constraint drift at round-off.
+  bool projection = false;
+  /// solver.formulation: partitioned (the default: generalised coordinate partitioning;
+  /// only the mechanism's degrees of freedom are integrated, dependent coordinates solved
+  /// from Φ = 0; no drift, so long runs hold) or "baumgarte" (all coordinates, Baumgarte's
+  /// terms: the paper's method; its drift ends long runs at simulation.drift_limit_m) or
+  /// "ggl" (Gear–Gupta–Leimkuhler index-2 DAE in (q, v, λ, μ), method ida only, its default).
+  Formulation formulation = Formulation::partitioned;
+  /// solver.jacobian (Newton methods: cvode_bdf, arkode_dirk, ida): structured (the
+  /// baumgarte formulation's Jacobian, or the GGL DAE's iteration matrix, from the film
+  /// elements' derivatives and the constraint structure, multibody_jacobian.cpp) or
+  /// "difference_quotients" (SUNDIALS' dense DQ: 2 nq full evaluations per Jacobian, 2 nq
+  /// + 2 na residuals for ida). The partitioned formulation always uses difference
+  /// quotients (2 dof columns). Default: structured for ida (2–5× faster), difference
+  /// quotients otherwise (structured saves the Jacobians' right-hand sides but no clear
+  /// wall time; README "Integration").
+  JacobianKind jacobian = JacobianKind::difference_quotients;
+  long long max_steps = 20'000'000;  ///< budget: internal steps for the whole run
+  double max_wall_time_s = 600.0;    ///< budget: wall time for the whole run
+};
+
+struct SimulationSpec {
+  std::optional<double> duration_s;  ///< fixed end time, or:
+  int max_cycles = 5;                ///< cap on crank cycles
+  std::optional<double> cycle_period_s;  ///< default: 2π/|ω| of the first driver
+  bool stop_when_steady = false;     ///< stop once `metric_cycles` cycles repeat
+  double steady_tolerance = 1e-3;    ///< periodicity (orbit distance / c) below which a cycle repeats
+  int metric_cycles = 2;             ///< metrics over this many last cycles
+  /// ε reaching it ends the run: film_collapse. Default 1 − 1e-5: h = 1e-5 c (5 nm at the
+  /// paper's 0.5 mm), far below any surface roughness, so no physical film is cut off (the
+  /// paper's thinnest, 40 cP, has 1 − ε = 4.3e-4); closer to the wall the film's stiffness
+  /// ∝ 1/(c (1 − ε)) lets Newton iterates leave the domain and the integrator fails (1 cP:
+  /// h → 1e-22 s at 1 − ε = 4.6e-6), where this limit ends the run with a clear status.
+  /// Whether a film is thick enough to be safe is metrics.safe_film_per_diameter's call.
+  double eps_limit = 0.99999;
+  /// Constraint drift max |Φ| [m or rad] beyond which the run ends as solver_failure
+  /// (the answer is no longer the mechanism's). Default: 10 % of the smallest clearance
+  /// when the scene has lubricated joints, none otherwise.
+  std::optional<double> drift_limit_m;
+};
+
+enum class ChannelSource { time, body, joint };
+
+/// What a body channel records: position x, y [m], angle [rad], velocities vx, vy [m/s],
+/// omega [rad/s], accelerations ax, ay [m/s²], alpha [rad/s²] of its centre of mass.
+enum class BodyQuantity { x, y, angle, vx, vy, omega, ax, ay, alpha };
+
+template <>
+struct NameTable<BodyQuantity> {
+  static constexpr std::array<std::pair<BodyQuantity, std::string_view>, 9> entries{{
+      {BodyQuantity::x, "x"},
+      {BodyQuantity::y, "y"},
+      {BodyQuantity::angle, "angle"},
+      {BodyQuantity::vx, "vx"},
+      {BodyQuantity::vy, "vy"},
+      {BodyQuantity::omega, "omega"},
+      {BodyQuantity::ax, "ax"},
+      {BodyQuantity::ay, "ay"},
+      {BodyQuantity::alpha, "alpha"},
+  }};
+};
+
+/// What a joint channel records: the force it transmits (reaction, reaction_x, reaction_y)
+/// or, lubricated joints only, the film (is_film_quantity).
+enum class JointQuantity {
+  reaction, reaction_x, reaction_y, e_x, e_y, eps, eps_dot, gamma, gamma_dot, wedge, h_min,
+  film_radial, film_tangential,
+};
+
+template <>
+struct NameTable<JointQuantity> {
+  static constexpr std::array<std::pair<JointQuantity, std::string_view>, 13> entries{{
+      {JointQuantity::reaction, "reaction"},
+      {JointQuantity::reaction_x, "reaction_x"},
+      {JointQuantity::reaction_y, "reaction_y"},
+      {JointQuantity::e_x, "e_x"},
+      {JointQuantity::e_y, "e_y"},
+      {JointQuantity::eps, "eps"},
+      {JointQuantity::eps_dot, "eps_dot"},
+      {JointQuantity::gamma, "gamma"},
+      {JointQuantity::gamma_dot, "gamma_dot"},
+      {JointQuantity::wedge, "wedge"},
+      {JointQuantity::h_min, "h_min"},
+      {JointQuantity::film_radial, "film_radial"},
+      {JointQuantity::film_tangential, "film_tangential"},
+  }};
+};
+
+struct ChannelSpec {
+  std::string name;
+  ChannelSource source = ChannelSource::time;
+  int index = -1;  ///< body or joint index
+  BodyQuantity body_quantity = BodyQuantity::x;             ///< source body
+  JointQuantity joint_quantity = JointQuantity::reaction;   ///< source joint
+};
+
+struct OutputSpec {
+  double sample_interval_s = 1e-5;
+  std::vector<ChannelSpec> channels;  ///< empty: no series
+  bool energy_balance = false;        ///< integrate driver and film work (quadratures)
+  int last_cycles = 0;                ///< keep only the last N complete cycles (0: all)
+};
+
+struct MetricSpec {
+  int joint = -1;  ///< joint whose film/reaction is measured (-1: none)
+  int body = -1;   ///< body whose peak acceleration is measured (-1: none)
+  double safe_film_per_diameter = 0.00015e-3 / 1e-3;  ///< 0.00015 mm per mm [ESDU 84031]
+};
+
+struct Scene {
+  std::string description;
+  std::vector<BodySpec> bodies;
+  std::vector<JointSpec> joints;
+  std::vector<DriverSpec> drivers;
+  std::optional<Eigen::Vector2d> gravity_m_s2;
+  std::optional<ContactSpec> contact;  ///< effects.contact: dry contact when the film collapses
+  SolverSpec solver;
+  SimulationSpec simulation;
+  OutputSpec output;
+  MetricSpec metrics;
+
+  int body_index(const std::string& name) const;  ///< kGround for "ground", -2 if unknown
+  int joint_index(const std::string& name) const;
+  /// Smallest radial clearance of the lubricated joints [m], or nullopt.
+  std::optional<double> min_clearance_m() const;
+  /// Cycle period [s] or nullopt (no driver and none given).
+  std::optional<double> cycle_period_s() const;
+};
+
+/// Parses and validates a scene. Throws InputError naming the JSON path, value and rule.
+Scene parse_scene(const nlohmann::json& doc);
+
+/// True for the joint quantities only a lubricated joint has (e_x, eps, h_min, ...).
+bool is_film_quantity(JointQuantity q);
+/// SI unit of a channel ("s", "m", "rad", "N", "1", ...).
+std::string channel_unit(const ChannelSpec& c);
+
+}  // namespace lub

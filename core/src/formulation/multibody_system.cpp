@@ -1,0 +1,276 @@
+#include "lub/formulation/multibody_system.hpp"
+#include "lub/mechanism/film_element.hpp"
+
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "common/small_dense.hpp"
+
+namespace lub {
+
+MultibodySystem::MultibodySystem(const Model& m, Workspace& ws, double eps_limit, bool energy, Formulation f)
+    : m_(m), ws_(ws), eps_limit_(eps_limit), energy_(energy), form_(f),
+      nz_(f == Formulation::partitioned ? m.nq - m.nc : m.nq) {
+  check_workspace(m, ws);
+  acc_.assign(m.nq, 0.0);
+  switch_acc_.assign(m.nq, 0.0);
+  scratch_.assign(2 * m.nq, 0.0);
+  int next_slot = m.nc;
+  for (const FilmElement& film : m.films) slot_of_switching_.push_back(film.switching ? next_slot++ : -1);
+  for (Recovery* rc : {&integ_rec_, &obs_rec_}) {
+    rc->qv.assign(2 * m.nq, 0.0);
+    if (f != Formulation::partitioned) continue;
+    rc->lu.assign(static_cast<size_t>(m.nc) * m.nc, 0.0);
+    rc->block = rc->lu;
+    rc->piv.assign(static_cast<size_t>(m.nc), 0);
+    rc->last_y.assign(static_cast<size_t>(2 * nz_), 0.0);
+  }
+  if (f == Formulation::partitioned) r_.assign(static_cast<size_t>(m.nc), 0.0);
+}
+
+void MultibodySystem::partition(double t, const double* qv) {
+  for (Recovery* rc : {&integ_rec_, &obs_rec_}) {
+    std::copy(qv, qv + 2 * m_.nq, rc->qv.begin());
+    rc->have_last = false;
+    rc->lu_valid = false;
+  }
+  if (form_ != Formulation::partitioned) return;
+  ind_.clear();
+  dep_.clear();
+  if (m_.nc == 0) {
+    for (int i = 0; i < m_.nq; ++i) ind_.push_back(i);
+    return;
+  }
+  constraint_residual(m_, ws_, t, qv, nullptr);
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(ws_.Phi_q.topRows(m_.nc));
+  if (lu.rank() < m_.nc)
+    throw std::runtime_error("coordinate partitioning: the constraint Jacobian is rank deficient");
+  const auto& perm = lu.permutationQ().indices();
+  for (int i = 0; i < m_.nq; ++i) (i < m_.nc ? dep_ : ind_).push_back(perm(i));
+  std::sort(dep_.begin(), dep_.end());
+  std::sort(ind_.begin(), ind_.end());
+  degraded_ = false;
+}
+
+void MultibodySystem::factor_dependent_block(Recovery& rc) {
+  // The block already factored (e.g. the integrator's difference quotients that perturb
+  // only velocities): nothing to do, the factors are exact for it.
+  const int nc = m_.nc;
+  bool same = rc.lu_valid;
+  for (int j = 0; j < nc; ++j)
+    for (int i = 0; i < nc; ++i) {
+      const double a = ws_.Phi_q(i, dep_[j]);
+      double& b = rc.block[static_cast<size_t>(j) * nc + i];
+      if (a != b) same = false, b = a;
+    }
+  if (same) return;
+  std::copy(rc.block.begin(), rc.block.end(), rc.lu.begin());
+  dense::lu(rc.lu.data(), nc, nc, rc.piv.data());
+}
+
+int MultibodySystem::expand(double t, const double* y, double* qv, Context who) {
+  const int nq = m_.nq;
+  if (form_ != Formulation::partitioned) {
+    std::copy(y, y + 2 * nq, qv);
+    return 0;
+  }
+  Recovery& rc = who == Context::integrator ? integ_rec_ : obs_rec_;
+  const int nd = static_cast<int>(ind_.size());
+  if (who == Context::observer) {
+    // Start from the integrator's last recovered state with fresh factors, every time:
+    // an observation then depends on (t, y) and the integration alone, not on which
+    // other observations were made before it.
+    std::copy(integ_rec_.qv.begin(), integ_rec_.qv.end(), rc.qv.begin());
+    rc.lu_valid = false;
+    rc.have_last = false;
+  }
+  // The integrator often asks again for the state it just had (roots, quadratures,
+  // observers at a step end): reuse it.
+  if (rc.have_last && t == rc.last_t && std::equal(y, y + 2 * nd, rc.last_y.begin())) {
+    std::copy(rc.qv.begin(), rc.qv.end(), qv);
+    return 0;
+  }
+  rc.have_last = false;
+  // Warm start from the last recovered state; the independent coordinates from y.
+  double* q = rc.qv.data();
+  double* v = rc.qv.data() + nq;
+  for (int i = 0; i < nd; ++i) q[ind_[i]] = y[i];
+  if (m_.nc > 0) {
+    const double tol = 1e-13;  // m or rad: far below any clearance and DQ perturbation
+    // Chord Newton: the LU of the dependent block from the last evaluation serves as
+    // long as it converges fast (the configuration moved little); it is refreshed at
+    // the solution for the velocities, and whenever the iteration stalls.
+    const int nc = m_.nc;
+    const double* Phi = ws_.Phi.data();
+    bool converged = false;
+    double last = std::numeric_limits<double>::infinity();
+    for (int it = 0; it < 30; ++it) {
+      constraint_residual(m_, ws_, t, q, nullptr);
+      double res = 0.0;
+      for (int i = 0; i < nc; ++i) {
+        if (!std::isfinite(Phi[i])) return 1;
+        res = std::max(res, std::abs(Phi[i]));
+      }
+      if (res <= tol) {
+        converged = true;
+        break;
+      }
+      if (!rc.lu_valid || res > 0.25 * last) {
+        factor_dependent_block(rc);
+        rc.lu_valid = true;
+      }
+      last = res;
+      std::copy(Phi, Phi + nc, r_.begin());
+      dense::lu_solve(rc.lu.data(), nc, nc, rc.piv.data(), r_.data());
+      for (int i = 0; i < nc; ++i) q[dep_[i]] -= r_[i];
+    }
+    if (!converged) {
+      rc.lu_valid = false;
+      return 1;
+    }
+    // Velocities: Φ_q,dep v_dep = −(Φ_q,ind ż + Φ_t), with Φ_t = Φ̇ at v = 0. Exact only
+    // with the dependent block at the solution: factor it (this is also the next chord).
+    factor_dependent_block(rc);
+    rc.lu_valid = true;
+    if (who == Context::integrator) {
+      double dmin = std::numeric_limits<double>::infinity(), dmax = 0.0;
+      for (int i = 0; i < nc; ++i) {
+        const double d = std::abs(rc.lu[static_cast<size_t>(i) * nc + i]);
+        dmin = std::min(dmin, d);
+        dmax = std::max(dmax, d);
+      }
+      degraded_ = dmin < 1e-4 * dmax;
+    }
+    std::copy(ws_.Phi_dot.data(), ws_.Phi_dot.data() + nc, r_.begin());
+    for (int i = 0; i < nd; ++i) {
+      v[ind_[i]] = y[nd + i];
+      for (int r = 0; r < nc; ++r) r_[r] += ws_.Phi_q(r, ind_[i]) * y[nd + i];
+    }
+    dense::lu_solve(rc.lu.data(), nc, nc, rc.piv.data(), r_.data());
+    for (int i = 0; i < nc; ++i) v[dep_[i]] = -r_[i];
+  } else {
+    for (int i = 0; i < nd; ++i) v[ind_[i]] = y[nd + i];
+  }
+  std::copy(rc.qv.begin(), rc.qv.end(), qv);
+  rc.last_t = t;
+  std::copy(y, y + 2 * nd, rc.last_y.begin());
+  rc.have_last = true;
+  return 0;
+}
+
+void MultibodySystem::reduce(const double* qv, double* y) const {
+  if (form_ != Formulation::partitioned) {
+    std::copy(qv, qv + 2 * m_.nq, y);
+    return;
+  }
+  const int nd = static_cast<int>(ind_.size());
+  for (int i = 0; i < nd; ++i) {
+    y[i] = qv[ind_[i]];
+    y[nd + i] = qv[m_.nq + ind_[i]];
+  }
+}
+
+int MultibodySystem::rhs(double t, const double* y, double* ydot) {
+  const int nq = m_.nq;
+  if (form_ != Formulation::partitioned) {
+    std::copy(y + nq, y + 2 * nq, ydot);
+    const int rc = evaluate(m_, ws_, t, y, y + nq, ydot + nq);
+    if (rc < 0) throw std::runtime_error("the constraint matrix Phi_q M^-1 Phi_q^T is singular");
+    return rc;
+  }
+  if (expand(t, y, scratch_.data()) != 0) return 1;
+  const int rc = evaluate(m_, ws_, t, scratch_.data(), scratch_.data() + nq, acc_.data());
+  if (rc < 0) throw std::runtime_error("the constraint matrix Phi_q M^-1 Phi_q^T is singular");
+  if (rc != 0) return rc;
+  const int nd = static_cast<int>(ind_.size());
+  for (int i = 0; i < nd; ++i) {
+    ydot[i] = y[nd + i];
+    ydot[nd + i] = acc_[ind_[i]];
+  }
+  return 0;
+}
+
+int MultibodySystem::quadrature_rhs(double t, const double* y, double* qdot) {
+  const int nq = m_.nq;
+  if (expand(t, y, scratch_.data()) != 0) return 1;
+  const int rc = evaluate(m_, ws_, t, scratch_.data(), scratch_.data() + nq, acc_.data());
+  if (rc != 0) return rc;
+  qdot[0] = driver_power(m_, ws_, scratch_.data() + nq);
+  qdot[1] = film_power(ws_);
+  return 0;
+}
+
+int MultibodySystem::project(double t, const double* y, double* corr, double* err) {
+  if (form_ != Formulation::baumgarte) return -1;
+  std::copy(y, y + 2 * m_.nq, scratch_.begin());
+  return project_state(m_, ws_, t, scratch_.data(), scratch_.data() + m_.nq, corr, corr + m_.nq,
+                       projection_tol_, err);
+}
+
+int MultibodySystem::num_algebraic() const {
+  return form_ == Formulation::ggl ? 2 * (m_.nc + m_.n_switching) : 0;
+}
+
+int MultibodySystem::residual(double t, const double* Y, const double* Yp, double* F) {
+  const int nq = m_.nq, na = m_.nc + m_.n_switching;
+  const double* q = Y;
+  const double* v = Y + nq;
+  const double* lam = Y + 2 * nq;
+  const double* mu = lam + na;
+  // g, Φ, Φ_q and Φ̇ at (q, v), with the sliding rows of sliding films: no solve.
+  if (const int rc = evaluate_forces(m_, ws_, t, q, v); rc != 0) return rc;
+  for (int i = 0; i < nq; ++i) {
+    F[i] = Yp[i] - v[i];
+    F[nq + i] = m_.mass_diag(i) * Yp[nq + i] - ws_.g(i);
+  }
+  double* F_lam = F + 2 * nq;
+  double* F_mu = F_lam + na;
+  // A slot without an active row (a switching film not sliding): λ = μ = 0.
+  std::copy(lam, lam + na, F_lam);
+  std::copy(mu, mu + na, F_mu);
+  auto add_row = [&](int row, int s) {
+    for (int i = 0; i < nq; ++i) {
+      const double a = ws_.Phi_q(row, i);
+      F[i] += a * mu[s];
+      F[nq + i] += a * lam[s];
+    }
+    F_lam[s] = ws_.Phi(row);
+    F_mu[s] = ws_.Phi_dot(row);
+  };
+  for (int row = 0; row < m_.nc; ++row) add_row(row, row);
+  for (size_t k = 0; k < m_.films.size(); ++k)
+    if (ws_.film_mode[k] == FilmMode::sliding) add_row(ws_.slide_row[k], slot_of_switching_[k]);
+  return 0;
+}
+
+int MultibodySystem::consistent_state(double t, const double* y, double* Y, double* Yp) {
+  const int nq = m_.nq, na = m_.nc + m_.n_switching;
+  std::copy(y, y + 2 * nq, Y);
+  const int rc = evaluate(m_, ws_, t, y, y + nq, acc_.data());
+  if (rc < 0) throw std::runtime_error("the constraint matrix Phi_q M^-1 Phi_q^T is singular");
+  if (rc != 0) return rc;
+  // On the constraint manifold the index-1 multipliers are the DAE's; μ = 0.
+  std::fill(Y + 2 * nq, Y + 2 * nq + 2 * na, 0.0);
+  for (int row = 0; row < m_.nc; ++row) Y[2 * nq + row] = ws_.lambda(row);
+  for (size_t k = 0; k < m_.films.size(); ++k)
+    if (ws_.film_mode[k] == FilmMode::sliding) Y[2 * nq + slot_of_switching_[k]] = ws_.lambda(ws_.slide_row[k]);
+  std::copy(y + nq, y + 2 * nq, Yp);
+  std::copy(acc_.begin(), acc_.end(), Yp + nq);
+  std::fill(Yp + 2 * nq, Yp + 2 * nq + 2 * na, 0.0);
+  return 0;
+}
+
+void MultibodySystem::algebraic_tolerances(double /*rtol*/, double /*atol*/, double* out) const {
+  const int na = m_.nc + m_.n_switching;
+  // The multipliers carry round-off amplified by 1/h (index 2: λ ~ M Φ̇/h, μ ~ Φ/h), so a
+  // Newton test on them fails at small steps although (q, v) have converged. Their
+  // accuracy shows in (q, v) — M v' = g − Φ_qᵀλ, q' = v − Φ_qᵀμ — which IDA tests; the
+  // multipliers themselves are left out of the test by a weight of 1e-20.
+  std::fill(out, out + 2 * na, 1e20);
+}
+
+}  // namespace lub

@@ -1,0 +1,185 @@
+// Callback plumbing shared by the SUNDIALS adapters (internal to lubcore): no C++
+// exception crosses into SUNDIALS; callbacks catch, record the message and return −1.
+#pragma once
+
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sundials/sundials_linearsolver.h>
+#include <sundials/sundials_nonlinearsolver.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <exception>
+#include <stdexcept>
+#include <memory>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "lub/integrators/integrator.hpp"
+
+namespace lub::detail {
+
+// --- Ownership of SUNDIALS handles ------------------------------------------------------
+// Each handle an adapter creates is held by an Owned<> member from the moment it exists,
+// so it is freed whether the adapter's constructor completes or throws half-way (a failed
+// Set call, an inconsistent initial state). Members are destroyed in reverse declaration
+// order: declare the context first and the integrator memory last (the memory refers to
+// the solvers and vectors, everything to the context).
+
+/// A unique_ptr to a SUNDIALS handle type H (a pointer type), freed by `Free`, that reads
+/// as the raw handle where SUNDIALS' C API wants one.
+template <class H, class Free>
+class Owned {
+ public:
+  Owned() = default;
+  Owned& operator=(H raw) {
+    p_.reset(raw);
+    return *this;
+  }
+  operator H() const { return p_.get(); }  // NOLINT: passes as the handle to the C API
+  H operator->() const { return p_.get(); }
+  H get() const { return p_.get(); }
+
+ private:
+  std::unique_ptr<std::remove_pointer_t<H>, Free> p_;
+};
+
+struct FreeContext {
+  void operator()(SUNContext c) const { SUNContext_Free(&c); }
+};
+struct FreeVector {
+  void operator()(N_Vector v) const { N_VDestroy(v); }
+};
+struct FreeMatrix {
+  void operator()(SUNMatrix a) const { SUNMatDestroy(a); }
+};
+struct FreeLinearSolver {
+  void operator()(SUNLinearSolver s) const { SUNLinSolFree(s); }
+};
+struct FreeNonlinearSolver {
+  void operator()(SUNNonlinearSolver s) const { SUNNonlinSolFree(s); }
+};
+using OwnedContext = Owned<SUNContext, FreeContext>;
+using OwnedVector = Owned<N_Vector, FreeVector>;
+using OwnedMatrix = Owned<SUNMatrix, FreeMatrix>;
+using OwnedLinearSolver = Owned<SUNLinearSolver, FreeLinearSolver>;
+using OwnedNonlinearSolver = Owned<SUNNonlinearSolver, FreeNonlinearSolver>;
+
+/// A new SUNDIALS context (throws if it cannot be created).
+inline SUNContext new_context() {
+  SUNContext ctx = nullptr;
+  if (SUNContext_Create(nullptr, &ctx) != 0) throw std::runtime_error("SUNContext_Create failed");
+  return ctx;
+}
+
+struct CallbackData {
+  OdeSystem* sys = nullptr;
+  int n = 0;         ///< ODE size (quadratures appended after it by ARKODE)
+  int nquad = 0;     ///< quadratures integrated as extra states (ARKODE)
+  std::string error; ///< SUNDIALS' first error text, or an exception's
+  std::vector<double> jac;  ///< n × n scratch for the system's Jacobian when nquad > 0
+};
+
+template <class F>
+int guarded(CallbackData* d, const char* where, F&& f) {
+  try {
+    return f();
+  } catch (const std::exception& e) {
+    d->error = std::string(where) + ": " + e.what();
+  } catch (...) {
+    d->error = std::string(where) + ": unknown exception";
+  }
+  return -1;
+}
+
+inline int rhs_cb(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
+  auto* d = static_cast<CallbackData*>(user);
+  return guarded(d, "right-hand side", [&] {
+    double* yy = N_VGetArrayPointer(y);
+    double* yd = N_VGetArrayPointer(ydot);
+    const int rc = d->sys->rhs(t, yy, yd);
+    if (rc != 0 || d->nquad == 0) return rc;
+    return d->sys->quadrature_rhs(t, yy, yd + d->n);
+  });
+}
+
+inline int root_cb(sunrealtype t, N_Vector y, sunrealtype* g, void* user) {
+  auto* d = static_cast<CallbackData*>(user);
+  return guarded(d, "root function", [&] { return d->sys->roots(t, N_VGetArrayPointer(y), g); });
+}
+
+inline int quad_cb(sunrealtype t, N_Vector y, N_Vector qdot, void* user) {
+  auto* d = static_cast<CallbackData*>(user);
+  return guarded(d, "quadrature", [&] {
+    return d->sys->quadrature_rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(qdot));
+  });
+}
+
+inline int proj_cb(sunrealtype t, N_Vector y, N_Vector corr, sunrealtype /*eps*/, N_Vector err, void* user) {
+  auto* d = static_cast<CallbackData*>(user);
+  return guarded(d, "projection", [&] {
+    return d->sys->project(t, N_VGetArrayPointer(y), N_VGetArrayPointer(corr),
+                           err ? N_VGetArrayPointer(err) : nullptr);
+  });
+}
+
+// The system's Jacobian into SUNDIALS' dense matrix (column-major, leading dimension
+// n + nquad). Quadratures integrated as states (ARKODE) feed back into nothing: their
+// columns are zero, and so are their rows (∂q̇/∂y is left out: the Newton iteration then
+// converges the quadratures one iteration behind the states they depend on).
+inline int jac_cb(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void* user, N_Vector, N_Vector,
+                  N_Vector) {
+  auto* d = static_cast<CallbackData*>(user);
+  return guarded(d, "Jacobian", [&] {
+    double* out = SUNDenseMatrix_Data(J);
+    const int n = d->n;
+    int rc = 0;
+    if (d->nquad == 0) {
+      rc = d->sys->jacobian(t, N_VGetArrayPointer(y), N_VGetArrayPointer(fy), out);
+    } else {
+      rc = d->sys->jacobian(t, N_VGetArrayPointer(y), N_VGetArrayPointer(fy), d->jac.data());
+      if (rc == 0) {
+        const int ld = n + d->nquad;
+        std::fill(out, out + static_cast<size_t>(ld) * ld, 0.0);
+        for (int c = 0; c < n; ++c)
+          std::copy(d->jac.data() + static_cast<size_t>(c) * n, d->jac.data() + static_cast<size_t>(c + 1) * n,
+                    out + static_cast<size_t>(c) * ld);
+      }
+    }
+    if (rc == -1 && d->error.empty()) d->error = "Jacobian: the system provides none (use difference quotients)";
+    return rc;
+  });
+}
+
+inline void err_cb(int /*code*/, const char* module, const char* function, char* msg, void* user) {
+  auto* d = static_cast<CallbackData*>(user);
+  if (!d->error.empty()) return;  // keep the first (root-cause) message
+  d->error = std::string(module ? module : "") + "/" + (function ? function : "") + ": " + (msg ? msg : "");
+}
+
+/// Adds the counters of `base` (those accumulated before the last restart: SUNDIALS
+/// resets its counters at every reinit) to `s`.
+inline void add_counters(IntegratorStats& s, const IntegratorStats& base) {
+  s.steps += base.steps;
+  s.rhs_evals += base.rhs_evals;
+  s.err_test_fails += base.err_test_fails;
+  s.nonlin_iters += base.nonlin_iters;
+  s.nonlin_conv_fails += base.nonlin_conv_fails;
+  s.root_evals += base.root_evals;
+  s.jac_evals += base.jac_evals;
+  s.rhs_evals_jac += base.rhs_evals_jac;
+  s.lin_setups += base.lin_setups;
+}
+
+}  // namespace lub::detail
+
+namespace lub {
+std::unique_ptr<Integrator> make_cvode_integrator(const IntegratorSettings&, OdeSystem&, double t0,
+                                                  const std::vector<double>& y0);
+std::unique_ptr<Integrator> make_arkode_integrator(const IntegratorSettings&, OdeSystem&, double t0,
+                                                   const std::vector<double>& y0);
+std::unique_ptr<Integrator> make_ida_integrator(const IntegratorSettings&, OdeSystem&, double t0,
+                                                const std::vector<double>& y0);
+}  // namespace lub

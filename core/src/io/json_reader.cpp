@@ -1,0 +1,318 @@
+#include "lub/io/json_reader.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+namespace lub {
+
+using nlohmann::json;
+
+namespace {
+
+constexpr size_t kBriefChars = 80;
+
+std::string quoted(const std::string& s) {
+  return json(s.size() > kBriefChars ? s.substr(0, kBriefChars) : s)
+      .dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+// Appends a compact rendering of `v`, stopping once `out` is longer than kBriefChars: a
+// huge or deeply nested value costs O(kBriefChars) time and stack, never a full dump.
+void render(const json& v, std::string& out) {
+  if (out.size() > kBriefChars) return;
+  if (v.is_object() || v.is_array()) {
+    const bool obj = v.is_object();
+    out += obj ? '{' : '[';
+    bool first = true;
+    for (auto it = v.begin(); it != v.end() && out.size() <= kBriefChars; ++it) {
+      if (!first) out += ',';
+      first = false;
+      if (obj) out += quoted(it.key()) + ':';
+      render(*it, out);
+    }
+    out += obj ? '}' : ']';
+  } else if (v.is_string()) {
+    out += quoted(v.get_ref<const std::string&>());
+  } else {
+    out += v.dump();
+  }
+}
+
+}  // namespace
+
+std::string brief(const json& value) {
+  std::string s;
+  render(value, s);
+  if (s.size() > kBriefChars) s = s.substr(0, kBriefChars - 3) + "...";
+  return s;
+}
+
+void fail(const std::string& path, const json& value, const std::string& rule) {
+  throw InputError(path + " = " + brief(value) + ": " + rule);
+}
+
+namespace {
+[[noreturn]] void fail_missing(const std::string& path, const std::string& rule) {
+  throw InputError(path + " is missing: " + rule);
+}
+std::string type_name(const json& v) { return v.type_name(); }
+}  // namespace
+
+ObjectReader::ObjectReader(const json& object, std::string path)
+    : object_(object), path_(std::move(path)) {
+  if (!object_.is_object()) fail(path_.empty() ? "(document)" : path_, object_, "must be a JSON object");
+}
+
+std::string ObjectReader::child(const std::string& key) const {
+  return path_.empty() ? key : path_ + "." + key;
+}
+
+bool ObjectReader::has(const std::string& key) const { return object_.contains(key); }
+
+const json& ObjectReader::raw(const std::string& key) {
+  auto it = object_.find(key);
+  if (it == object_.end()) fail_missing(child(key), "required");
+  read_.insert(key);
+  return *it;
+}
+
+const json* ObjectReader::raw_optional(const std::string& key) {
+  auto it = object_.find(key);
+  if (it == object_.end()) return nullptr;
+  read_.insert(key);
+  return &*it;
+}
+
+std::string ObjectReader::string(const std::string& key) {
+  const json& v = raw(key);
+  if (!v.is_string()) fail(child(key), v, "must be a string, not " + type_name(v));
+  return v.get<std::string>();
+}
+
+std::string ObjectReader::string_or(const std::string& key, const std::string& fallback) {
+  if (!has(key)) return fallback;
+  return string(key);
+}
+
+std::string ObjectReader::choice(const std::string& key, const std::vector<std::string>& choices,
+                                 const std::optional<std::string>& fallback) {
+  if (!has(key) && fallback) return *fallback;
+  const std::string s = string(key);
+  for (const auto& c : choices)
+    if (c == s) return s;
+  std::string list;
+  for (const auto& c : choices) list += (list.empty() ? "" : ", ") + c;
+  fail(child(key), raw(key), "must be one of " + list);
+}
+
+bool ObjectReader::boolean_or(const std::string& key, bool fallback) {
+  const json* v = raw_optional(key);
+  if (!v) return fallback;
+  if (!v->is_boolean()) fail(child(key), *v, "must be true or false");
+  return v->get<bool>();
+}
+
+double ObjectReader::number(const std::string& key, const std::function<bool(double)>& rule,
+                            const std::string& rule_text) {
+  const json& v = raw(key);
+  if (!v.is_number()) fail(child(key), v, "must be a number, not " + type_name(v));
+  const double x = v.get<double>();
+  if (!std::isfinite(x)) fail(child(key), v, "must be finite");
+  if (rule && !rule(x)) fail(child(key), v, rule_text);
+  return x;
+}
+
+double ObjectReader::number_or(const std::string& key, double fallback,
+                               const std::function<bool(double)>& rule,
+                               const std::string& rule_text) {
+  if (!has(key)) return fallback;
+  return number(key, rule, rule_text);
+}
+
+std::optional<double> ObjectReader::number_optional(const std::string& key,
+                                                    const std::function<bool(double)>& rule,
+                                                    const std::string& rule_text) {
+  if (!has(key)) return std::nullopt;
+  return number(key, rule, rule_text);
+}
+
+long long ObjectReader::integer(const std::string& key, long long min, long long max) {
+  const json& v = raw(key);
+  // An integer, or a float with an integral value ("5.0", "1e6"); unsigned values beyond
+  // long long and floats beyond 2^53 are out of every range we accept.
+  bool ok = false;
+  long long x = 0;
+  if (v.is_number_unsigned()) {
+    ok = max >= 0 && v.get<unsigned long long>() <= static_cast<unsigned long long>(max);
+    if (ok) x = static_cast<long long>(v.get<unsigned long long>());
+  } else if (v.is_number_integer()) {
+    ok = true;
+    x = v.get<long long>();
+  } else if (v.is_number_float()) {
+    const double d = v.get<double>();
+    ok = std::isfinite(d) && std::floor(d) == d && std::fabs(d) < 9e15;
+    if (ok) x = static_cast<long long>(d);
+  }
+  if (!ok || x < min || x > max) {
+    std::ostringstream rule;
+    rule << "must be an integer in [" << min << ", " << max << "]";
+    fail(child(key), v, rule.str());
+  }
+  return x;
+}
+
+long long ObjectReader::integer_or(const std::string& key, long long fallback, long long min,
+                                   long long max) {
+  if (!has(key)) return fallback;
+  return integer(key, min, max);
+}
+
+Eigen::Vector2d ObjectReader::vec2(const std::string& key) {
+  const json& v = raw(key);
+  if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number())
+    fail(child(key), v, "must be an array of two numbers [x, y]");
+  Eigen::Vector2d out(v[0].get<double>(), v[1].get<double>());
+  if (!std::isfinite(out.x()) || !std::isfinite(out.y())) fail(child(key), v, "must be finite");
+  return out;
+}
+
+Eigen::Vector2d ObjectReader::vec2_or(const std::string& key, const Eigen::Vector2d& fallback) {
+  if (!has(key)) return fallback;
+  return vec2(key);
+}
+
+void ObjectReader::finish() const {
+  for (auto it = object_.begin(); it != object_.end(); ++it) {
+    if (!read_.count(it.key()))
+      fail(child(it.key()), it.value(), "unknown key (check the spelling; see the README)");
+  }
+}
+
+const json& require_array(const json& value, const std::string& path) {
+  if (!value.is_array()) fail(path, value, "must be an array");
+  return value;
+}
+
+// --- JSON files ----------------------------------------------------------------------
+
+namespace {
+
+// Refuses a key that appears twice in one object (nlohmann-json would silently keep the
+// last one: `"mass_kg": 1, "mass_kg": -1` must not pass as a typo would not). Tracks the
+// path of the current value while the parser reports its events.
+class DuplicateKeyCheck {
+ public:
+  explicit DuplicateKeyCheck(std::string origin) : origin_(std::move(origin)) {}
+  bool operator()(json::parse_event_t event, const json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+      case json::parse_event_t::array_start:
+        frames_.push_back({event == json::parse_event_t::array_start, 0, {}, {}});
+        break;
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        frames_.pop_back();
+        element_done();
+        break;
+      case json::parse_event_t::key: {
+        Frame& f = frames_.back();  // an object; the event's value is the key
+        f.key = parsed.get<std::string>();
+        if (!f.keys.insert(f.key).second)
+          throw InputError(origin_ + ": " + path() + ": duplicate key (a key may appear only once in an object)");
+        break;
+      }
+      case json::parse_event_t::value:
+        element_done();
+        break;
+    }
+    return true;
+  }
+
+ private:
+  struct Frame {
+    bool array = false;
+    size_t index = 0;
+    std::string key;
+    std::set<std::string> keys;
+  };
+  void element_done() {
+    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
+  }
+  std::string path() const {
+    std::string p;
+    for (const Frame& f : frames_) {
+      if (f.array)
+        p += "[" + std::to_string(f.index) + "]";
+      else
+        p += (p.empty() ? "" : ".") + f.key;
+    }
+    return p;
+  }
+  std::string origin_;
+  std::vector<Frame> frames_;
+};
+
+}  // namespace
+
+json parse_json_text(const std::string& text, const std::string& origin) {
+  DuplicateKeyCheck check(origin);
+  const json::parser_callback_t cb = [&check](int /*depth*/, json::parse_event_t event, json& parsed) {
+    return check(event, parsed);
+  };
+  try {
+    return json::parse(text, cb);
+  } catch (const json::parse_error& e) {
+    throw InputError(origin + ": not valid JSON: " + e.what());
+  } catch (const json::exception& e) {  // e.g. out_of_range.406: a number overflows a double
+    throw InputError(origin + ": not valid JSON for a scene: " + e.what());
+  }
+}
+
+json read_json_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open the file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in.good() && !in.eof()) throw InputError(path + ": cannot read the file");
+  return parse_json_text(text.str(), path);
+}
+
+void apply_override(json& doc, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError("--set " + assignment + ": must be POINTER=VALUE, e.g. /joints/3/viscosity_Pa_s=0.1");
+  const std::string ptr_text = assignment.substr(0, eq);
+  const std::string value_text = assignment.substr(eq + 1);
+  json::json_pointer ptr;
+  try {
+    ptr = json::json_pointer(ptr_text);
+  } catch (const json::exception& e) {
+    throw InputError("--set " + assignment + ": " + ptr_text + " is not a JSON Pointer (RFC 6901): " + e.what());
+  }
+  if (ptr.empty()) throw InputError("--set " + assignment + ": the pointer must not be empty");
+  json value;
+  try {
+    value = json::parse(value_text);
+  } catch (const json::parse_error&) {
+    value = value_text;  // a bare word is a string
+  } catch (const json::exception& e) {
+    throw InputError("--set " + assignment + ": " + value_text + " is not a usable JSON value: " + e.what());
+  }
+  try {
+    if (!doc.contains(ptr)) {
+      const json::json_pointer parent = ptr.parent_pointer();
+      if (!doc.contains(parent) || !doc.at(parent).is_object())
+        throw InputError("--set " + assignment + ": " + ptr_text +
+                         " names no value of the scene, and its parent is not an object");
+    }
+    doc[ptr] = value;
+  } catch (const json::exception& e) {  // e.g. "/joints//x": an empty token on an array
+    throw InputError("--set " + assignment + ": " + ptr_text + " names no value of the scene: " + e.what());
+  }
+}
+
+}  // namespace lub

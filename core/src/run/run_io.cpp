@@ -1,0 +1,237 @@
+#include "lub/run/run_io.hpp"
+
+#include <cstdio>
+#include <map>
+#include <stdexcept>
+#include <utility>
+
+#include <nlohmann/json.hpp>
+
+#ifndef LUB_VERSION
+#define LUB_VERSION "unknown"
+#endif
+#ifndef LUB_GIT_REVISION
+#define LUB_GIT_REVISION "unknown"
+#endif
+
+namespace lub {
+
+const std::vector<ResultField>& metric_fields() {
+  static const std::vector<ResultField> f = {
+      {"min_film_thickness_m", "m", false, [](const RunResult& r) { return r.metrics.min_film_thickness_m; },
+       "minimum film thickness h = c (1 - eps) over the metric cycles"},
+      {"crank_angle_at_min_film_rad", "rad", false, [](const RunResult& r) { return r.metrics.angle_at_min_film_rad; },
+       "crank angle at the minimum film thickness, in [0, 2 pi)"},
+      {"max_eps", "1", false, [](const RunResult& r) { return r.metrics.max_eps; },
+       "largest eccentricity ratio |e|/c over the metric cycles"},
+      {"peak_reaction_N", "N", false, [](const RunResult& r) { return r.metrics.peak_reaction_N; },
+       "peak force transmitted by the metric joint"},
+      {"crank_angle_at_peak_reaction_rad", "rad", false, [](const RunResult& r) { return r.metrics.angle_at_peak_reaction_rad; },
+       "crank angle at the peak joint force, in [0, 2 pi)"},
+      {"peak_acceleration_m_s2", "m s-2", false, [](const RunResult& r) { return r.metrics.peak_acceleration_m_s2; },
+       "peak acceleration magnitude of the metric body"},
+      {"periodicity", "1", false, [](const RunResult& r) { return r.metrics.periodicity; },
+       "largest cycle-to-cycle journal orbit distance over the metric cycles / clearance (-1: unknown)"},
+      {"steady", "1", true, [](const RunResult& r) { return r.metrics.steady ? 1.0 : 0.0; },
+       "1 if a steady cycle was reached (periodicity below steady_tolerance)"},
+      {"cycles_to_steady", "1", true, [](const RunResult& r) { return double(r.metrics.cycles_to_steady); },
+       "cycles run when the steady criterion first held (-1: never)"},
+      {"cycles_run", "1", true, [](const RunResult& r) { return double(r.metrics.cycles_run); },
+       "crank cycles run"},
+      {"safe_film_thickness_m", "m", false, [](const RunResult& r) { return r.metrics.safe_film_m; },
+       "safe minimum film thickness, 0.00015 mm per mm of bearing diameter (ESDU 84031)"},
+      {"below_safe_film", "1", true, [](const RunResult& r) { return r.metrics.below_safe_film ? 1.0 : 0.0; },
+       "1 if the minimum film thickness is below the safe film thickness"},
+  };
+  return f;
+}
+
+const std::vector<ResultField>& solver_fields() {
+  static const std::vector<ResultField> f = {
+      {"steps", "1", true, [](const RunResult& r) { return double(r.stats.steps); }, "integrator steps"},
+      {"rhs_evals", "1", true, [](const RunResult& r) { return double(r.stats.rhs_evals); }, "right-hand-side evaluations"},
+      {"rhs_evals_jacobian", "1", true, [](const RunResult& r) { return double(r.stats.rhs_evals_jac); },
+       "right-hand-side evaluations for difference-quotient Jacobians"},
+      {"jacobian_evals", "1", true, [](const RunResult& r) { return double(r.stats.jac_evals); }, "Jacobian evaluations"},
+      {"film_law_evals_jacobian", "1", true, [](const RunResult& r) { return double(r.stats.film_law_evals_jac); },
+       "force-law evaluations for structured Jacobians"},
+      {"linear_setups", "1", true, [](const RunResult& r) { return double(r.stats.lin_setups); }, "linear solver setups"},
+      {"error_test_fails", "1", true, [](const RunResult& r) { return double(r.stats.err_test_fails); }, "local error test failures"},
+      {"nonlinear_iters", "1", true, [](const RunResult& r) { return double(r.stats.nonlin_iters); }, "nonlinear solver iterations"},
+      {"nonlinear_conv_fails", "1", true, [](const RunResult& r) { return double(r.stats.nonlin_conv_fails); },
+       "nonlinear solver convergence failures"},
+      {"root_evals", "1", true, [](const RunResult& r) { return double(r.stats.root_evals); }, "root-function (event) evaluations"},
+      {"observer_evals", "1", true, [](const RunResult& r) { return double(r.stats.observer_evals); }, "observer evaluations"},
+      {"mode_switches", "1", true, [](const RunResult& r) { return double(r.stats.mode_switches); }, "film mode switches"},
+      {"repartitions", "1", true, [](const RunResult& r) { return double(r.stats.repartitions); }, "coordinate repartitions"},
+      {"wall_time_s", "s", false, [](const RunResult& r) { return r.stats.wall_time_s; }, "wall-clock time of the run"},
+      {"final_time_s", "s", false, [](const RunResult& r) { return r.stats.final_time_s; }, "simulated time reached"},
+      {"max_position_drift", "m", false, [](const RunResult& r) { return r.stats.max_position_drift; },
+       "largest position constraint violation max |Phi| (m, or rad for angular rows)"},
+      {"max_velocity_drift", "m s-1", false, [](const RunResult& r) { return r.stats.max_velocity_drift; },
+       "largest velocity constraint violation max |dPhi/dt| (m s-1, or rad s-1 for angular rows)"},
+  };
+  return f;
+}
+
+std::string cf_units(const std::string& u) {
+  static const std::vector<std::pair<std::string, std::string>> map = {
+      {"", "1"},           {"m/s", "m s-1"},     {"m/s^2", "m s-2"},  {"rad/s", "rad s-1"},
+      {"rad/s^2", "rad s-2"}, {"kg m^2", "kg m2"}, {"N/m", "N m-1"}};
+  for (const auto& [from, to] : map)
+    if (u == from) return to;
+  return u;
+}
+
+namespace {
+/// What a channel quantity is, for `long_name`.
+std::string quantity_text(const std::string& q) {
+  static const std::vector<std::pair<std::string, std::string>> text = {
+      {"x", "x position of the centre of mass"}, {"y", "y position of the centre of mass"},
+      {"angle", "orientation angle"}, {"vx", "x velocity of the centre of mass"},
+      {"vy", "y velocity of the centre of mass"}, {"omega", "angular velocity"},
+      {"ax", "x acceleration of the centre of mass"}, {"ay", "y acceleration of the centre of mass"},
+      {"alpha", "angular acceleration"}, {"reaction", "force magnitude on the journal (body j)"},
+      {"reaction_x", "x force on the journal (body j)"}, {"reaction_y", "y force on the journal (body j)"},
+      {"e_x", "x eccentricity (journal - bearing centre)"}, {"e_y", "y eccentricity (journal - bearing centre)"},
+      {"h_min", "minimum film thickness c (1 - eps)"}, {"eps", "eccentricity ratio |e|/c"},
+      {"eps_dot", "rate of the eccentricity ratio"}, {"gamma", "angle of the eccentricity vector"},
+      {"gamma_dot", "rate of the eccentricity angle"}, {"wedge", "wedge (entraining) angular speed"},
+      {"film_radial", "radial film force"}, {"film_tangential", "tangential film force"}};
+  for (const auto& [k, v] : text)
+    if (k == q) return v;
+  return q;
+}
+}  // namespace
+
+std::vector<std::string> channel_long_names(const std::string& scene_json, const std::vector<std::string>& names) {
+  std::map<std::string, std::string> by_name;
+  try {
+    const nlohmann::json doc = nlohmann::json::parse(scene_json);
+    if (doc.contains("outputs") && doc["outputs"].contains("channels"))
+      for (const auto& c : doc["outputs"]["channels"]) {
+        const std::string q = c.value("quantity", "");
+        std::string where;
+        if (c.contains("body")) where = " of body " + c["body"].get<std::string>();
+        if (c.contains("joint")) where = " of joint " + c["joint"].get<std::string>();
+        by_name[c.value("name", "")] = q + where + ": " + quantity_text(q);
+      }
+  } catch (const std::exception&) {
+    // No descriptions then: the names and units still say what a channel is.
+  }
+  std::vector<std::string> out;
+  for (const std::string& n : names) {
+    if (n == "t") {
+      out.push_back("time");
+      continue;
+    }
+    const auto it = by_name.find(n);
+    out.push_back(it == by_name.end() ? n : it->second);
+  }
+  return out;
+}
+
+void write_series(h5::Group& g, const Series& s, const std::vector<std::string>& long_names) {
+  if (s.names.empty()) return;
+  g.set_attribute("channels", s.names);
+  std::vector<h5::Dataset> ds;
+  for (std::size_t i = 0; i < s.names.size(); ++i) {
+    ds.push_back(g.write_dataset(s.names[i], s.data[i], cf_units(s.units[i])));
+    if (i < long_names.size() && !long_names[i].empty()) ds.back().set_attribute("long_name", long_names[i]);
+  }
+  // t is the first channel: the dimension scale of the others.
+  if (s.names.front() != "t") return;
+  ds.front().make_scale("t");
+  for (std::size_t i = 1; i < ds.size(); ++i)
+    if (ds[i].shape() == ds.front().shape()) ds[i].attach_scale(ds.front(), 0);
+}
+
+const std::vector<CycleField>& cycle_fields() {
+  static const std::vector<CycleField> f = {
+      {"t_start_s", "s", "start of the cycle", [](const CycleMetrics& c) { return c.t_start_s; }},
+      {"t_end_s", "s", "end of the cycle", [](const CycleMetrics& c) { return c.t_end_s; }},
+      {"min_film_thickness_m", "m", "minimum film thickness in the cycle",
+       [](const CycleMetrics& c) { return c.min_film_m; }},
+      {"crank_angle_at_min_film_rad", "rad", "crank angle at the minimum film thickness",
+       [](const CycleMetrics& c) { return c.angle_at_min_film_rad; }},
+      {"max_eps", "1", "largest eccentricity ratio in the cycle", [](const CycleMetrics& c) { return c.max_eps; }},
+      {"peak_reaction_N", "N", "peak force transmitted by the metric joint",
+       [](const CycleMetrics& c) { return c.peak_reaction_N; }},
+      {"crank_angle_at_peak_reaction_rad", "rad", "crank angle at the peak joint force",
+       [](const CycleMetrics& c) { return c.angle_at_peak_reaction_rad; }},
+      {"peak_acceleration_m_s2", "m s-2", "peak acceleration of the metric body",
+       [](const CycleMetrics& c) { return c.peak_acceleration_m_s2; }},
+      {"periodicity", "1", "largest orbit distance to the previous cycle / clearance (-1: first cycle)",
+       [](const CycleMetrics& c) { return c.periodicity; }},
+  };
+  return f;
+}
+
+std::string program_version() { return LUB_VERSION; }
+std::string build_revision() { return LUB_GIT_REVISION; }
+
+namespace {
+void put(h5::Object& obj, const ResultField& f, const RunResult& r) {
+  const double v = f.get(r);
+  if (f.integer)
+    obj.set_attribute_int64(f.name, static_cast<std::int64_t>(v));
+  else
+    obj.set_attribute(f.name, v);
+}
+}  // namespace
+
+void write_run_file(const std::string& path, const std::string& scene_text, const std::string& program,
+                    const RunResult& r) {
+  const std::string tmp = path + ".partial";
+  {
+    h5::File f = h5::File::create(tmp);
+    f.set_attribute("scene", scene_text);
+    f.set_attribute("program", program);
+    f.set_attribute("format", kRunFormat);
+    f.set_attribute("version", program_version());
+    f.set_attribute("revision", build_revision());
+    f.set_attribute("status", to_string(r.status));
+    f.set_attribute("message", r.message);
+    if (!r.series.names.empty()) {
+      h5::Group sg = f.require_group("series");
+      write_series(sg, r.series, channel_long_names(scene_text, r.series.names));
+    }
+    h5::Group m = f.require_group("metrics");
+    std::vector<std::string> units;
+    for (const auto& fld : metric_fields()) put(m, fld, r);
+    if (r.metrics.driver_work_J != 0.0 || r.metrics.film_dissipation_J != 0.0) {
+      m.set_attribute("driver_work_J", r.metrics.driver_work_J);
+      m.set_attribute("film_dissipation_J", r.metrics.film_dissipation_J);
+      m.set_attribute("energy_change_J", r.metrics.energy_change_J);
+      m.set_attribute("energy_residual_J", r.metrics.energy_residual_J);
+    }
+    h5::Group sv = f.require_group("solver");
+    sv.set_attribute("method", r.stats.method);
+    sv.set_attribute("formulation", r.stats.formulation);
+    sv.set_attribute("jacobian", r.stats.jacobian);
+    sv.set_attribute("rtol", r.stats.rtol);
+    sv.set_attribute("atol", r.stats.atol);
+    for (const auto& fld : solver_fields()) put(sv, fld, r);
+
+    std::vector<h5::Column> columns = {{"cycle", h5::ColumnType::Int64, "1", "crank cycle number (1: the first)"}};
+    for (const CycleField& fld : cycle_fields())
+      columns.push_back({fld.name, h5::ColumnType::Float64, fld.unit, fld.long_name});
+    h5::Table c = f.create_table("cycles", columns);
+    std::vector<h5::Row> rows;
+    std::int64_t number = 0;
+    for (const CycleMetrics& cy : r.cycles) {
+      h5::Row& row = rows.emplace_back();
+      row.reserve(columns.size());
+      row.emplace_back(std::in_place_type<std::int64_t>, ++number);
+      for (const CycleField& fld : cycle_fields()) row.emplace_back(std::in_place_type<double>, fld.get(cy));
+    }
+    c.append(rows);
+    f.close();
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw std::runtime_error("cannot rename " + tmp + " to " + path);
+  }
+}
+
+}  // namespace lub
