@@ -62,6 +62,10 @@ TEST(SweepGrid, FactorialIsRowMajorFirstAxisSlowest) {
   EXPECT_FALSE(g.axes[1].numeric);
   EXPECT_EQ(g.cases[4].axis_values[0], 50);
   EXPECT_EQ(g.cases[4].axis_values[1], "frene_long");
+  // Each case keeps the scene the parser read from its JSON (rank 0 runs it unparsed again).
+  for (const auto& c : g.cases) ASSERT_TRUE(c.parsed) << c.name;
+  EXPECT_EQ(g.cases[4].parsed->joints[3].law, lub::ForceLaw::frene_long);
+  EXPECT_NEAR(g.cases[4].parsed->drivers[0].speed_rad_s, 50 * 2 * M_PI / 60, 1e-12);
 }
 
 TEST(SweepGrid, ClearanceKeepsTheBearingRadiusAndSetsTheJournalRadius) {
@@ -268,13 +272,16 @@ INSTANTIATE_TEST_SUITE_P(
         BadGrid{R"("axes": [], "colour": 1)", "grid.colour = 1: unknown key (check the spelling; see the README)"},
         BadGrid{R"("axes": {})", "grid.axes = {}: must be an array"},
         BadGrid{R"("axes": [{"name": "clearance_m", "values": [5e-4, -1e-4]}])",
-                "grid.axes[0].values[1] = -0.0001: must be > 0 m"},
+                "grid.axes[0].values[1] = -0.0001: gives an invalid scene (joint rod_slider: journal_radius_m = "
+                "bearing_radius_m - clearance = 0.01 m - -0.0001 m): joints[3].journal_radius_m = 0.0101: must be < "
+                "bearing_radius_m = 0.01 m (the radial clearance must be > 0)"},
         BadGrid{R"("axes": [{"name": "clearance_m", "values": [0.02]}])",
-                "grid.axes[0].values[0] = 0.02: must be < the bearing radius 0.01 m of joint rod_slider"},
+                "grid.axes[0].values[0] = 0.02: gives an invalid scene (joint rod_slider: journal_radius_m = "
+                "bearing_radius_m - clearance = 0.01 m - 0.02 m): joints[3].journal_radius_m = -0.01: must be > 0 m"},
         BadGrid{R"("axes": [{"name": "clearance_m", "values": ["big"]}])",
                 "grid.axes[0].values[0] = \"big\": must be a number, not string"},
         BadGrid{R"("axes": [{"name": "viscosity_Pa_s", "values": [0]}])",
-                "grid.axes[0].values[0] = 0: must be > 0 Pa s"},
+                "grid.axes[0].values[0] = 0: gives an invalid scene: joints[3].viscosity_Pa_s = 0: must be > 0 Pa s"},
         BadGrid{R"("axes": [{"name": "speed_rpm", "values": [0.0]}])",
                 "grid.axes[0].values[0] = 0.0: must not be 0 rpm"},
         BadGrid{R"("axes": [{"name": "force_law", "values": [3]}])",
@@ -313,11 +320,15 @@ INSTANTIATE_TEST_SUITE_P(
                 "grid.axes: the case {\"m\":4,\"n\":3}: gives an invalid scene: simulation.metric_cycles = 4: must be <= simulation.max_cycles = 3"},
         BadGrid{R"("cases": [{"clearance": 1e-4}])",
                 "grid.cases[0][\"clearance\"] = \"clearance\": unknown key: must be a named axis (clearance_m, viscosity_Pa_s, speed_rpm, force_law), an axis declared in the grid, or a JSON Pointer"},
-        BadGrid{R"("cases": [{"viscosity_Pa_s": -2}])", "grid.cases[0][\"viscosity_Pa_s\"] = -2: must be > 0 Pa s"},
+        BadGrid{R"("cases": [{"viscosity_Pa_s": -2}])",
+                "grid.cases[0][\"viscosity_Pa_s\"] = -2: gives an invalid scene: joints[3].viscosity_Pa_s = -2: must be > 0 Pa s"},
         BadGrid{R"("cases": [])", "grid.cases = []: must list at least one case"},
         BadGrid{R"("cases": [3])", "grid.cases[0] = 3: must be a JSON object {axis: value, ...}"},
         BadGrid{R"("cases": [{"/simulation/max_cycles": 0}])",
-                "grid.cases[0] = {\"/simulation/max_cycles\":0}: gives an invalid scene: simulation.max_cycles = 0: ..."},
+                "grid.cases[0][\"/simulation/max_cycles\"] = 0: gives an invalid scene: simulation.max_cycles = 0: ..."},
+        BadGrid{R"("cases": [{"/simulation/max_cycles": 3, "/simulation/metric_cycles": 4}])",
+                "grid.cases[0] = {\"/simulation/max_cycles\":3,\"/simulation/metric_cycles\":4}: gives an invalid scene: "
+                "simulation.metric_cycles = 4: must be <= simulation.max_cycles = 3"},
         BadGrid{R"("grids": [{"name": "a", "axes": []}, {"name": "a", "cases": [{}]}])",
                 "grid.grids[1].name = \"a\": is the name of another sub-grid"},
         BadGrid{R"("grids": [{"name": "a"}])",

@@ -363,8 +363,10 @@ TEST(SweepCase, RunsAScene) {
   EXPECT_EQ(r.series.names, (std::vector<std::string>{"t", "h_min"}));
   // Only the last cycle is kept, sampled 90 times (both ends included).
   EXPECT_EQ(r.series.data[0].size(), 91u);
-  // The same scene gives the same numbers (what makes -np 1 and -np 2 agree).
-  const CaseResult again = run_case(2, g.cases[2].scene, 0);
+  // The same scene gives the same numbers (what makes -np 1 and -np 2 agree): rank 0 runs
+  // the scene the grid parsed (Case::parsed), the other ranks parse the task's JSON.
+  ASSERT_TRUE(g.cases[2].parsed);
+  const CaseResult again = run_case(2, *g.cases[2].parsed, 0);
   for (std::size_t i = 0; i < r.values.size(); ++i) {
     if (std::string(result_fields()[i].name) == "wall_time_s") continue;
     EXPECT_EQ(r.values[i], again.values[i]) << result_fields()[i].name;
@@ -440,6 +442,20 @@ TEST(SweepOptions, CommandLine) {
   Options r;
   EXPECT_EQ(*parse_options({"g.json", "-o", "x", "--restart", "--retry-failed"}, r, help, text),
             "--restart and --retry-failed exclude each other");
+  EXPECT_FALSE(help) << "help is reset by every parse";
+  Options two;
+  EXPECT_EQ(*parse_options({"a.json", "-o", "x", "b.json"}, two, help, text), "more than one grid given (a.json, b.json)");
+  Options missing;
+  EXPECT_NE(parse_options({"g.json", "-o"}, missing, help, text)->find("--output"), std::string::npos);
+  Options forms;
+  EXPECT_FALSE(parse_options({"--output=s.h5", "g.json", "--no-summary", "--quiet"}, forms, help, text));
+  EXPECT_EQ(forms.output, "s.h5");
+  EXPECT_FALSE(forms.summary);
+  EXPECT_TRUE(forms.quiet);
+  Options v;
+  EXPECT_FALSE(parse_options({"--version"}, v, help, text));
+  EXPECT_TRUE(help);
+  EXPECT_EQ(text.substr(0, 9), "lubsweep ");
 }
 
 TEST_F(StudyFile, OutputLockRefusesASecondHolderNamingTheFirst) {

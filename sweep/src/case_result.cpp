@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <exception>
 #include <limits>
 #include <stdexcept>
@@ -20,7 +19,12 @@ std::vector<ResultField> result_fields() {
   return f;
 }
 
-CaseResult run_case(int case_id, const std::string& scene_json, int rank) {
+namespace {
+
+/// Runs the scene `scene()` gives. Never throws: an InputError (the scene refused) is the
+/// status "invalid_scene", any other exception "error"; values are NaN where not computed.
+template <class SceneOf>
+CaseResult run_guarded(int case_id, int rank, const SceneOf& scene) {
   CaseResult out;
   out.case_id = case_id;
   out.rank = rank;
@@ -28,8 +32,7 @@ CaseResult run_case(int case_id, const std::string& scene_json, int rank) {
   const auto fields = result_fields();
   out.values.assign(fields.size(), std::numeric_limits<double>::quiet_NaN());
   try {
-    const Scene scene = parse_scene(nlohmann::json::parse(scene_json));
-    RunResult r = run_scene(scene);
+    RunResult r = run_scene(scene());
     out.status = to_string(r.status);
     out.message = r.message;
     for (std::size_t i = 0; i < fields.size(); ++i) out.values[i] = fields[i].get(r);
@@ -44,110 +47,76 @@ CaseResult run_case(int case_id, const std::string& scene_json, int rank) {
   return out;
 }
 
+}  // namespace
+
+CaseResult run_case(int case_id, const Scene& scene, int rank) {
+  return run_guarded(case_id, rank, [&]() -> const Scene& { return scene; });
+}
+
+CaseResult run_case(int case_id, const std::string& scene_json, int rank) {
+  return run_guarded(case_id, rank, [&] { return parse_scene(nlohmann::json::parse(scene_json)); });
+}
+
+// Messages are MessagePack maps (nlohmann-json's binary format): self-describing, so a
+// truncated or foreign buffer is refused, naming what is wrong, instead of misread. NaN
+// (a case without a value) travels as a float64 bit pattern: MessagePack keeps it.
 namespace {
 
-class Writer {
- public:
-  void u64(std::uint64_t v) { raw(&v, sizeof v); }
-  void i64(std::int64_t v) { raw(&v, sizeof v); }
-  void str(const std::string& s) {
-    u64(s.size());
-    buf_.append(s);
-  }
-  void doubles(const std::vector<double>& v) {
-    u64(v.size());
-    raw(v.data(), v.size() * sizeof(double));
-  }
-  std::string take() { return std::move(buf_); }
+using nlohmann::json;
 
- private:
-  void raw(const void* p, std::size_t n) { buf_.append(static_cast<const char*>(p), n); }
-  std::string buf_;
-};
+constexpr const char* kResultFormat = "lubsweep-result-1";
 
-class Reader {
- public:
-  explicit Reader(const std::string& b) : b_(b) {}
-  std::uint64_t u64() {
-    std::uint64_t v;
-    raw(&v, sizeof v);
-    return v;
-  }
-  std::int64_t i64() {
-    std::int64_t v;
-    raw(&v, sizeof v);
-    return v;
-  }
-  std::string str() {
-    const std::uint64_t n = count(1);
-    std::string s = b_.substr(at_, n);
-    at_ += n;
-    return s;
-  }
-  std::vector<double> doubles() {
-    const std::uint64_t n = count(sizeof(double));
-    std::vector<double> v(n);
-    raw(v.data(), n * sizeof(double));
-    return v;
-  }
-  std::uint64_t count(std::size_t item) {
-    const std::uint64_t n = u64();
-    if (n > (b_.size() - at_) / item) throw std::runtime_error("lubsweep: malformed result message (length)");
-    return n;
-  }
-  bool done() const { return at_ == b_.size(); }
-
- private:
-  void raw(void* p, std::size_t n) {
-    if (b_.size() - at_ < n) throw std::runtime_error("lubsweep: truncated result message");
-    std::memcpy(p, b_.data() + at_, n);
-    at_ += n;
-  }
-  const std::string& b_;
-  std::size_t at_ = 0;
-};
-
-constexpr std::uint64_t kMagic = 0x6c75627377656570ULL;  // "lubsweep"
+template <class T>
+T field(const json& m, const char* key, bool (json::*is)() const noexcept, const char* type) {
+  const auto it = m.find(key);
+  if (it == m.end() || !((*it).*is)())
+    throw std::runtime_error(std::string("malformed result message: \"") + key + "\" missing or not " + type);
+  return it->template get<T>();
+}
 
 }  // namespace
 
 std::string encode(const CaseResult& r) {
-  Writer w;
-  w.u64(kMagic);
-  w.i64(r.case_id);
-  w.i64(r.rank);
-  w.str(r.status);
-  w.str(r.message);
-  w.doubles(r.values);
-  w.str(r.revision);
+  json series = json::array();
   const Series& s = r.series;
-  w.u64(s.names.size());
-  for (std::size_t i = 0; i < s.names.size(); ++i) {
-    w.str(s.names[i]);
-    w.str(i < s.units.size() ? s.units[i] : std::string());
-    w.doubles(i < s.data.size() ? s.data[i] : std::vector<double>());
-  }
-  return w.take();
+  for (std::size_t i = 0; i < s.names.size(); ++i)
+    series.push_back({{"name", s.names[i]},
+                      {"units", i < s.units.size() ? s.units[i] : std::string()},
+                      {"data", i < s.data.size() ? s.data[i] : std::vector<double>()}});
+  const json m = {{"format", kResultFormat}, {"case_id", r.case_id}, {"rank", r.rank},
+                  {"status", r.status},      {"message", r.message}, {"values", r.values},
+                  {"revision", r.revision},  {"series", std::move(series)}};
+  const std::vector<std::uint8_t> bytes = json::to_msgpack(m);
+  return std::string(bytes.begin(), bytes.end());
 }
 
 CaseResult decode(const std::string& bytes) {
-  Reader rd(bytes);
-  if (rd.u64() != kMagic) throw std::runtime_error("lubsweep: not a result message");
-  CaseResult r;
-  r.case_id = static_cast<int>(rd.i64());
-  r.rank = static_cast<int>(rd.i64());
-  r.status = rd.str();
-  r.message = rd.str();
-  r.values = rd.doubles();
-  r.revision = rd.str();
-  const std::uint64_t n = rd.count(24);
-  for (std::uint64_t i = 0; i < n; ++i) {
-    r.series.names.push_back(rd.str());
-    r.series.units.push_back(rd.str());
-    r.series.data.push_back(rd.doubles());
+  json m;
+  try {
+    m = json::from_msgpack(bytes);
+  } catch (const json::exception& e) {
+    throw std::runtime_error(std::string("malformed result message: ") + e.what());
   }
-  if (!rd.done()) throw std::runtime_error("lubsweep: malformed result message (trailing bytes)");
-  return r;
+  if (!m.is_object() || m.value("format", json()) != json(kResultFormat))
+    throw std::runtime_error("not a result message (no \"format\": \"" + std::string(kResultFormat) + "\")");
+  try {
+    CaseResult r;
+    r.case_id = field<int>(m, "case_id", &json::is_number_integer, "an integer");
+    r.rank = field<int>(m, "rank", &json::is_number_integer, "an integer");
+    r.status = field<std::string>(m, "status", &json::is_string, "a string");
+    r.message = field<std::string>(m, "message", &json::is_string, "a string");
+    r.values = field<std::vector<double>>(m, "values", &json::is_array, "an array");
+    r.revision = field<std::string>(m, "revision", &json::is_string, "a string");
+    for (const json& c : field<json>(m, "series", &json::is_array, "an array")) {
+      if (!c.is_object()) throw std::runtime_error("malformed result message: a series is not a map");
+      r.series.names.push_back(field<std::string>(c, "name", &json::is_string, "a string"));
+      r.series.units.push_back(field<std::string>(c, "units", &json::is_string, "a string"));
+      r.series.data.push_back(field<std::vector<double>>(c, "data", &json::is_array, "an array"));
+    }
+    return r;
+  } catch (const json::exception& e) {  // e.g. a string among the values
+    throw std::runtime_error(std::string("malformed result message: ") + e.what());
+  }
 }
 
 }  // namespace lub::sweep

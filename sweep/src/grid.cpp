@@ -1,11 +1,11 @@
 #include "lub/sweep/grid.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <optional>
 #include <sstream>
 
@@ -149,29 +149,19 @@ void resolve_named(Axis& axis, const Context& cx, const std::string& path) {
   if (k == "force_law") axis.pointer = j + "force_law", axis.units = "", axis.numeric = false;
 }
 
-/// Checks one value of an axis on its own (type and range); `path` names it.
-void check_value(const Axis& axis, const json& v, const Context& cx, const std::string& path) {
-  const std::string& k = axis.kind;
-  if (k == "force_law") {
+/// Checks one value of a named axis for what the grid itself needs: its JSON type (it
+/// decides the /cases column's type, and a clearance is subtracted from the bearing
+/// radius), and a crank cycle (a study's metrics are per cycle; the scene parser accepts a
+/// driver at rest, whose scene may run for a duration_s). Every other rule is the scene's:
+/// the scene parser checks it once the value is applied (Expander::parse_or_blame).
+void check_type(const Axis& axis, const json& v, const std::string& path) {
+  if (axis.kind == "pointer") return;
+  if (axis.kind == "force_law") {
     if (!v.is_string()) fail(path, v, "must be a string (a force law name)");
-    return;
-  }
-  if (k == "pointer") return;
-  if (!v.is_number()) fail(path, v, "must be a number, not " + std::string(v.type_name()));
-  const double x = v.get<double>();
-  if (!std::isfinite(x)) fail(path, v, "must be finite");
-  if (k == "clearance_m") {
-    if (x <= 0.0) fail(path, v, "must be > 0 m");
-    const json& R = cx.base["joints"][static_cast<std::size_t>(*cx.joint)].value("bearing_radius_m", json());
-    if (R.is_number() && x >= R.get<double>()) {
-      std::ostringstream rule;
-      rule << "must be < the bearing radius " << R.get<double>() << " m of joint " << cx.joint_name;
-      fail(path, v, rule.str());
-    }
-  } else if (k == "viscosity_Pa_s") {
-    if (x <= 0.0) fail(path, v, "must be > 0 Pa s");
-  } else if (k == "speed_rpm") {
-    if (x == 0.0) fail(path, v, "must not be 0 rpm");
+  } else if (!v.is_number()) {
+    fail(path, v, "must be a number, not " + std::string(v.type_name()));
+  } else if (axis.kind == "speed_rpm" && v.get<double>() == 0.0) {
+    fail(path, v, "must not be 0 rpm");
   }
 }
 
@@ -182,14 +172,7 @@ void apply_value(json& scene, const Axis& axis, const json& v, const std::string
     const json::json_pointer radius = ptr.parent_pointer() / "bearing_radius_m";
     if (!scene.contains(radius) || !scene.at(radius).is_number())
       fail(path, v, "the joint has no numeric bearing_radius_m to keep");
-    const double R = scene.at(radius).get<double>();
-    const double c = v.get<double>();
-    if (c >= R) {
-      std::ostringstream rule;
-      rule << "must be < the bearing radius " << R << " m";
-      fail(path, v, rule.str());
-    }
-    scene[ptr] = round15(R - c);
+    scene[ptr] = round15(scene.at(radius).get<double>() - v.get<double>());
     return;
   }
   set_pointer(scene, ptr, v, path, v);
@@ -276,6 +259,13 @@ void apply_study(const json& study, Context& cx, FailurePolicy& policy) {
   s.finish();
 }
 
+/// One value a case takes from the grid: its axis, the value as written, where it is written.
+struct Given {
+  int axis;
+  json value;
+  std::string path;
+};
+
 class Expander {
  public:
   Expander(Grid& g, Context& cx) : g_(g), cx_(cx) {}
@@ -333,20 +323,12 @@ class Expander {
     if (vals.empty()) fail(r.child("values"), vals, "must list at least one value");
     for (std::size_t k = 0; k < vals.size(); ++k) {
       const std::string vp = index_path(r.child("values"), k);
-      check_value(a, vals[k], cx_, vp);
+      check_type(a, vals[k], vp);
       for (std::size_t j = 0; j < k; ++j)
         if (vals[j] == vals[k]) fail(vp, vals[k], "repeats " + index_path(r.child("values"), j));
       values.push_back(vals[k]);
     }
-    const int idx = axis_index(a, r.child("name"));
-    // Each value on its own must give a valid scene: the error names the grid's value.
-    for (std::size_t k = 0; k < vals.size(); ++k) {
-      const std::string vp = index_path(r.child("values"), k);
-      json s = cx_.base;
-      apply_value(s, g_.axes[static_cast<std::size_t>(idx)], vals[k], vp);
-      parse_case(s, vp, vals[k]);
-    }
-    return idx;
+    return axis_index(a, r.child("name"));
   }
 
   /// Reads the axes of a factorial block (registering them as columns).
@@ -374,15 +356,16 @@ class Expander {
     for (std::size_t c = 0; c < n; ++c) {
       json scene = cx_.base;
       json shown = json::object();
-      std::map<int, json> given;
+      std::vector<Given> given;
       std::string label;
       for (std::size_t i = 0; i < b.axes.size(); ++i) {
         const Axis& a = g_.axes[static_cast<std::size_t>(b.axes[i])];
         const json& v = b.values[i][at[i]];
-        apply_value(scene, a, v, index_path(index_path(path, i) + ".values", at[i]));
+        const std::string vp = index_path(index_path(path, i) + ".values", at[i]);
+        apply_value(scene, a, v, vp);
         label += (label.empty() ? "" : " ") + a.name + "=" + value_text(v);
         shown[a.name] = v;
-        given[b.axes[i]] = v;
+        given.push_back({b.axes[i], v, vp});
       }
       b.case_ids.push_back(add_case(std::move(scene), label, path + ": the case " + brief(shown), given));
       for (std::size_t i = at.size(); i-- > 0;) {  // odometer: last axis fastest
@@ -425,16 +408,16 @@ class Expander {
       const std::string cp = index_path(path, i);
       if (!cases[i].is_object()) fail(cp, cases[i], "must be a JSON object {axis: value, ...}");
       json scene = cx_.base;
-      std::map<int, json> given;
+      std::vector<Given> given;
       std::string label;
       for (auto it = cases[i].begin(); it != cases[i].end(); ++it) {
         const std::string vp = key_path(cp, it.key());
         const int idx = key_axis(it.key(), vp);
         const Axis& a = g_.axes[static_cast<std::size_t>(idx)];
-        check_value(a, it.value(), cx_, vp);
+        check_type(a, it.value(), vp);
         apply_value(scene, a, it.value(), vp);
         label += (label.empty() ? "" : " ") + a.name + "=" + value_text(it.value());
-        given[idx] = it.value();
+        given.push_back({idx, it.value(), vp});
       }
       b.case_ids.push_back(add_case(std::move(scene), label, cp + " = " + brief(cases[i]), given));
     }
@@ -443,31 +426,68 @@ class Expander {
   }
 
   /// Adds a case (or finds the same scene); `what` starts an error message; `given`: the
-  /// axis values as the grid wrote them (the case's columns for those axes).
-  int add_case(json scene, const std::string& label, const std::string& what, const std::map<int, json>& given) {
+  /// axis values as the grid wrote them (the case's columns for those axes). The case's
+  /// scene is parsed here, once, and kept for rank 0 to run (Case::parsed).
+  int add_case(json scene, const std::string& label, const std::string& what, const std::vector<Given>& given) {
+    std::optional<Scene> parsed;
     if (cx_.samples_per_cycle && cx_.stores_series) {
-      const Scene s = parse_case(scene, what);
-      if (const auto period = s.cycle_period_s()) {
-        json& out = scene["outputs"];
-        out["sample_interval_s"] = *period / *cx_.samples_per_cycle;
-      }
+      // The sample interval follows the case's cycle period, which only the parsed scene
+      // knows: when it sets one, the scene that runs is parsed again below.
+      Scene s = parse_or_blame(scene, what, given);
+      if (const auto period = s.cycle_period_s())
+        scene["outputs"]["sample_interval_s"] = *period / *cx_.samples_per_cycle;
+      else
+        parsed = std::move(s);
     }
-    parse_case(scene, what);
     Case c;
     c.scene = canonical_json(scene);
     c.hash = sha256_hex(c.scene);
     const auto found = by_hash_.find(c.hash);
-    if (found != by_hash_.end()) {
-      for (const auto& [axis, v] : given) given_[found->second].emplace(axis, v);
+    if (found != by_hash_.end()) {  // the same scene: parsed and valid already
+      for (const Given& g : given) given_[static_cast<std::size_t>(found->second)].emplace(g.axis, g.value);
       return found->second;
     }
+    if (!parsed) parsed = parse_or_blame(scene, what, given);
     if (g_.cases.size() >= kMaxCases) throw InputError("grid: more than " + std::to_string(kMaxCases) + " cases");
     c.id = static_cast<int>(g_.cases.size());
     c.label = label.empty() ? "base scene" : label;
+    c.parsed = std::make_shared<const Scene>(std::move(*parsed));
     by_hash_[c.hash] = c.id;
-    given_.push_back(given);
+    std::map<int, json>& columns = given_.emplace_back();
+    for (const Given& g : given) columns[g.axis] = g.value;  // two keys of one axis: the last, as applied
     g_.cases.push_back(std::move(c));
     return g_.cases.back().id;
+  }
+
+  /// Parses a case's scene. If the scene parser refuses it, the message names the grid's
+  /// value that gives an invalid scene on its own (applied to the base scene), else the
+  /// case (`what`): the rules are the scene parser's, the grid only says where.
+  Scene parse_or_blame(const json& scene, const std::string& what, const std::vector<Given>& given) {
+    try {
+      return parse_scene(scene);
+    } catch (const InputError& e) {
+      for (const Given& g : given) {
+        const Axis& a = g_.axes[static_cast<std::size_t>(g.axis)];
+        json alone = cx_.base;
+        apply_value(alone, a, g.value, g.path);
+        try {
+          parse_scene(alone);
+        } catch (const InputError& own) {
+          throw InputError(g.path + " = " + brief(g.value) + ": gives an invalid scene" + applied_as(a, g.value) + ": " +
+                           own.what());
+        }
+      }
+      throw InputError(what + ": gives an invalid scene: " + e.what());
+    }
+  }
+
+  /// How an axis value reaches the scene, where the scene parser's message needs it: a
+  /// clearance sets the journal radius.
+  std::string applied_as(const Axis& axis, const json& v) const {
+    if (axis.kind != "clearance_m") return "";
+    const json::json_pointer radius = json::json_pointer(axis.pointer).parent_pointer() / "bearing_radius_m";
+    return " (joint " + cx_.joint_name + ": journal_radius_m = bearing_radius_m - clearance = " +
+           value_text(cx_.base.at(radius)) + " m - " + value_text(v) + " m)";
   }
 
   /// Column values, once every axis is known.

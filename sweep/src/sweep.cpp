@@ -2,19 +2,16 @@
 
 #include <mpi.h>
 
-#include <algorithm>
+#include <CLI/CLI.hpp>
+
 #include <chrono>
-#include <condition_variable>
 #include <csignal>
-#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <deque>
 #include <exception>
-#include <mutex>
+#include <memory>
 #include <sys/stat.h>
-#include <thread>
 #include <unistd.h>
 
 #include "lub/io/json_reader.hpp"
@@ -22,8 +19,10 @@
 #include "lub/run/run_io.hpp"
 #include "lub/sweep/case_result.hpp"
 #include "lub/sweep/grid.hpp"
+#include "lub/sweep/mpi_transport.hpp"
 #include "lub/sweep/output_lock.hpp"
 #include "lub/sweep/progress.hpp"
+#include "lub/sweep/scheduler.hpp"
 #include "lub/sweep/study_file.hpp"
 
 namespace lub::sweep {
@@ -56,46 +55,33 @@ const char* const kUsage =
 
 std::optional<std::string> parse_options(const std::vector<std::string>& args, Options& o, bool& help,
                                          std::string& help_text) {
+  CLI::App app("lubsweep");
+  app.set_help_flag();  // -h prints kUsage, not CLI11's generated text
   help = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&]() -> std::optional<std::string> {
-      if (i + 1 >= args.size()) return std::nullopt;
-      return args[++i];
-    };
-    if (a == "-h" || a == "--help") {
-      help = true;
-      help_text = kUsage;
-      return std::nullopt;
-    } else if (a == "--version") {
-      help = true;
-      help_text = "lubsweep " + program_version() + " (" + build_revision() + ")\n";
-      return std::nullopt;
-    } else if (a == "-o" || a == "--output") {
-      auto v = value();
-      if (!v) return a + " needs a file name";
-      o.output = *v;
-    } else if (a == "--summary") {
-      auto v = value();
-      if (!v) return a + " needs a study file";
-      o.summary_of = *v;
-    } else if (a == "--restart") {
-      o.restart = true;
-    } else if (a == "--retry-failed") {
-      o.retry_failed = true;
-    } else if (a == "--check") {
-      o.check = true;
-    } else if (a == "--no-summary") {
-      o.summary = false;
-    } else if (a == "-q" || a == "--quiet") {
-      o.quiet = true;
-    } else if (!a.empty() && a[0] == '-') {
-      return "unknown option " + a;
-    } else if (o.grid.empty()) {
-      o.grid = a;
-    } else {
-      return "more than one grid given (" + o.grid + ", " + a + ")";
-    }
+  bool version = false;
+  app.add_flag("-h,--help", help);
+  app.add_flag("--version", version);
+  app.add_option("grid", o.grid);
+  app.add_option("-o,--output", o.output);
+  app.add_option("--summary", o.summary_of);
+  app.add_flag("--restart", o.restart);
+  app.add_flag("--retry-failed", o.retry_failed);
+  app.add_flag("--check", o.check);
+  app.add_flag("--no-summary{false}", o.summary);
+  app.add_flag("-q,--quiet", o.quiet);
+  try {
+    app.parse(std::vector<std::string>(args.rbegin(), args.rend()));  // CLI11 wants them last first
+  } catch (const CLI::ExtrasError&) {
+    const std::string extra = app.remaining().front();
+    if (!extra.empty() && extra[0] == '-') return "unknown option " + extra;
+    return "more than one grid given (" + o.grid + ", " + extra + ")";
+  } catch (const CLI::ParseError& e) {
+    return std::string(e.what());
+  }
+  if (help || version) {
+    help = true;
+    help_text = version ? "lubsweep " + program_version() + " (" + build_revision() + ")\n" : kUsage;
+    return std::nullopt;
   }
   if (!o.summary_of.empty()) {
     if (!o.grid.empty() || !o.output.empty()) return "--summary takes only a study file";
@@ -110,144 +96,9 @@ std::optional<std::string> parse_options(const std::vector<std::string>& args, O
 
 namespace {
 
-enum Tag : int { kTagReady = 1, kTagResult = 2, kTagTask = 3, kTagStop = 4 };
-
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-/// Waits for a message from `source` without busy-polling a core: MPI_Iprobe, a few
-/// yields, then short sleeps (Open MPI's blocking receive spins at 100 % CPU).
-void wait_message(int source, MPI_Status& st) {
-  int flag = 0;
-  auto idle = std::chrono::microseconds(20);
-  for (;;) {
-    MPI_Iprobe(source, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st);
-    if (flag) return;
-    std::this_thread::sleep_for(idle);
-    idle = std::min(idle * 2, std::chrono::microseconds(1000));
-  }
-}
-
-/// Receives the probed message as bytes.
-std::string receive(const MPI_Status& probed) {
-  int n = 0;
-  MPI_Get_count(&probed, MPI_BYTE, &n);
-  std::string buf(static_cast<std::size_t>(n), '\0');
-  MPI_Recv(buf.data(), n, MPI_BYTE, probed.MPI_SOURCE, probed.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-  return buf;
-}
-
-void send(int dest, int tag, const std::string& bytes) {
-  MPI_Send(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, dest, tag, MPI_COMM_WORLD);
-}
-
-/// A barrier that sleeps while it waits.
-void polite_barrier() {
-  MPI_Request req;
-  MPI_Ibarrier(MPI_COMM_WORLD, &req);
-  int done = 0;
-  for (int spins = 0;; ++spins) {
-    MPI_Test(&req, &done, MPI_STATUS_IGNORE);
-    if (done) return;
-    std::this_thread::sleep_for(std::chrono::microseconds(spins < 50 ? 20 : 1000));
-  }
-}
-
-int broadcast_code(int code) {
-  MPI_Bcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD);
-  return code;
-}
-
-/// A task message: the case id, then its scene.
-std::string task_message(const Case& c) {
-  std::string m(sizeof(std::int64_t), '\0');
-  const std::int64_t id = c.id;
-  std::memcpy(m.data(), &id, sizeof id);
-  return m + c.scene;
-}
-
-/// Ranks > 0: ask for work, run it, return the result, until told to stop.
-void worker_loop(int rank) {
-  send(0, kTagReady, std::string());
-  for (;;) {
-    MPI_Status st;
-    wait_message(0, st);
-    const std::string msg = receive(st);
-    if (st.MPI_TAG == kTagStop) return;
-    std::int64_t id = -1;
-    std::memcpy(&id, msg.data(), sizeof id);
-    const CaseResult r = run_case(static_cast<int>(id), msg.substr(sizeof id), rank);
-    send(0, kTagResult, encode(r));
-  }
-}
-
-/// Rank 0's own computing: one case at a time on a thread, so that the main thread stays
-/// free to serve the other ranks and write the file.
-class LocalWorker {
- public:
-  LocalWorker() : thread_([this] { loop(); }) {}
-  LocalWorker(const LocalWorker&) = delete;
-  LocalWorker& operator=(const LocalWorker&) = delete;
-  ~LocalWorker() {
-    {
-      std::lock_guard<std::mutex> l(m_);
-      quit_ = true;
-    }
-    cv_.notify_one();
-    thread_.join();
-  }
-  bool busy() const { return busy_; }
-  void give(const Case& c) {
-    {
-      std::lock_guard<std::mutex> l(m_);
-      task_id_ = c.id;
-      task_scene_ = c.scene;
-      has_task_ = true;
-    }
-    busy_ = true;
-    cv_.notify_one();
-  }
-  /// Sleeps up to `d`, waking at once when a result is ready.
-  void wait_for_result(std::chrono::microseconds d) {
-    std::unique_lock<std::mutex> l(m_);
-    done_cv_.wait_for(l, d, [this] { return result_.has_value(); });
-  }
-  /// The finished result, if any.
-  std::optional<CaseResult> take() {
-    std::lock_guard<std::mutex> l(m_);
-    if (!result_) return std::nullopt;
-    std::optional<CaseResult> r = std::move(result_);
-    result_.reset();
-    busy_ = false;
-    return r;
-  }
-
- private:
-  void loop() {
-    std::unique_lock<std::mutex> l(m_);
-    for (;;) {
-      cv_.wait(l, [this] { return has_task_ || quit_; });
-      if (!has_task_) return;
-      has_task_ = false;
-      const int id = task_id_;
-      const std::string scene = std::move(task_scene_);
-      l.unlock();
-      CaseResult r = run_case(id, scene, 0);
-      l.lock();
-      result_ = std::move(r);
-      done_cv_.notify_one();
-    }
-  }
-
-  std::mutex m_;
-  std::condition_variable cv_, done_cv_;
-  bool has_task_ = false, quit_ = false, busy_ = false;
-  int task_id_ = -1;
-  std::string task_scene_;
-  std::optional<CaseResult> result_;
-  std::thread thread_;  // last: starts after the members it uses
-};
 
 bool file_exists(const std::string& path) {
   struct stat s;
@@ -310,14 +161,14 @@ void list_cases(const Grid& g) {
   for (const Case& c : g.cases) std::printf("  %s %.12s  %s\n", c.name.c_str(), c.hash.c_str(), c.label.c_str());
 }
 
-/// Rank 0: hands out the cases, computes some, writes the file.
-int coordinate(const Options& o, const Grid& grid, const ResumeState& resume, bool reuse_file, int nranks) {
+/// Rank 0: hands out the cases (scheduler.hpp), computes some, writes the file.
+int coordinate(const Options& o, const Grid& grid, const ResumeState& resume, bool reuse_file,
+               CoordinatorTransport& transport) {
   const auto t0 = Clock::now();
-  std::deque<int> queue;
+  const std::deque<int> queue = cases_to_run(grid, resume.done);
   std::size_t done_failed = 0;
-  for (const Case& c : grid.cases)
-    if (!resume.done.count(c.id)) queue.push_back(c.id);
   for (const auto& [id, r] : resume.done) done_failed += !r.ok();
+  const int nranks = transport.workers() + 1;
 
   if (!o.quiet) {
     std::fprintf(stderr, "lubsweep: %s: %zu cases on %d rank%s", o.grid.c_str(), grid.cases.size(), nranks,
@@ -342,87 +193,36 @@ int coordinate(const Options& o, const Grid& grid, const ResumeState& resume, bo
     writer = std::make_unique<StudyWriter>(o.output, grid, resume.done, reuse_file ? o.output : std::string());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "lubsweep: cannot write %s: %s\n", o.output.c_str(), e.what());
-    MPI_Abort(MPI_COMM_WORLD, kExitIoError);
+    transport.abort(kExitIoError);
   }
 
   Progress progress(grid.cases.size(), resume.done.size(), done_failed);
-  bool aborting = false;
   long new_rows = 0;
-  auto record = [&](const CaseResult& r) {
+  Schedule s;
+  s.on_failure = grid.on_failure;
+  // Rank 0 runs the scene the grid parsed: a case is parsed once per process.
+  s.local = [](const Case& c) { return run_case(c.id, *c.parsed, 0); };
+  s.record = [&](const CaseResult& r) {
     const Case& c = grid.cases.at(static_cast<std::size_t>(r.case_id));
     try {
       writer->append(r);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "lubsweep: cannot write %s: %s\n", o.output.c_str(), e.what());
-      MPI_Abort(MPI_COMM_WORLD, kExitIoError);
+      transport.abort(kExitIoError);
     }
     const std::string line = progress.record(c, r, seconds_since(t0));
     if (!o.quiet) std::fprintf(stderr, "lubsweep: %s\n", line.c_str());
-    if (!r.ok() && grid.on_failure == FailurePolicy::abort_on_failure && !aborting) {
-      aborting = true;
-      std::fprintf(stderr, "lubsweep: %s failed (%s: %s); on_failure = abort: stopping\n", c.name.c_str(),
-                   r.status.c_str(), r.message.c_str());
-    }
     if (o.kill_after >= 0 && ++new_rows >= o.kill_after) std::raise(SIGKILL);  // tests only
   };
-  auto next = [&]() -> int {
-    if (aborting || queue.empty()) return -1;
-    const int id = queue.front();
-    queue.pop_front();
-    return id;
+  s.on_abort = [&](const CaseResult& r) {
+    std::fprintf(stderr, "lubsweep: %s failed (%s: %s); on_failure = abort: stopping\n",
+                 grid.cases.at(static_cast<std::size_t>(r.case_id)).name.c_str(), r.status.c_str(), r.message.c_str());
   };
-
-  {
-    LocalWorker local;
-    int remote_active = nranks - 1;
-    // Idle waits grow from 50 µs to 1 ms: a rank waiting for its next case waits at most
-    // ~1 ms, and the polling costs rank 0's core ~1 % (Open MPI would spin at 100 %).
-    auto idle = std::chrono::microseconds(50);
-    for (;;) {
-      bool progressed = false;
-      if (auto r = local.take()) {
-        record(*r);
-        progressed = true;
-      }
-      if (!local.busy()) {
-        const int id = next();
-        if (id >= 0) local.give(grid.cases[static_cast<std::size_t>(id)]), progressed = true;
-      }
-      int flag = 0;
-      MPI_Status st;
-      MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st);
-      if (flag) {
-        progressed = true;
-        const std::string msg = receive(st);
-        if (st.MPI_TAG == kTagResult) {
-          CaseResult r;
-          try {
-            r = decode(msg);
-          } catch (const std::exception& e) {
-            std::fprintf(stderr, "lubsweep: rank %d: %s\n", st.MPI_SOURCE, e.what());
-            MPI_Abort(MPI_COMM_WORLD, kExitIoError);
-          }
-          record(r);
-        }
-        const int id = next();
-        if (id >= 0) {
-          send(st.MPI_SOURCE, kTagTask, task_message(grid.cases[static_cast<std::size_t>(id)]));
-        } else {
-          send(st.MPI_SOURCE, kTagStop, std::string());
-          --remote_active;
-        }
-      }
-      if (remote_active == 0 && !local.busy() && (queue.empty() || aborting)) break;
-      if (progressed) {
-        idle = std::chrono::microseconds(50);
-      } else {
-        if (local.busy())
-          local.wait_for_result(idle);
-        else
-          std::this_thread::sleep_for(idle);
-        idle = std::min(idle * 2, std::chrono::microseconds(1000));
-      }
-    }
+  try {
+    schedule(grid, queue, transport, s);
+  } catch (const TransportError& e) {
+    std::fprintf(stderr, "lubsweep: %s\n", e.what());
+    transport.abort(kExitIoError);
   }
 
   const bool complete = writer->complete();
@@ -449,9 +249,8 @@ int coordinate(const Options& o, const Grid& grid, const ResumeState& resume, bo
 }  // namespace
 
 int run_sweep(const Options& o) {
-  int rank = 0, nranks = 1;
+  int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  MPI_Comm_size(MPI_COMM_WORLD, &nranks);
 
   if (!o.summary_of.empty()) {
     if (rank != 0) return 0;
@@ -474,14 +273,18 @@ int run_sweep(const Options& o) {
     if (rank == 0 && code == 0) list_cases(grid);
     return code;
   }
-  if (broadcast_code(code) != 0) return rank == 0 ? code : 0;
+  if (broadcast_code(MPI_COMM_WORLD, code) != 0) return rank == 0 ? code : 0;
 
   int status = 0;
-  if (rank == 0)
-    status = coordinate(o, grid, resume, reuse_file, nranks);
-  else
-    worker_loop(rank);
-  polite_barrier();
+  if (rank == 0) {
+    MpiCoordinator transport(MPI_COMM_WORLD);
+    status = coordinate(o, grid, resume, reuse_file, transport);
+  } else {
+    MpiWorker transport(MPI_COMM_WORLD);
+    // Each rank parses a case's scene once, from the task's canonical JSON.
+    serve(transport, [rank](const Task& t) { return run_case(t.case_id, t.scene, rank); });
+  }
+  polite_barrier(MPI_COMM_WORLD);
   return status;
 }
 

@@ -57,7 +57,8 @@ bad_input)
   rc=$?
   set -e
   [ "$rc" -eq 2 ] || { cat bad.log >&2; fail "a bad grid exited $rc, expected 2"; }
-  grep -q "grid.axes\[0\].values\[1\] = -0.0001: must be > 0 m" bad.log || { cat bad.log >&2; fail "message"; }
+  # The grid's path and value, then the scene parser's rule on the journal radius it sets.
+  grep -q "grid.axes\[0\].values\[1\] = -0.0001: gives an invalid scene (joint rod_slider: journal_radius_m = bearing_radius_m - clearance = 0.01 m - -0.0001 m): joints\[3\].journal_radius_m = 0.0101: must be < bearing_radius_m = 0.01 m (the radial clearance must be > 0)" bad.log || { cat bad.log >&2; fail "message"; }
   [ ! -e bad.h5 ] || fail "a bad grid created its output file"
   echo "not a study" > other.h5
   set +e

@@ -27,13 +27,16 @@ struct CaseResult {
   bool ok() const { return status == "ok"; }
 };
 
-/// Parses the case's scene (canonical JSON) and runs it. Never throws: a scene the core
-/// refuses at run time ("invalid_scene") or any exception ("error") becomes the status.
+/// Runs a case's parsed scene. Never throws: a scene the core refuses at run time
+/// ("invalid_scene") or any exception ("error") becomes the status.
+CaseResult run_case(int case_id, const Scene& scene, int rank);
+/// The same from the case's scene as canonical JSON (a task from the coordinator), parsed
+/// here once.
 CaseResult run_case(int case_id, const std::string& scene_json, int rank);
 
-/// Byte encoding for MPI messages (same program on every rank: native byte order).
+/// Byte encoding for messages between processes (MessagePack, nlohmann-json's binary format).
 std::string encode(const CaseResult& r);
-/// Throws std::runtime_error on a truncated or malformed buffer.
+/// Throws std::runtime_error, saying what is wrong, on a truncated or malformed buffer.
 CaseResult decode(const std::string& bytes);
 
 }  // namespace lub::sweep

@@ -23,8 +23,13 @@
 #include <nlohmann/json.hpp>
 
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
+
+namespace lub {
+struct Scene;
+}
 
 namespace lub::sweep {
 
@@ -58,6 +63,7 @@ struct Case {
   std::string name;                          ///< "case_0007": its /series group
   std::string scene;                         ///< canonical JSON of the effective scene: what runs
   std::string hash;                          ///< SHA-256 of `scene`: identity for resume
+  std::shared_ptr<const Scene> parsed;       ///< `scene` as the scene parser read it (rank 0 runs it)
   std::vector<nlohmann::json> axis_values;   ///< per Grid::axes, read back from the scene (null: unset)
   std::string label;                         ///< "clearance_m=0.0001" (the values its grid varies)
 };
@@ -75,7 +81,10 @@ struct Grid {
 };
 
 /// Reads, validates and expands a grid file. Throws lub::InputError naming the field, the
-/// value and the rule ("grid.axes[0].values[2] = -1: must be > 0 m").
+/// value and the rule. The grid checks its own shape and the types of the named axes'
+/// values; every scene rule is the scene parser's, run on each case's scene, its message
+/// prefixed with the grid's value that breaks it ("grid.axes[0].values[2] = 0: gives an
+/// invalid scene: joints[3].viscosity_Pa_s = 0: must be > 0 Pa s").
 Grid load_grid(const std::string& path);
 
 /// The same from the grid's text; relative scene paths are resolved against `base_dir`,

@@ -7,7 +7,7 @@
 
 namespace lub::sweep {
 
-/// SHA-256 of `data` (FIPS 180-4), as 64 lower-case hex digits.
+/// SHA-256 of `data` (FIPS 180-4, computed by OpenSSL's libcrypto), as 64 lower-case hex digits.
 std::string sha256_hex(const std::string& data);
 
 /// The canonical text of a JSON document: no whitespace, object keys sorted (nlohmann's

@@ -1,11 +1,10 @@
-// lubsweep's driver: options, and the MPI sweep (dynamic scheduling, one writer).
+// lubsweep's driver: options, and the sweep on MPI_COMM_WORLD.
 //
-// Rank 0 validates the grid and the output before any work, then hands out cases one at
-// a time to whichever rank asks (a rank asks again when it returns a result), computes
-// cases itself on a worker thread while its main thread serves the other ranks (polling
-// with MPI_Iprobe and short sleeps, so it does not steal the core its own worker uses),
-// and alone writes the study file. Every case is computed from its own scene, so the
-// metrics do not depend on the number of ranks or on which rank ran a case.
+// Rank 0 validates the grid and the output before any work, then coordinates
+// (scheduler.hpp over mpi_transport.hpp): it hands out cases one at a time to whichever
+// rank asks, computes cases itself on a worker thread while its main thread serves the
+// other ranks, and alone writes the study file. Every case is computed from its own scene,
+// so the metrics do not depend on the number of ranks or on which rank ran a case.
 #pragma once
 
 #include <optional>

@@ -1,0 +1,46 @@
+// Dynamic scheduling of a sweep's cases, over any transport (transport.hpp).
+//
+// The coordinator hands out cases one at a time to whichever worker asks (a worker asks
+// again by returning a result), computes cases itself on a worker thread of its own while
+// its calling thread serves the others and records results, and stops handing out work
+// after the first failure when the grid says on_failure = abort. Every case is computed
+// from its own scene, so the results do not depend on how many workers there are or on
+// which one ran a case.
+#pragma once
+
+#include <deque>
+#include <functional>
+#include <map>
+
+#include "lub/sweep/case_result.hpp"
+#include "lub/sweep/grid.hpp"
+#include "lub/sweep/transport.hpp"
+
+namespace lub::sweep {
+
+/// The ids of the grid's cases that `done` (the results a study file already holds) does
+/// not have, in case-id order: what a resumed sweep still runs.
+std::deque<int> cases_to_run(const Grid& grid, const std::map<int, CaseResult>& done);
+
+struct Schedule {
+  FailurePolicy on_failure = FailurePolicy::continue_on_failure;
+  /// Runs a case on the coordinator's own worker thread; empty: the coordinator computes
+  /// nothing itself (then the transport must have workers).
+  std::function<CaseResult(const Case&)> local;
+  /// Called on the calling thread for every result, in the order they arrive.
+  std::function<void(const CaseResult&)> record;
+  /// Called once, after `record`, for the result that stops a sweep with on_failure = abort.
+  std::function<void(const CaseResult&)> on_abort;
+};
+
+/// Runs the cases `queue` names (ids into grid.cases) on the transport's workers and the
+/// local one; returns once every worker has been told to stop and nothing is running:
+/// true if the sweep stopped early (on_failure = abort). Throws TransportError if a
+/// worker's message cannot be read.
+bool schedule(const Grid& grid, std::deque<int> queue, CoordinatorTransport& transport, const Schedule& s);
+
+/// A worker: announces itself, then runs each task it is given and returns the result,
+/// until told to stop.
+void serve(WorkerTransport& transport, const std::function<CaseResult(const Task&)>& run);
+
+}  // namespace lub::sweep
