@@ -250,23 +250,9 @@ int run_steady(int argc, char** argv) {
   in.speed_rad_s = rpm * 2.0 * kPi / 60.0;
   const lub::SteadyBearingResult r = lub::solve_steady_bearing(in);
   nlohmann::json out = describe(c);
-  out["load_N"] = in.load_N;
-  out["speed_rpm"] = rpm;
-  out["sommerfeld_number"] = lub::sommerfeld_number(c.geometry, c.viscosity, in.load_N, in.speed_rad_s);
-  out["converged"] = r.converged;
-  if (!r.converged) {
-    out["message"] = r.message;
-    std::cout << out.dump(2) << "\n";
-    return 3;
-  }
-  out["eps"] = r.eps;
-  out["attitude_angle_deg"] = r.attitude_rad * 180.0 / kPi;
-  out["min_film_thickness_m"] = r.min_film_m;
-  out["radial_N"] = r.force.radial_N;
-  out["tangential_N"] = r.force.tangential_N;
-  out["force_law_evaluations"] = r.evaluations;
+  lub::report_steady_bearing(out, in, rpm, r);
   std::cout << out.dump(2) << "\n";
-  return 0;
+  return r.converged ? 0 : 3;
 }
 
 }  // namespace

@@ -241,20 +241,7 @@ py::dict steady_bearing(const std::string& law, double load_N, double speed_rpm,
     out["n_z"] = b.finite.n_z;
     out["groove_at_max_film"] = b.finite.groove_at_max_film;
   }
-  out["load_N"] = load_N;
-  out["speed_rpm"] = speed_rpm;
-  out["sommerfeld_number"] = lub::sommerfeld_number(b.geometry, b.viscosity, load_N, in.speed_rad_s);
-  out["converged"] = r.converged;
-  if (!r.converged) {
-    out["message"] = r.message;
-    return out;
-  }
-  out["eps"] = r.eps;
-  out["attitude_angle_deg"] = r.attitude_rad * 180.0 / kPi;
-  out["min_film_thickness_m"] = r.min_film_m;
-  out["radial_N"] = r.force.radial_N;
-  out["tangential_N"] = r.force.tangential_N;
-  out["force_law_evaluations"] = r.evaluations;
+  lub::report_steady_bearing(out, in, speed_rpm, r);
   return out;
 }
 

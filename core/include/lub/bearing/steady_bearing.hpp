@@ -46,4 +46,27 @@ SteadyBearingResult solve_steady_bearing(const SteadyBearingInput& in);
 double sommerfeld_number(const BearingGeometry& g, double viscosity_Pa_s, double load_N,
                          double speed_rad_s);
 
+/// The report of one steady bearing, written into any map-like `out` (out["key"] = value:
+/// `lubbearing steady`'s JSON, the Python module's dict): the load and speed, the
+/// Sommerfeld number, whether it converged, then either the message or ε, the attitude
+/// angle [deg], h_min [m], the film force [N] and the force-law evaluations. One list of
+/// keys, so the program and the module report the same thing.
+template <class Out>
+void report_steady_bearing(Out& out, const SteadyBearingInput& in, double speed_rpm, const SteadyBearingResult& r) {
+  out["load_N"] = in.load_N;
+  out["speed_rpm"] = speed_rpm;
+  out["sommerfeld_number"] = sommerfeld_number(in.geometry, in.viscosity_Pa_s, in.load_N, in.speed_rad_s);
+  out["converged"] = r.converged;
+  if (!r.converged) {
+    out["message"] = r.message;
+    return;
+  }
+  out["eps"] = r.eps;
+  out["attitude_angle_deg"] = r.attitude_rad * 180.0 / 3.14159265358979323846;
+  out["min_film_thickness_m"] = r.min_film_m;
+  out["radial_N"] = r.force.radial_N;
+  out["tangential_N"] = r.force.tangential_N;
+  out["force_law_evaluations"] = r.evaluations;
+}
+
 }  // namespace lub
