@@ -256,7 +256,7 @@ TEST(Effects, AbsentEffectsAreNeverEvaluated) {
   EXPECT_EQ(r.stats.film_law_evals, 0);
   // With gravity and a film: every evaluation adds both (a continuous law: one call per
   // evaluation; the printed law's switching film calls its law twice more where its
-  // branch is continued across ε̇ = 0, model.cpp film_element_force).
+  // branch is continued across ε̇ = 0, mechanism/film_element.cpp film_element_force).
   json lub_doc = load("slider_crank.json");
   lub_doc["joints"][3]["force_law"] = "frene_long";
   lub_doc["simulation"]["max_cycles"] = 1;
