@@ -4,6 +4,7 @@
 // and when a mode no longer matches the state (resync_modes). The run loop only asks.
 // See README "Discontinuous force laws".
 #include <cmath>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -33,10 +34,7 @@ int MultibodySystem::roots(double t, const double* y, double* g) {
         if (evaluate(m_, ws_, t, q, v, acc_.data()) != 0) return 1;
         evaluated = true;
       }
-      const auto [F_out, F_in] = sliding_limits(k, ws_.films[k].state);
-      const double F = ws_.films[k].force.radial_N;
-      g[j] = F - F_out;      // < 0: the load pulls the journal outwards off ε̇ = 0
-      g[j + 1] = F_in - F;   // < 0: the load pushes it inwards
+      std::tie(g[j], g[j + 1]) = sliding_exit_functions(k);
     }
     j += 2;
   }
@@ -47,6 +45,12 @@ std::pair<double, double> MultibodySystem::sliding_limits(int k, BearingState st
   st.eps_dot = 0.0;
   return {film_element_force(m_, ws_, k, st, FilmMode::outward).radial_N,
           film_element_force(m_, ws_, k, st, FilmMode::inward).radial_N};
+}
+
+std::pair<double, double> MultibodySystem::sliding_exit_functions(int k) {
+  const auto [F_out, F_in] = sliding_limits(k, ws_.films[k].state);
+  const double F = ws_.films[k].force.radial_N;
+  return {F - F_out, F_in - F};
 }
 
 std::vector<int> MultibodySystem::root_directions() const {
@@ -125,12 +129,11 @@ int MultibodySystem::resync_modes(double t, const double* y) {
         if (evaluate(m_, ws_, t, y, y + m_.nq, switch_acc_.data()) != 0) continue;
         evaluated = true;
       }
-      const double F = ws_.films[k].force.radial_N;
-      const auto [F_out, F_in] = sliding_limits(static_cast<int>(k), ws_.films[k].state);
-      const double margin = 1e-9 * std::abs(F_in - F_out);
+      const auto [out_side, in_side] = sliding_exit_functions(static_cast<int>(k));
+      const double margin = 1e-9 * std::abs(out_side + in_side);  // of the jump F_in − F_out
       FilmMode to = mode;
-      if (F < F_out - margin) to = FilmMode::outward;
-      if (F > F_in + margin) to = FilmMode::inward;
+      if (out_side < -margin) to = FilmMode::outward;
+      if (in_side < -margin) to = FilmMode::inward;
       if (to == mode) continue;
       ws_.film_mode[k] = to;
       ++switches;

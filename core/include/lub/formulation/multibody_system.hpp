@@ -84,6 +84,11 @@ class MultibodySystem final : public OdeSystem {
   /// the printed law: the jump pushes back towards ε̇ = 0); a sliding motion holds while
   /// the force that keeps ε̇ = 0 lies between them.
   std::pair<double, double> sliding_limits(int k, BearingState st);
+  /// Sliding film k after an evaluate(): (F − F_out, F_in − F), both >= 0 while its force
+  /// lies within the jump; the first < 0: the load pulls the journal outwards off ε̇ = 0,
+  /// the second < 0: it pushes it inwards. The root functions of a sliding film, and the
+  /// step-end check for an exit they missed.
+  std::pair<double, double> sliding_exit_functions(int k);
   std::vector<int> root_directions() const;
   /// At a root return: switches each switching film whose roots fired (`flags`, as the
   /// integrator reports them) at the consistent state y = (q, v): at ε̇ = 0 into sliding
