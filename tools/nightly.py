@@ -76,11 +76,11 @@ TOLERANCES = {
 # to 12 for one case (5e-5 m clearance) under the step-sequence perturbation with the
 # former default numerics, its metrics staying within the tolerances above. Cost is not a
 # result either.
-NOTES = ["cycles_to_steady", "cycles_run"]
+NOTES = ["cycles_to_steady", "cycles_run", "periods_integrated"]
 INFO = NOTES + ["steps", "wall_time_s"]  # recorded and reported, not compared
 
 
-INTEGERS = {"steady", "below_safe_film", "cycles_to_steady", "cycles_run", "steps"}
+INTEGERS = {"steady", "below_safe_film", "cycles_to_steady", "cycles_run", "periods_integrated", "steps"}
 
 
 def fmt(column, v):
@@ -107,7 +107,7 @@ def study_rows(path):
     rows = {}
     for cid, r in cases.iterrows():
         row = {k: r[k] for k in KEY}
-        row.update(case=r["name"], hash=r["hash"], status=r["status"])
+        row.update(case=r["name"], hash=r["hash"], status=r["status"], classification=r["classification"])
         for m in list(TOLERANCES) + INFO:
             row[m] = float(r[m])
         k = key_of(row)
@@ -137,7 +137,7 @@ def read_baseline(path):
 
 def accept(study, baseline):
     rows = study_rows(study)
-    cols = KEY + ["case", "hash", "status"] + list(TOLERANCES) + INFO
+    cols = KEY + ["case", "hash", "status", "classification"] + list(TOLERANCES) + INFO
     tmp = baseline + ".partial"
     with open(tmp, "w", newline="") as f:
         f.write("# Baseline of the nightly reproduction (tools/nightly.sh): the metrics of every case of\n"
@@ -219,6 +219,12 @@ def compare(study, baseline, report_dir, accepted):
             changed.setdefault(k, []).append(("status", b["status"], n["status"], "", ""))
             continue
         if b["status"] != "ok":  # a failed case's metrics describe the run up to its failure
+            continue
+        # Whether a case has a steady cycle is behaviour: it must not change (README "Steady
+        # cycles"); the metrics of one that has none are NaN in the study.
+        if n["classification"] != b["classification"]:
+            regressions.append(f"{name}: classification {n['classification']}, baseline {b['classification']}")
+            changed.setdefault(k, []).append(("classification", b["classification"], n["classification"], "", ""))
             continue
         for m, (rtol, atol) in TOLERANCES.items():
             vb, vn = b[m], n[m]

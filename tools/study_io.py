@@ -14,7 +14,7 @@ import json
 import h5py
 import xarray as xr
 
-FORMAT = "lubsweep-study-2"
+FORMAT = "lubsweep-study-3"
 
 
 def _open(path, group=None):

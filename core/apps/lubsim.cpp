@@ -109,8 +109,16 @@ int main(int argc, char** argv) {
   if (!quiet) {
     std::printf("status   %s%s%s\n", lub::to_string(r.status).c_str(), r.message.empty() ? "" : ": ",
                 r.message.c_str());
-    std::printf("metrics  (last %d of %d cycles)\n", std::min<int>(scene.simulation.metric_cycles, r.metrics.cycles_run),
-                r.metrics.cycles_run);
+    const std::string cls = lub::classification(r);
+    std::printf("steady   %s (%s)%s\n", cls.c_str(), r.steady.method.c_str(),
+                cls == "periodic" || cls == "periodic_unstable"
+                    ? ""
+                    : ": the metrics below are a transient's, not a steady cycle's (README \"Steady cycles\")");
+    if (r.steady.method == "shooting")
+      std::printf("metrics  (the periodic orbit, %d cycles)\n", scene.simulation.metric_cycles);
+    else
+      std::printf("metrics  (last %d of %d cycles)\n", std::min<int>(scene.simulation.metric_cycles, r.metrics.cycles_run),
+                  r.metrics.cycles_run);
     for (const auto& f : lub::metric_fields())
       std::printf("  %-34s %.6g %s\n", f.name, f.get(r), f.unit);
     std::printf("solver   %s (%s) rtol %.3g atol %.3g m (per state, README \"Integration\") jacobian %s\n",

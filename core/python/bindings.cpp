@@ -66,6 +66,12 @@ py::dict simulate(const std::optional<std::string>& scene_path, const std::optio
   py::dict out;
   out["status"] = lub::to_string(r.status);
   out["message"] = r.message;
+  out["classification"] = lub::classification(r);
+  out["steady_method"] = r.steady.method;
+  std::vector<double> mod, arg;
+  for (const auto& mu : r.steady.multipliers) mod.push_back(std::abs(mu)), arg.push_back(std::arg(mu));
+  out["multiplier_modulus"] = to_array(mod);
+  out["multiplier_angle_rad"] = to_array(arg);
   out["scene"] = effective;
   out["program"] = program;
   out["version"] = lub::program_version();

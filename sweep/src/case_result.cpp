@@ -35,13 +35,19 @@ CaseResult run_guarded(int case_id, int rank, const SceneOf& scene) {
     RunResult r = run_scene(scene());
     out.status = to_string(r.status);
     out.message = r.message;
-    for (std::size_t i = 0; i < fields.size(); ++i) out.values[i] = fields[i].get(r);
+    out.classification = classification(r);
+    // A study reports steady metrics of steady cycles only (README "Steady cycles").
+    const bool steady = out.classification == "periodic" || out.classification == "periodic_unstable";
+    for (std::size_t i = 0; i < fields.size(); ++i)
+      if (steady || !fields[i].steady_metric) out.values[i] = fields[i].get(r);
     out.series = std::move(r.series);
   } catch (const InputError& e) {
     out.status = "invalid_scene";
+    out.classification = out.status;
     out.message = e.what();
   } catch (const std::exception& e) {
     out.status = "error";
+    out.classification = out.status;
     out.message = e.what();
   }
   return out;
@@ -85,6 +91,7 @@ std::string encode(const CaseResult& r) {
                       {"data", i < s.data.size() ? s.data[i] : std::vector<double>()}});
   const json m = {{"format", kResultFormat}, {"case_id", r.case_id}, {"rank", r.rank},
                   {"status", r.status},      {"message", r.message}, {"values", r.values},
+                  {"classification", r.classification},
                   {"revision", r.revision},  {"series", std::move(series)}};
   const std::vector<std::uint8_t> bytes = json::to_msgpack(m);
   return std::string(bytes.begin(), bytes.end());
@@ -105,6 +112,7 @@ CaseResult decode(const std::string& bytes) {
     r.rank = field<int>(m, "rank", &json::is_number_integer, "an integer");
     r.status = field<std::string>(m, "status", &json::is_string, "a string");
     r.message = field<std::string>(m, "message", &json::is_string, "a string");
+    r.classification = field<std::string>(m, "classification", &json::is_string, "a string");
     r.values = field<std::vector<double>>(m, "values", &json::is_array, "an array");
     r.revision = field<std::string>(m, "revision", &json::is_string, "a string");
     for (const json& c : field<json>(m, "series", &json::is_array, "an array")) {

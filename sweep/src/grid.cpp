@@ -597,6 +597,10 @@ Grid parse_grid(const std::string& text, const std::string& base_dir, const std:
     parse_case(cx.base, r.child("set"), *set);
   }
   apply_study(r.has("study") ? r.raw("study") : json::object(), cx, g.on_failure);
+  // A study reports steady cycles: simulation.steady is "auto" unless the scene, `set` or
+  // an axis says otherwise (README "Steady cycles"); a run of fixed duration has no cycle.
+  if (json& sim = cx.base["simulation"]; !sim.contains("steady") && !sim.contains("duration_s"))
+    sim["steady"] = "auto";
   parse_case(cx.base, r.child("study"), r.has("study") ? r.raw("study") : json::object());
 
   // Joint and driver of the named axes.

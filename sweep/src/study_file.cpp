@@ -16,6 +16,11 @@ using nlohmann::json;
 
 namespace {
 
+constexpr const char* kClassificationLongName =
+    "steady cycle: periodic (converged, stable), periodic_unstable (an orbit with a Floquet multiplier "
+    "above 1), drifting (no periodic orbit inside the clearance), not_converged; for a case that is "
+    "not ok its status";
+
 h5::Cell axis_cell(const Axis& a, const json& v) {
   if (a.numeric) return v.is_number() ? v.get<double>() : std::nan("");
   if (v.is_null()) return std::string();
@@ -158,14 +163,20 @@ void write_grid_results(h5::File& f, const Grid& g, const std::map<int, CaseResu
       }
       h5::Dataset d = bg.write_dataset(fields[k].name, v, shape, fields[k].unit, h5::WriteOptions{0});
       d.set_attribute("long_name", std::string(fields[k].long_name) +
-                                       (k < n_metrics ? " (NaN: the case is not ok, see status)" : ""));
+                                       (fields[k].steady_metric ? " (NaN: no steady cycle, see classification)"
+                                        : k < n_metrics      ? " (NaN: the case is not ok, see status)"
+                                                             : ""));
       attach_like_index(bg, b, g, d);
     }
-    std::vector<std::string> status, message;
+    std::vector<std::string> status, message, cls;
     for (const CaseResult* r : rs) {
       status.push_back(r ? r->status : "not_run");
       message.push_back(r ? r->message : "");
+      cls.push_back(r ? r->classification : "not_run");
     }
+    h5::Dataset cl = bg.write_strings("classification", cls, shape);
+    cl.set_attribute("long_name", std::string(kClassificationLongName));
+    attach_like_index(bg, b, g, cl);
     h5::Dataset st = bg.write_strings("status", status, shape);
     st.set_attribute("long_name",
                      "outcome: ok, film_collapse, solver_failure, budget_exceeded, invalid_scene, error, or not_run");
@@ -207,6 +218,7 @@ std::vector<h5::Column> case_columns(const Grid& g) {
   c.push_back({"status", ColumnType::String, "",
                "outcome: ok, film_collapse, solver_failure, budget_exceeded, invalid_scene, error"});
   c.push_back({"message", ColumnType::String, "", "why a case is not ok"});
+  c.push_back({"classification", ColumnType::String, "", kClassificationLongName});
   for (const auto& f : result_fields())
     c.push_back({f.name, f.integer ? ColumnType::Int64 : ColumnType::Float64, f.unit, f.long_name});
   c.push_back({"rank", ColumnType::Int64, "1", "MPI rank that computed the case"});
@@ -220,6 +232,7 @@ h5::Row case_row(const Grid& g, const CaseResult& r) {
   for (std::size_t i = 0; i < g.axes.size(); ++i) row.push_back(axis_cell(g.axes[i], c.axis_values[i]));
   row.push_back(r.status);
   row.push_back(r.message);
+  row.push_back(r.classification);
   const auto fields = result_fields();
   for (std::size_t i = 0; i < fields.size(); ++i) {
     const double v = i < r.values.size() ? r.values[i] : std::nan("");
@@ -262,7 +275,7 @@ ResumeState read_existing(const std::string& path, const Grid& grid, bool retry_
   const std::size_t n = t.rows();
   const auto fields = result_fields();
   bool compatible = true;
-  for (const char* col : {"hash", "status", "message", "rank", "revision"}) compatible = compatible && t.has_column(col);
+  for (const char* col : {"hash", "status", "message", "classification", "rank", "revision"}) compatible = compatible && t.has_column(col);
   for (const auto& fld : fields) compatible = compatible && t.has_column(fld.name);
   if (!compatible) {
     st.incompatible_rows = n;
@@ -271,6 +284,7 @@ ResumeState read_existing(const std::string& path, const Grid& grid, bool retry_
   const auto hashes = t.read_strings("hash");
   const auto status = t.read_strings("status");
   const auto message = t.read_strings("message");
+  const auto classification = t.read_strings("classification");
   const auto revision = t.read_strings("revision");
   const auto rank = t.read_int64s("rank");
   std::vector<std::vector<double>> cols;
@@ -298,6 +312,7 @@ ResumeState read_existing(const std::string& path, const Grid& grid, bool retry_
     r.rank = static_cast<int>(rank[i]);
     r.status = status[i];
     r.message = message[i];
+    r.classification = classification[i];
     r.revision = revision[i];
     for (std::size_t k = 0; k < fields.size(); ++k) r.values.push_back(cols[k][i]);
     st.done[r.case_id] = std::move(r);
@@ -430,6 +445,8 @@ void print_summary(const std::string& path, std::FILE* out) {
     cols.push_back(std::move(c));
   }
   cols.push_back({"status", status});
+  const auto cls = t.has_column("classification") ? t.read_strings("classification") : status;
+  cols.push_back({"classification", cls});
   auto numeric = [&](const std::string& head, const std::string& name, const char* f, double scale) {
     Col c{head, {}};
     if (!t.has_column(name)) return;
@@ -441,8 +458,8 @@ void print_summary(const std::string& path, std::FILE* out) {
   numeric("peak_F[N]", "peak_reaction_N", "%.4g", 1.0);
   numeric("peak_a[m/s2]", "peak_acceleration_m_s2", "%.4g", 1.0);
   numeric("periodicity", "periodicity", "%.2e", 1.0);
-  numeric("steady", "steady", "%.0f", 1.0);
-  numeric("cycles", "cycles_run", "%.0f", 1.0);
+  numeric("|mu|max", "multiplier_1_modulus", "%.4f", 1.0);
+  numeric("periods", "periods_integrated", "%.0f", 1.0);
   numeric("steps", "steps", "%.0f", 1.0);
   numeric("wall[s]", "wall_time_s", "%.2f", 1.0);
 
@@ -457,6 +474,11 @@ void print_summary(const std::string& path, std::FILE* out) {
   const std::int64_t total = f.has_attribute("cases_total") ? f.attribute_int64("cases_total") : static_cast<std::int64_t>(n);
   std::fprintf(out, "%s: %zu of %lld cases, %zu ok, %zu not ok%s\n", path.c_str(), n, static_cast<long long>(total),
                n - failed, failed, static_cast<std::int64_t>(n) < total ? " (incomplete: re-run to resume)" : "");
+  std::map<std::string, std::size_t> by_class;
+  for (const auto& c : cls) ++by_class[c];
+  std::fprintf(out, "classification:");
+  for (const auto& [name, count] : by_class) std::fprintf(out, " %s %zu,", name.c_str(), count);
+  std::fprintf(out, " (h_min etc. only for periodic cycles: README \"Steady cycles\")\n");
   for (std::size_t k = 0; k < cols.size(); ++k)
     std::fprintf(out, "%s%-*s", k ? "  " : "", static_cast<int>(width[k]), cols[k].head.c_str());
   std::fprintf(out, "\n");

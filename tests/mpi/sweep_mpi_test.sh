@@ -146,16 +146,19 @@ tools)
   "$py" "$tools/compare_study.py" s.h5 s.h5 -q
   cp s.h5 worse.h5
   "$py" - <<'PY'
-import h5py
+import h5py, math
 with h5py.File("worse.h5", "r+") as f:
-    f["cases/max_eps"][4] *= 1.01
+    # A case with a steady cycle (the others have no steady metrics to change: NaN).
+    i = next(i for i, c in enumerate(f["cases/classification"][()]) if c.decode() == "periodic")
+    f["cases/peak_reaction_N"][i] *= 1.01
+    open("edited", "w").write(f["cases/name"][i].decode())
 PY
   set +e
   "$py" "$tools/compare_study.py" worse.h5 s.h5 -q > compare.log
   rc=$?
   set -e
-  [ "$rc" -eq 1 ] || { cat compare.log >&2; fail "compare_study.py missed a 1 % change of max_eps (exit $rc)"; }
-  grep -q "REGRESSION case_0004: max_eps" compare.log || { cat compare.log >&2; fail "compare_study.py message"; }
+  [ "$rc" -eq 1 ] || { cat compare.log >&2; fail "compare_study.py missed a 1 % change of peak_reaction_N (exit $rc)"; }
+  grep -q "REGRESSION $(cat edited): peak_reaction_N" compare.log || { cat compare.log >&2; fail "compare_study.py message"; }
   "$py" "$tools/plot_paper.py" s.h5 -o figures > figures.log
   [ -s figures/fig05_reference.png ] || fail "plot_paper.py drew no reference figure"
   "$py" "$tools/sweep_map.py" s.h5 -x speed_rpm -y force_law --fix solver.rtol=1e-6 -m max_eps -m steps -o maps > maps.log

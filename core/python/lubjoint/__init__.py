@@ -16,7 +16,8 @@ argument with a unit names it (``radius_m``, ``viscosity_Pa_s``), every array ca
 Bad input raises ``InputError`` (a ``ValueError``; alias ``SceneError``) with the message
 the command line prints: the JSON path, the value and the rule. A run that cannot be
 completed (film collapse, solver failure, budget) is a result, not an exception: see
-``ds.attrs["status"]`` and ``ds.attrs["message"]``.
+``ds.attrs["status"]`` and ``ds.attrs["message"]``; the steady cycle's classification
+(README "Steady cycles") in ``ds.attrs["classification"]``.
 
 Build and import (README, "Python"):
 ``PYTHONPATH=build/python /usr/bin/python3 -c "import lubjoint"``.
@@ -140,10 +141,17 @@ def simulate(scene, overrides=None, output=None):
             key = name if name not in data_vars and name not in coords else f"{kind}_{name}"
             data_vars[key] = ((), np.int64(value) if integer else np.float64(value),
                               attrs_of(unit, long_name, kind=kind))
+    # Every Floquet multiplier of the steady cycle (shooting), largest first.
+    data_vars["multiplier_modulus"] = ("multiplier", r["multiplier_modulus"],
+                                       {"units": "1", "long_name": "Floquet multipliers' moduli, largest first"})
+    data_vars["multiplier_angle_rad"] = ("multiplier", r["multiplier_angle_rad"],
+                                         {"units": "rad", "long_name": "Floquet multipliers' angles"})
     settings = r["solver_settings"]
     attrs = {
         "status": r["status"],
         "message": r["message"],
+        "classification": r["classification"],
+        "steady_method": r["steady_method"],
         "scene": r["scene"],
         "program": r["program"],
         "version": r["version"],

@@ -33,21 +33,6 @@ Metrics steady_cycle_metrics(const Scene& scene, const std::vector<CycleMetrics>
     mt.safe_film_m = scene.metrics.safe_film_per_diameter * 2.0 * scene.joints[mj].bearing.bearing_radius_m;
     mt.below_safe_film = mt.min_film_thickness_m < mt.safe_film_m;
   }
-  for (size_t k = 0; k < cycles.size(); ++k) {
-    // cycles_to_steady: the first time the last metric_cycles cycles all repeated
-    const int n = static_cast<int>(k) + 1;
-    if (n < scene.simulation.metric_cycles + 1) continue;
-    bool ok = true;
-    for (int i = 0; i < scene.simulation.metric_cycles; ++i) {
-      const double p = cycles[k - i].periodicity;
-      ok = ok && p >= 0 && p < scene.simulation.steady_tolerance;
-    }
-    if (ok) {
-      mt.steady = true;
-      mt.cycles_to_steady = n;
-      break;
-    }
-  }
   return mt;
 }
 

@@ -9,9 +9,9 @@
 namespace lub::detail {
 
 /// Extremes over the last simulation.metric_cycles cycles of `cycles` (the metric joint's
-/// film and reaction, the metric body's acceleration, periodicity), the safe-film check,
-/// and whether and when the run became steady (the last metric_cycles cycles each repeat
-/// the one before within simulation.steady_tolerance). The energy balance is not set here.
+/// film and reaction, the metric body's acceleration, periodicity) and the safe-film
+/// check. Whether they describe a steady cycle (steady_cycle.cpp) and the energy balance
+/// are not set here.
 Metrics steady_cycle_metrics(const Scene& scene, const std::vector<CycleMetrics>& cycles, int cycles_run);
 
 }  // namespace lub::detail

@@ -12,13 +12,16 @@
 #include "lub/mechanism/model.hpp"
 #include "lub/formulation/multibody_system.hpp"
 #include "run/metrics.hpp"
+#include "run/segment.hpp"
+#include "lub/steady/contraction.hpp"
 
 namespace lub {
 
 namespace {
 
 constexpr double kTwoPi = 6.28318530717958647692;
-constexpr int kPhasePoints = 120;  // orbit samples per cycle (every 3°) for the periodicity measure
+constexpr int kPhasePoints = 120;
+constexpr size_t kMaxBoundaries = 4096;  // cycle-boundary states a segment keeps  // orbit samples per cycle (every 3°) for the periodicity measure
 
 // Everything measured at one instant.
 struct Probe {
@@ -105,7 +108,7 @@ IntegrationPlan plan_integration(const Scene& scene, const Model& m) {
   // lengths from the smallest clearance, angles from it over each body's size, rates
   // from those times the driver's speed. solver.atol overrides them all with one number.
   const double length_scale = scene.min_clearance_m().value_or(1e-3);
-  const Eigen::VectorXd scales = state_scales(m, length_scale, characteristic_rate(scene));
+  const Eigen::VectorXd scales = detail::state_units(scene, m);
   plan.atol = sol.atol ? *sol.atol : sol.rtol * length_scale;
   plan.atol_full.assign(static_cast<size_t>(2 * m.nq), 0.0);
   for (int i = 0; i < 2 * m.nq; ++i) plan.atol_full[static_cast<size_t>(i)] = sol.atol ? *sol.atol : sol.rtol * scales(i);
@@ -150,10 +153,10 @@ IntegrationPlan plan_integration(const Scene& scene, const Model& m) {
 
 class Runner {
  public:
-  explicit Runner(const Scene& scene)
-      : scene_(scene), m_(build_model(scene)), ws_(m_), obs_ws_(m_), period_(scene.cycle_period_s()) {}
+  Runner(const Scene& scene, const detail::SegmentOptions& opt)
+      : scene_(scene), opt_(opt), m_(build_model(scene)), ws_(m_), obs_ws_(m_), period_(scene.cycle_period_s()) {}
 
-  RunResult run();
+  detail::SegmentResult run();
 
  private:
   // Evaluates the model at (t, y) once: constraint drift and the cycle's extremes, and
@@ -161,18 +164,20 @@ class Runner {
   void observe(double t, const double* y, bool record);
   void observe_phase(double t, const double* y);
   void close_cycle(double t_end);
+  /// The metric joint's eccentricity and its rate at a cycle's end, into cur_.
+  void section_state(const double* y);
   double phase_angle(double t) const {
     if (!period_) return 0.0;
     const double x = (t - t0_) / *period_;
     return kTwoPi * (x - std::floor(x));
   }
-  bool steady_now() const;
   /// Sampling: the observations due in the step (t_prev, t] from the integrator's dense
   /// output, in time order (series samples, orbit phase points, cycle ends). True if the
   /// run is to stop (steady).
   bool sample_step(Integrator& integ, MultibodySystem& sys, double t_prev, double t, double t_end);
 
   const Scene& scene_;
+  const detail::SegmentOptions& opt_;
   Model m_;
   Workspace ws_;  ///< the integrator's
   /// The observers' own: what they evaluate (a finite-Reynolds solver's warm start, the
@@ -194,6 +199,7 @@ class Runner {
   double dt_sample_ = 0.0, dt_phase_ = 0.0;
   long long sample_k_ = 0, phase_k_ = 0;
   int cycles_done_ = 0;
+  std::vector<detail::StartState> boundaries_;
 };
 
 void Runner::observe(double t, const double* y, bool record) {
@@ -263,6 +269,18 @@ void Runner::observe_phase(double /*t*/, const double* y) {
   ++phase_index_;
 }
 
+void Runner::section_state(const double* y) {
+  const int mj = scene_.metrics.joint;
+  const int f = mj >= 0 ? m_.joint_film[mj] : -1;
+  if (f < 0) return;
+  const FilmKinematics fk = film_kinematics(m_, f, y, y + m_.nq);
+  const double c = m_.films[f].clearance;
+  cur_.end_eccentricity_x = fk.e.x() / c;
+  cur_.end_eccentricity_y = fk.e.y() / c;
+  cur_.end_eccentricity_rate_x = fk.e_dot.x() / c;
+  cur_.end_eccentricity_rate_y = fk.e_dot.y() / c;
+}
+
 void Runner::close_cycle(double t_end) {
   cur_.t_end_s = t_end;
   if (cur_empty_) cur_.min_film_m = 0.0;
@@ -294,18 +312,7 @@ void Runner::close_cycle(double t_end) {
   cur_empty_ = true;
 }
 
-bool Runner::steady_now() const {
-  const int M = scene_.simulation.metric_cycles;
-  if (static_cast<int>(res_.cycles.size()) < M + 1) return false;
-  for (int i = 0; i < M; ++i) {
-    const CycleMetrics& c = res_.cycles[res_.cycles.size() - 1 - i];
-    if (c.periodicity < 0 || c.periodicity >= scene_.simulation.steady_tolerance) return false;
-  }
-  return true;
-}
-
 bool Runner::sample_step(Integrator& integ, MultibodySystem& sys, double t_prev, double t, double t_end) {
-  const SimulationSpec& sim = scene_.simulation;
   const double inf = std::numeric_limits<double>::infinity();
   // The state at tt within the last step, as (q, v): false if it cannot be had.
   auto state_at = [&](double tt) {
@@ -323,13 +330,21 @@ bool Runner::sample_step(Integrator& integ, MultibodySystem& sys, double t_prev,
     if (!sample_due && !phase_due) break;
     if (phase_due && (!sample_due || tp <= ts)) {
       ++phase_k_;
+      const bool have = state_at(tp);
       if ((phase_k_ - 1) % kPhasePoints == 0) {
-        // A cycle ends at tp: close it before the first phase point of the next.
+        // A cycle ends at tp: its end state (the Poincaré section at crank angle 0), then
+        // close it before the first phase point of the next.
+        if (have) {
+          section_state(ytmp_.data());
+          boundaries_.push_back({tp, ytmp_, ws_.film_mode, ws_.slide_radius});
+          // The last kMaxBoundaries: what the steady cycle's estimates look back on.
+          if (boundaries_.size() > kMaxBoundaries) boundaries_.erase(boundaries_.begin());
+        }
         close_cycle(tp);
         ++cycles_done_;
-        if (sim.stop_when_steady && steady_now()) stop = true;
+        if (opt_.stop_after_cycle && opt_.stop_after_cycle(res_.cycles)) stop = true;
       }
-      if (!stop && state_at(tp)) {
+      if (!stop && have) {
         observe_phase(tp, ytmp_.data());
         observe(tp, ytmp_.data(), sample_due && ts == tp);
         if (sample_due && ts == tp) ++sample_k_;
@@ -342,7 +357,7 @@ bool Runner::sample_step(Integrator& integ, MultibodySystem& sys, double t_prev,
   return stop;
 }
 
-RunResult Runner::run() {
+detail::SegmentResult Runner::run() {
   const auto wall0 = std::chrono::steady_clock::now();
   const SimulationSpec& sim = scene_.simulation;
   const SolverSpec& sol = scene_.solver;
@@ -354,7 +369,7 @@ RunResult Runner::run() {
   orbit_prev_ = orbit_cur_;
 
   // Series only if channels were asked for.
-  if (!scene_.output.channels.empty()) {
+  if (opt_.observe && opt_.series && !scene_.output.channels.empty()) {
     res_.series.names.push_back("t");
     res_.series.units.push_back("s");
     for (const auto& c : scene_.output.channels) {
@@ -364,14 +379,32 @@ RunResult Runner::run() {
     res_.series.data.resize(res_.series.names.size());
   }
 
-  Eigen::VectorXd q0, v0;
-  assemble_initial_state(m_, scene_, t0_, q0, v0);
   std::vector<double> qv0(2 * m_.nq);
-  std::copy(q0.data(), q0.data() + m_.nq, qv0.begin());
-  std::copy(v0.data(), v0.data() + m_.nq, qv0.begin() + m_.nq);
+  if (opt_.start) {
+    // A given state (shooting's period maps, the steady cycle's measurement): its film
+    // modes too. A sliding film slides at the start's own |e| (a perturbed start of a
+    // difference quotient moves it).
+    t0_ = opt_.start->t;
+    qv0 = opt_.start->qv;
+    ws_.film_mode = opt_.start->modes;
+    ws_.slide_radius = opt_.start->slide_radius;
+    for (size_t k = 0; k < m_.films.size(); ++k)
+      if (ws_.film_mode[k] == FilmMode::sliding)
+        ws_.slide_radius[k] = film_kinematics(m_, static_cast<int>(k), qv0.data(), qv0.data() + m_.nq).e.norm();
+  } else {
+    Eigen::VectorXd q0, v0;
+    assemble_initial_state(m_, scene_, t0_, q0, v0);
+    std::copy(q0.data(), q0.data() + m_.nq, qv0.begin());
+    std::copy(v0.data(), v0.data() + m_.nq, qv0.begin() + m_.nq);
+  }
 
-  const double t_end = sim.duration_s ? *sim.duration_s : sim.max_cycles * *period_;
-  const IntegrationPlan plan = plan_integration(scene_, m_);
+  const double t_end = opt_.cycles > 0      ? t0_ + opt_.cycles * *period_
+                       : sim.duration_s     ? *sim.duration_s
+                                            : sim.max_cycles * *period_;
+  IntegrationPlan plan = plan_integration(scene_, m_);
+  plan.settings.rtol *= opt_.rtol_factor;
+  plan.atol *= opt_.rtol_factor;
+  for (double& a : plan.atol_full) a *= opt_.rtol_factor;
   IntegratorSettings is = plan.settings;
   const Formulation formulation = plan.formulation;
   const double atol = plan.atol;
@@ -387,7 +420,7 @@ RunResult Runner::run() {
   };
   double t_stop = next_stop(t0_);
   is.t_stop = t_stop;
-  res_.stats.rtol = sol.rtol;
+  res_.stats.rtol = is.rtol;
   res_.stats.atol = atol;
   res_.stats.method = name_of(sol.method);
   res_.stats.formulation = name_of(formulation);
@@ -403,7 +436,7 @@ RunResult Runner::run() {
   } catch (const std::exception& e) {
     res_.status = RunStatus::solver_failure;
     res_.message = e.what();
-    return res_;
+    return {res_, {}, {}};
   }
   std::vector<double> y0(static_cast<size_t>(sys.size()));
   sys.reduce(qv0.data(), y0.data());
@@ -416,15 +449,18 @@ RunResult Runner::run() {
   } catch (const std::exception& e) {
     res_.status = RunStatus::solver_failure;
     res_.message = e.what();
-    return res_;
+    return {res_, {}, {}};
   }
-  const double E0 = energy ? mechanical_energy(m_, q0.data(), v0.data()) : 0.0;
+  const double E0 = energy ? mechanical_energy(m_, qv0.data(), qv0.data() + m_.nq) : 0.0;
 
   dt_sample_ = scene_.output.sample_interval_s;
   dt_phase_ = period_ ? *period_ / kPhasePoints : 0.0;
-  observe(t0_, qv0.data(), !res_.series.names.empty());
-  if (!res_.series.names.empty()) sample_k_ = 1;
-  if (period_) observe_phase(t0_, qv0.data()), phase_k_ = 1;
+  if (opt_.observe) {
+    observe(t0_, qv0.data(), !res_.series.names.empty());
+    if (!res_.series.names.empty()) sample_k_ = 1;
+    if (period_) observe_phase(t0_, qv0.data()), phase_k_ = 1;
+    boundaries_.push_back({t0_, qv0, ws_.film_mode, ws_.slide_radius});  // the first cycle's start
+  }
 
   integ->set_root_directions(sys.root_directions());
   std::vector<int> flags;
@@ -442,9 +478,9 @@ RunResult Runner::run() {
     }
     // Dense output inside (t_prev, t], in time order: series samples, orbit phase points
     // and cycle ends.
-    stop = sample_step(*integ, sys, t_prev, t, t_end);
+    if (opt_.observe) stop = sample_step(*integ, sys, t_prev, t, t_end);
     const bool have_state = sys.expand(t, integ->y(), yfull_.data()) == 0;
-    if (have_state) observe(t, yfull_.data(), false);
+    if (have_state && opt_.observe) observe(t, yfull_.data(), false);
     if (out == StepOutcome::root) {
       integ->root_flags(flags);
       bool collapse = false;
@@ -495,6 +531,12 @@ RunResult Runner::run() {
     }
     integ->statistics(res_.stats);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    if (opt_.max_steps > 0 && res_.stats.steps >= opt_.max_steps) {
+      res_.status = RunStatus::budget_exceeded;
+      res_.message = "the segment's budget of " + std::to_string(opt_.max_steps) + " steps reached at t = " +
+                     std::to_string(t) + " s";
+      break;
+    }
     if (res_.stats.steps >= sol.max_steps) {
       res_.status = RunStatus::budget_exceeded;
       res_.message = "solver.max_steps = " + std::to_string(sol.max_steps) + " steps reached at t = " +
@@ -515,7 +557,18 @@ RunResult Runner::run() {
   }
   // A run without a period keeps the whole run as its one cycle; a run that ended early
   // (collapse, failure, budget) keeps its partial cycle, so the metrics see how it ended.
-  if (!period_ || (!cur_empty_ && (res_.cycles.empty() || res_.status != RunStatus::ok))) close_cycle(t);
+  if (opt_.observe && (!period_ || (!cur_empty_ && (res_.cycles.empty() || res_.status != RunStatus::ok))))
+    close_cycle(t);
+  detail::StartState end;
+  end.t = t;
+  end.qv.assign(2 * static_cast<size_t>(m_.nq), 0.0);
+  if (sys.expand(t, integ->y(), end.qv.data()) != 0 && res_.status == RunStatus::ok) {
+    res_.status = RunStatus::solver_failure;
+    res_.message = "coordinate partitioning: the dependent coordinates cannot be recovered at t = " +
+                   std::to_string(t) + " s";
+  }
+  end.modes = ws_.film_mode;
+  end.slide_radius = ws_.slide_radius;
 
   integ->statistics(res_.stats);
   res_.stats.final_time_s = t;
@@ -538,14 +591,28 @@ RunResult Runner::run() {
     mt.energy_residual_J = mt.driver_work_J - mt.energy_change_J - mt.film_dissipation_J;
   }
   res_.stats.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  return res_;
+  return {std::move(res_), std::move(end), std::move(boundaries_)};
 }
 
 }  // namespace
 
-RunResult run_scene(const Scene& scene) {
-  Runner r(scene);
+namespace detail {
+
+SegmentResult run_segment(const Scene& scene, const SegmentOptions& opt) {
+  Runner r(scene, opt);
   return r.run();
 }
+
+Eigen::VectorXd state_units(const Scene& scene, const Model& m) {
+  return state_scales(m, scene.min_clearance_m().value_or(1e-3), characteristic_rate(scene));
+}
+
+double orbit_noise_floor(const Scene& scene, double rtol_factor) {
+  // The phase points come from the dense output, accurate to about the local error
+  // tolerance, rtol × c in the clearance's unit: ten times that is noise.
+  return 10.0 * scene.solver.rtol * rtol_factor;
+}
+
+}  // namespace detail
 
 }  // namespace lub

@@ -1,6 +1,8 @@
 #include "lub/run/run_io.hpp"
 
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <stdexcept>
 #include <utility>
@@ -16,28 +18,82 @@
 
 namespace lub {
 
+namespace {
+// The k-th Floquet multiplier's modulus or angle (NaN when there is none).
+double multiplier(const RunResult& r, size_t k, bool angle) {
+  if (k >= r.steady.multipliers.size()) return std::numeric_limits<double>::quiet_NaN();
+  return angle ? std::arg(r.steady.multipliers[k]) : std::abs(r.steady.multipliers[k]);
+}
+}  // namespace
+
 const std::vector<ResultField>& metric_fields() {
   static const std::vector<ResultField> f = {
       {"min_film_thickness_m", "m", false, [](const RunResult& r) { return r.metrics.min_film_thickness_m; },
-       "minimum film thickness h = c (1 - eps) over the metric cycles"},
+       "minimum film thickness h = c (1 - eps) over the metric cycles", true},
       {"crank_angle_at_min_film_rad", "rad", false, [](const RunResult& r) { return r.metrics.angle_at_min_film_rad; },
-       "crank angle at the minimum film thickness, in [0, 2 pi)"},
+       "crank angle at the minimum film thickness, in [0, 2 pi)", true},
       {"max_eps", "1", false, [](const RunResult& r) { return r.metrics.max_eps; },
-       "largest eccentricity ratio |e|/c over the metric cycles"},
+       "largest eccentricity ratio |e|/c over the metric cycles", true},
       {"peak_reaction_N", "N", false, [](const RunResult& r) { return r.metrics.peak_reaction_N; },
-       "peak force transmitted by the metric joint"},
+       "peak force transmitted by the metric joint", true},
       {"crank_angle_at_peak_reaction_rad", "rad", false, [](const RunResult& r) { return r.metrics.angle_at_peak_reaction_rad; },
-       "crank angle at the peak joint force, in [0, 2 pi)"},
+       "crank angle at the peak joint force, in [0, 2 pi)", true},
       {"peak_acceleration_m_s2", "m s-2", false, [](const RunResult& r) { return r.metrics.peak_acceleration_m_s2; },
-       "peak acceleration magnitude of the metric body"},
+       "peak acceleration magnitude of the metric body", true},
       {"periodicity", "1", false, [](const RunResult& r) { return r.metrics.periodicity; },
        "largest cycle-to-cycle journal orbit distance over the metric cycles / clearance (-1: unknown)"},
+      // Error bars (README "Steady cycles"): NaN without simulation.error_bars.
+      {"min_film_thickness_m_error", "m", false, [](const RunResult& r) { return r.metrics.min_film_thickness_m_error; },
+       "error bar of min_film_thickness_m: change at a 100x tighter rtol (+ the transient's remaining change)", true},
+      {"crank_angle_at_min_film_rad_error", "rad", false, [](const RunResult& r) { return r.metrics.angle_at_min_film_rad_error; },
+       "error bar of crank_angle_at_min_film_rad", true},
+      {"max_eps_error", "1", false, [](const RunResult& r) { return r.metrics.max_eps_error; },
+       "error bar of max_eps", true},
+      {"peak_reaction_N_error", "N", false, [](const RunResult& r) { return r.metrics.peak_reaction_N_error; },
+       "error bar of peak_reaction_N", true},
+      {"crank_angle_at_peak_reaction_rad_error", "rad", false,
+       [](const RunResult& r) { return r.metrics.angle_at_peak_reaction_rad_error; },
+       "error bar of crank_angle_at_peak_reaction_rad", true},
+      {"peak_acceleration_m_s2_error", "m s-2", false, [](const RunResult& r) { return r.metrics.peak_acceleration_m_s2_error; },
+       "error bar of peak_acceleration_m_s2", true},
       {"steady", "1", true, [](const RunResult& r) { return r.metrics.steady ? 1.0 : 0.0; },
-       "1 if a steady cycle was reached (periodicity below steady_tolerance)"},
+       "1 if the classification is periodic"},
       {"cycles_to_steady", "1", true, [](const RunResult& r) { return double(r.metrics.cycles_to_steady); },
-       "cycles run when the steady criterion first held (-1: never)"},
+       "periods integrated until the steady cycle was known (-1: never)"},
       {"cycles_run", "1", true, [](const RunResult& r) { return double(r.metrics.cycles_run); },
-       "crank cycles run"},
+       "transient crank cycles run"},
+      {"contraction_rate", "1", false, [](const RunResult& r) { return r.steady.contraction_rate; },
+       "rho: cycle-to-cycle orbit distances shrink by this per cycle (transient, least squares; NaN: unknown)"},
+      {"remaining_distance", "1", false, [](const RunResult& r) { return r.steady.remaining_distance; },
+       "the transient's distance still to go to its steady cycle, delta rho / (1 - rho), in clearances"},
+      {"orbit_residual", "1", false, [](const RunResult& r) { return r.steady.orbit_residual; },
+       "shooting: max |P(z) - z| over the states, each in its own unit (lengths in clearances)"},
+      {"newton_iterations", "1", true, [](const RunResult& r) { return double(r.steady.newton_iterations); },
+       "Newton iterations of shooting"},
+      {"transient_cycles", "1", true, [](const RunResult& r) { return double(r.steady.transient_cycles); },
+       "transient cycles integrated (before shooting)"},
+      {"periods_integrated", "1", true, [](const RunResult& r) { return double(r.steady.periods); },
+       "crank periods integrated in all: transient, shooting's maps and differences, measurement, error bars"},
+      {"min_film_drift_m_per_cycle", "m", false, [](const RunResult& r) { return r.steady.min_film_drift_m; },
+       "change of the per-cycle minimum film thickness per crank cycle over the transient's last 10 cycles"},
+      {"last_cycle_min_film_m", "m", false, [](const RunResult& r) { return r.steady.last_min_film_m; },
+       "the last transient cycle's minimum film thickness (a transient value, not a steady metric)"},
+      {"multiplier_1_modulus", "1", false, [](const RunResult& r) { return multiplier(r, 0, false); },
+       "largest Floquet multiplier's modulus (NaN: not computed)"},
+      {"multiplier_1_angle_rad", "rad", false, [](const RunResult& r) { return multiplier(r, 0, true); },
+       "largest Floquet multiplier's angle"},
+      {"multiplier_2_modulus", "1", false, [](const RunResult& r) { return multiplier(r, 1, false); },
+       "second Floquet multiplier's modulus"},
+      {"multiplier_2_angle_rad", "rad", false, [](const RunResult& r) { return multiplier(r, 1, true); },
+       "second Floquet multiplier's angle"},
+      {"multiplier_3_modulus", "1", false, [](const RunResult& r) { return multiplier(r, 2, false); },
+       "third Floquet multiplier's modulus"},
+      {"multiplier_3_angle_rad", "rad", false, [](const RunResult& r) { return multiplier(r, 2, true); },
+       "third Floquet multiplier's angle"},
+      {"multiplier_4_modulus", "1", false, [](const RunResult& r) { return multiplier(r, 3, false); },
+       "fourth Floquet multiplier's modulus"},
+      {"multiplier_4_angle_rad", "rad", false, [](const RunResult& r) { return multiplier(r, 3, true); },
+       "fourth Floquet multiplier's angle"},
       {"safe_film_thickness_m", "m", false, [](const RunResult& r) { return r.metrics.safe_film_m; },
        "safe minimum film thickness, 0.00015 mm per mm of bearing diameter (ESDU 84031)"},
       {"below_safe_film", "1", true, [](const RunResult& r) { return r.metrics.below_safe_film ? 1.0 : 0.0; },
@@ -163,6 +219,14 @@ const std::vector<CycleField>& cycle_fields() {
        [](const CycleMetrics& c) { return c.peak_acceleration_m_s2; }},
       {"periodicity", "1", "largest orbit distance to the previous cycle / clearance (-1: first cycle)",
        [](const CycleMetrics& c) { return c.periodicity; }},
+      {"end_eccentricity_x", "1", "metric joint's e_x / c at the cycle's end (crank angle 0: Poincare section)",
+       [](const CycleMetrics& c) { return c.end_eccentricity_x; }},
+      {"end_eccentricity_y", "1", "metric joint's e_y / c at the cycle's end",
+       [](const CycleMetrics& c) { return c.end_eccentricity_y; }},
+      {"end_eccentricity_rate_x", "s-1", "metric joint's de_x/dt / c at the cycle's end",
+       [](const CycleMetrics& c) { return c.end_eccentricity_rate_x; }},
+      {"end_eccentricity_rate_y", "s-1", "metric joint's de_y/dt / c at the cycle's end",
+       [](const CycleMetrics& c) { return c.end_eccentricity_rate_y; }},
   };
   return f;
 }
@@ -196,9 +260,21 @@ void write_run_file(const std::string& path, const std::string& scene_text, cons
       h5::Group sg = f.require_group("series");
       write_series(sg, r.series, channel_long_names(scene_text, r.series.names));
     }
+    if (!r.orbit.names.empty()) {
+      // The periodic orbit found by shooting, over the metric cycles (its own time axis).
+      h5::Group og = f.require_group("orbit");
+      write_series(og, r.orbit, channel_long_names(scene_text, r.orbit.names));
+    }
     h5::Group m = f.require_group("metrics");
     std::vector<std::string> units;
+    m.set_attribute("classification", classification(r));
+    m.set_attribute("steady_method", r.steady.method);
     for (const auto& fld : metric_fields()) put(m, fld, r);
+    // Every Floquet multiplier (the columns above hold the four largest).
+    std::vector<double> mod, arg;
+    for (const auto& mu : r.steady.multipliers) mod.push_back(std::abs(mu)), arg.push_back(std::arg(mu));
+    m.set_attribute("multiplier_modulus", mod);
+    m.set_attribute("multiplier_angle_rad", arg);
     if (r.metrics.driver_work_J != 0.0 || r.metrics.film_dissipation_J != 0.0) {
       m.set_attribute("driver_work_J", r.metrics.driver_work_J);
       m.set_attribute("film_dissipation_J", r.metrics.film_dissipation_J);

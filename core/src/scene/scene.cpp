@@ -264,6 +264,14 @@ SimulationSpec parse_simulation(const json& j) {
   s.steady_tolerance = r.number_or("steady_tolerance", s.steady_tolerance, positive, "must be > 0");
   const bool metric_cycles_given = r.has("metric_cycles");
   s.metric_cycles = static_cast<int>(r.integer_or("metric_cycles", s.metric_cycles, 1, 1'000'000));
+  s.steady = r.choice_of<SteadyMethod>("steady", SteadyMethod::transient);
+  const bool transient_cycles_given = r.has("transient_cycles");
+  s.transient_cycles = static_cast<int>(r.integer_or("transient_cycles", s.transient_cycles, 1, 1'000'000));
+  s.shooting_tolerance = r.number_or("shooting_tolerance", s.shooting_tolerance,
+                                     [](double v) { return v > 0.0 && v < 1.0; }, "must be in (0, 1)");
+  // Error bars cost a re-integration at a 100x tighter rtol: on by default where a steady
+  // cycle is the product (shooting, auto), off for a plain transient.
+  s.error_bars = r.boolean_or("error_bars", s.steady != SteadyMethod::transient);
   s.eps_limit = r.number_or("eps_limit", s.eps_limit,
                             [](double v) { return v > 0.0 && v < 1.0; }, "must be in (0, 1)");
   s.drift_limit_m = r.number_optional("drift_limit_m", positive, "must be > 0 m");
@@ -272,6 +280,15 @@ SimulationSpec parse_simulation(const json& j) {
     fail("simulation.max_cycles", j["max_cycles"],
          "must not be given together with simulation.duration_s (the run ends at duration_s)");
   if (!metric_cycles_given) s.metric_cycles = std::min(s.metric_cycles, s.max_cycles);
+  if (!transient_cycles_given) s.transient_cycles = std::min(s.transient_cycles, s.max_cycles);
+  if (s.steady != SteadyMethod::transient) {
+    if (s.duration_s)
+      fail("simulation.steady", json(name_of(s.steady)),
+           "needs cycles: simulation.max_cycles, not simulation.duration_s (a steady cycle is a crank cycle)");
+    if (s.transient_cycles > s.max_cycles)
+      fail("simulation.transient_cycles", json(s.transient_cycles),
+           "must be <= simulation.max_cycles = " + std::to_string(s.max_cycles));
+  }
   if (!s.duration_s && s.metric_cycles > s.max_cycles)
     fail("simulation.metric_cycles", json(s.metric_cycles),
          "must be <= simulation.max_cycles = " + std::to_string(s.max_cycles));
@@ -358,6 +375,9 @@ void check_whole_scene(const Scene& scene, const json& doc) {
          << " s that is not finite";
     fail("simulation.max_cycles", json(sim.max_cycles), rule.str());
   }
+  if (sim.steady != SteadyMethod::transient && !period)
+    fail("simulation.steady", json(name_of(sim.steady)),
+         "needs a cycle: simulation.cycle_period_s or a driver with non-zero speed");
   if (sim.stop_when_steady) {
     // Steady means the last metric_cycles cycles each repeat the one before.
     const json& value = doc.at("simulation").at("stop_when_steady");

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <array>
+#include <complex>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -62,6 +64,54 @@ struct CycleMetrics {
   double peak_reaction_N = 0.0, angle_at_peak_reaction_rad = 0.0;
   double peak_acceleration_m_s2 = 0.0;
   double periodicity = -1.0;  ///< max orbit distance to the previous cycle / c (-1: first cycle)
+  /// The metric joint's state at the cycle's end (crank angle 0: a Poincaré section),
+  /// e/c and ė/c; NaN without a film.
+  double end_eccentricity_x = std::numeric_limits<double>::quiet_NaN();
+  double end_eccentricity_y = std::numeric_limits<double>::quiet_NaN();
+  double end_eccentricity_rate_x = std::numeric_limits<double>::quiet_NaN();
+  double end_eccentricity_rate_y = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// What a run's steady cycle is (README "Steady cycles"). A run that did not end ok is
+/// classified by its status instead (film_collapse, solver_failure, budget_exceeded).
+enum class SteadyClass {
+  periodic,           ///< a converged periodic orbit (shooting) or transient, stable
+  periodic_unstable,  ///< a periodic orbit exists but a Floquet multiplier exceeds 1 in modulus
+  drifting,           ///< no periodic orbit inside the clearance: Newton walks into the wall, or
+                      ///< the transient keeps moving one way
+  not_converged,      ///< neither: more cycles, or shooting, needed
+};
+template <>
+struct NameTable<SteadyClass> {
+  static constexpr std::array<std::pair<SteadyClass, std::string_view>, 4> entries{{
+      {SteadyClass::periodic, "periodic"},
+      {SteadyClass::periodic_unstable, "periodic_unstable"},
+      {SteadyClass::drifting, "drifting"},
+      {SteadyClass::not_converged, "not_converged"},
+  }};
+};
+
+/// How the steady cycle was found, what it is and what it cost.
+struct SteadyCycle {
+  SteadyClass kind = SteadyClass::not_converged;
+  std::string method = "transient";  ///< what the metrics come from: "transient" or "shooting"
+  /// ρ: successive cycles' orbit distances shrink as δ_{k+1} ≈ ρ δ_k (least squares over
+  /// the transient's last cycles); NaN: not enough cycles.
+  double contraction_rate = std::numeric_limits<double>::quiet_NaN();
+  /// The transient's distance still to go to its steady cycle, δ ρ / (1 − ρ) [clearances]
+  double remaining_distance = std::numeric_limits<double>::quiet_NaN();
+  /// Shooting: max_i |P(z)_i − z_i| / s_i at the orbit found (or the best iterate)
+  double orbit_residual = std::numeric_limits<double>::quiet_NaN();
+  int newton_iterations = 0;
+  int transient_cycles = 0;        ///< cycles integrated before shooting (or in all, transient)
+  long long periods = 0;           ///< crank periods integrated in all (transient, maps, error bars)
+  /// Floquet multipliers (eigenvalues of the monodromy ∂P/∂z at the orbit), largest first
+  std::vector<std::complex<double>> multipliers;
+  /// Change of the per-cycle minimum film thickness per cycle over the transient's last
+  /// cycles [m/cycle], least squares: how a drifting case drifts.
+  double min_film_drift_m = std::numeric_limits<double>::quiet_NaN();
+  /// The last transient cycle's minimum film thickness [m]
+  double last_min_film_m = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Steady-cycle metrics: extremes over the last `metric_cycles` cycles.
@@ -74,6 +124,15 @@ struct Metrics {
   double angle_at_peak_reaction_rad = 0.0;
   double peak_acceleration_m_s2 = 0.0;  ///< |a| of the metric body
   double periodicity = -1.0;         ///< the largest over the metric cycles (-1: unknown)
+  // Error bars (simulation.error_bars; NaN: none): |metric − the same metric of the steady
+  // cycle re-found and re-measured at a 100× tighter rtol| (+ a transient's remaining
+  // change, README "Steady cycles").
+  double min_film_thickness_m_error = std::numeric_limits<double>::quiet_NaN();
+  double angle_at_min_film_rad_error = std::numeric_limits<double>::quiet_NaN();
+  double max_eps_error = std::numeric_limits<double>::quiet_NaN();
+  double peak_reaction_N_error = std::numeric_limits<double>::quiet_NaN();
+  double angle_at_peak_reaction_rad_error = std::numeric_limits<double>::quiet_NaN();
+  double peak_acceleration_m_s2_error = std::numeric_limits<double>::quiet_NaN();
   bool steady = false;
   int cycles_to_steady = -1;         ///< cycles run when the criterion first held
   int cycles_run = 0;
@@ -97,9 +156,14 @@ struct RunResult {
   std::string message;
   SolverStats stats;
   Metrics metrics;
-  std::vector<CycleMetrics> cycles;
-  Series series;
+  SteadyCycle steady;
+  std::vector<CycleMetrics> cycles;  ///< the transient's cycles
+  Series series;                     ///< the transient's channels
+  Series orbit;                      ///< the periodic orbit's channels (shooting), over metric_cycles
 };
+
+/// The run's classification: its SteadyClass if it ended ok, else its status.
+std::string classification(const RunResult& r);
 
 /// Runs a validated scene. Never throws for a case that cannot be integrated.
 RunResult run_scene(const Scene& scene);

@@ -17,6 +17,10 @@ struct ResultField {
   bool integer;      ///< counts and flags
   double (*get)(const RunResult&);
   const char* long_name = "";  ///< a description (netCDF `long_name`)
+  /// A steady-cycle metric or its error bar: a study reports it only for a case whose
+  /// classification is periodic or periodic_unstable (NaN otherwise: a transient's value
+  /// is not a result).
+  bool steady_metric = false;
 };
 
 /// Steady-cycle metrics, in column order.

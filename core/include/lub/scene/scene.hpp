@@ -112,6 +112,21 @@ struct SolverSpec {
   double max_wall_time_s = 600.0;    ///< budget: wall time for the whole run
 };
 
+/// How a run finds its steady cycle (simulation.steady; README "Steady cycles").
+enum class SteadyMethod {
+  transient,  ///< integrate cycle after cycle; stop when the contraction estimate says steady
+  shooting,   ///< after simulation.transient_cycles, Newton on z = P(z), the period map
+  automatic,  ///< transient until its contraction rate is known, then shooting if that is cheaper
+};
+template <>
+struct NameTable<SteadyMethod> {
+  static constexpr std::array<std::pair<SteadyMethod, std::string_view>, 3> entries{{
+      {SteadyMethod::transient, "transient"},
+      {SteadyMethod::shooting, "shooting"},
+      {SteadyMethod::automatic, "auto"},
+  }};
+};
+
 struct SimulationSpec {
   std::optional<double> duration_s;  ///< fixed end time, or:
   int max_cycles = 5;                ///< cap on crank cycles
@@ -119,6 +134,19 @@ struct SimulationSpec {
   bool stop_when_steady = false;     ///< stop once `metric_cycles` cycles repeat
   double steady_tolerance = 1e-3;    ///< periodicity (orbit distance / c) below which a cycle repeats
   int metric_cycles = 2;             ///< metrics over this many last cycles
+  /// simulation.steady: transient (lubsim's default), shooting, or auto (lubsweep's
+  /// default: a study reports steady cycles).
+  SteadyMethod steady = SteadyMethod::transient;
+  /// Transient cycles before shooting (shooting), or before the contraction rate decides
+  /// between more transient and shooting (auto). Default min(8, max_cycles).
+  int transient_cycles = 8;
+  /// A periodic orbit is converged when max_i |P(z)_i − z_i| / s_i is below this, s_i
+  /// each state's unit (lengths in the clearance: 1e-9 is 0.5 pm at 0.5 mm).
+  double shooting_tolerance = 1e-9;
+  /// Error bars on the steady metrics (`<metric>_error`): the steady cycle re-found and
+  /// re-measured at a 100× tighter rtol (README "Steady cycles", error bars). Default:
+  /// on for shooting and auto, off for transient.
+  bool error_bars = false;
   /// ε reaching it ends the run: film_collapse. Default 1 − 1e-5: h = 1e-5 c (5 nm at the
   /// paper's 0.5 mm), far below any surface roughness, so no physical film is cut off (the
   /// paper's thinnest, 40 cP, has 1 − ε = 4.3e-4); closer to the wall the film's stiffness

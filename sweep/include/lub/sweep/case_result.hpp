@@ -20,6 +20,9 @@ struct CaseResult {
   int rank = 0;                 ///< MPI rank that computed it
   std::string status;           ///< RunStatus ("ok", "film_collapse", ...), or "invalid_scene", "error"
   std::string message;
+  /// The steady cycle: periodic, periodic_unstable, drifting, not_converged; the status
+  /// for a case that is not ok.
+  std::string classification;
   std::vector<double> values;
   std::string revision;         ///< build revision of the program that computed it
   Series series;                ///< the scene's channels ("t" first); empty if none

@@ -31,7 +31,7 @@
 namespace lub::sweep {
 
 /// Version of the layout above, in the root attribute `format`.
-inline constexpr const char* kStudyFormat = "lubsweep-study-2";
+inline constexpr const char* kStudyFormat = "lubsweep-study-3";
 
 /// Columns of /cases for a grid.
 std::vector<h5::Column> case_columns(const Grid& grid);

@@ -1,0 +1,90 @@
+// Periodic orbits of a periodically forced system as fixed points of its cycle map
+// (the steady stage: pure numerics on an abstract map, Eigen and SUNDIALS' KINSOL only).
+//
+//   P: z ↦ z(T)   the state after one forcing period T, started at z at phase 0;
+//   a periodic orbit is z* = P(z*), found by Newton on r(z) = P(z) − z (shooting);
+//   its stability by the Floquet multipliers μ_i = eig(M), M = ∂P/∂z at z* (the
+//   monodromy matrix): |μ|max < 1 a stable cycle, a disturbance shrinking by |μ|max
+//   per period; > 1 an unstable one.
+//
+// Every state has its own unit s_i (README "Steady cycles": lengths in the clearance c,
+// angles in c over the body's size, rates in those times the driver's speed): residuals,
+// tolerances and difference steps are measured in them, max_i |r_i| / s_i.
+#pragma once
+
+#include <complex>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+namespace lub::steady {
+
+/// One period of the system, z ↦ P(z) on dim() states.
+class CycleMap {
+ public:
+  virtual ~CycleMap() = default;
+  virtual int dim() const = 0;
+  /// Writes P(z) into Pz. Returns 0, or > 0 if the map cannot be evaluated at z (the
+  /// orbit from z leaves the domain: a film collapses, the integrator fails).
+  virtual int apply(const double* z, double* Pz) = 0;
+};
+
+/// Monodromy M = ∂P/∂z by differences of the flow map. Differences of the map itself
+/// (rather than variational equations) carry the saltation of every switching event and
+/// the rank drop of sliding motion, which forward sensitivities integrated through
+/// events would not (README "Steady cycles", monodromy).
+struct MonodromyOptions {
+  std::vector<double> scales;  ///< s_i
+  double step = 1e-4;          ///< difference step h_i = step × s_i
+  bool central = true;         ///< central (2 n maps, error O(h²)) or forward (n maps, O(h))
+};
+struct Monodromy {
+  Eigen::MatrixXd M;
+  long long maps = 0;  ///< map evaluations spent
+  int failed = 0;      ///< > 0: a perturbed map could not be evaluated (M not set)
+};
+/// `Pz` = P(z) (used by forward differences).
+Monodromy monodromy_by_differences(CycleMap& P, const Eigen::VectorXd& z, const Eigen::VectorXd& Pz,
+                                   const MonodromyOptions& opt);
+
+/// Eigenvalues of M, largest modulus first (ties: larger angle first).
+std::vector<std::complex<double>> floquet_multipliers(const Eigen::MatrixXd& M);
+
+struct ShootingOptions {
+  std::vector<double> scales;     ///< s_i
+  double tolerance = 1e-9;        ///< converged when max_i |P(z)_i − z_i| / s_i <= tolerance
+  double step = 1e-4;             ///< difference step of the Newton Jacobians, × s_i
+  int max_iterations = 25;        ///< Newton iterations
+  double max_newton_step = 0.3;   ///< largest Newton step, scaled 2-norm (units s_i)
+  /// A Newton that stalls (no decrease along its direction) within this factor of the
+  /// tolerance has reached the map's own noise: converged, with its residual reported.
+  double noise_factor = 100.0;
+};
+
+enum class ShootingOutcome {
+  converged,      ///< residual below the tolerance
+  left_domain,    ///< the map failed along Newton's path (the iterates walked out of the domain)
+  not_converged,  ///< no convergence (line search stalled, iteration limit)
+};
+
+struct ShootingResult {
+  ShootingOutcome outcome = ShootingOutcome::not_converged;
+  Eigen::VectorXd z;        ///< the last iterate (z* if converged)
+  Eigen::VectorXd Pz;       ///< P(z)
+  double residual = -1.0;   ///< max_i |P(z)_i − z_i| / s_i at z (−1: not evaluated)
+  long iterations = 0;      ///< Newton iterations
+  long long maps = 0;       ///< map evaluations (including the Jacobians' differences)
+  std::string message;      ///< KINSOL's verdict when not converged
+  bool at_noise_floor = false;  ///< converged by stalling within noise_factor of the tolerance
+};
+
+/// Solves z = P(z) from z0 by KINSOL's Newton with a line search (globalised), the
+/// Jacobian M − I by forward differences of the map. A map failure at a trial point is
+/// reported to KINSOL as recoverable (it shortens the step).
+ShootingResult solve_periodic_orbit(CycleMap& P, const Eigen::VectorXd& z0, const ShootingOptions& opt);
+
+/// max_i |a_i − b_i| / s_i.
+double scaled_distance(const Eigen::VectorXd& a, const Eigen::VectorXd& b, const std::vector<double>& scales);
+
+}  // namespace lub::steady

@@ -1,0 +1,225 @@
+// Shooting for periodic orbits and their Floquet multipliers: see periodic_orbit.hpp.
+#include "lub/steady/periodic_orbit.hpp"
+
+#include <kinsol/kinsol.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+
+namespace lub::steady {
+
+double scaled_distance(const Eigen::VectorXd& a, const Eigen::VectorXd& b, const std::vector<double>& scales) {
+  double d = 0.0;
+  for (Eigen::Index i = 0; i < a.size(); ++i) d = std::max(d, std::abs(a(i) - b(i)) / scales[static_cast<size_t>(i)]);
+  return d;
+}
+
+Monodromy monodromy_by_differences(CycleMap& P, const Eigen::VectorXd& z, const Eigen::VectorXd& Pz,
+                                   const MonodromyOptions& opt) {
+  const int n = P.dim();
+  Monodromy out;
+  out.M.setZero(n, n);
+  Eigen::VectorXd zp = z, Pp(n), Pm(n);
+  for (int j = 0; j < n; ++j) {
+    const double h = opt.step * opt.scales[static_cast<size_t>(j)];
+    zp(j) = z(j) + h;
+    ++out.maps;
+    if (P.apply(zp.data(), Pp.data()) != 0) {
+      ++out.failed;
+      return out;
+    }
+    if (opt.central) {
+      zp(j) = z(j) - h;
+      ++out.maps;
+      if (P.apply(zp.data(), Pm.data()) != 0) {
+        ++out.failed;
+        return out;
+      }
+      out.M.col(j) = (Pp - Pm) / (2.0 * h);
+    } else {
+      out.M.col(j) = (Pp - Pz) / h;
+    }
+    zp(j) = z(j);
+  }
+  return out;
+}
+
+std::vector<std::complex<double>> floquet_multipliers(const Eigen::MatrixXd& M) {
+  std::vector<std::complex<double>> mu;
+  if (M.size() == 0) return mu;
+  Eigen::EigenSolver<Eigen::MatrixXd> es(M, /*computeEigenvectors=*/false);
+  for (Eigen::Index i = 0; i < es.eigenvalues().size(); ++i) mu.push_back(es.eigenvalues()(i));
+  std::sort(mu.begin(), mu.end(), [](const std::complex<double>& a, const std::complex<double>& b) {
+    const double ma = std::abs(a), mb = std::abs(b);
+    if (ma != mb) return ma > mb;
+    return std::arg(a) > std::arg(b);
+  });
+  return mu;
+}
+
+namespace {
+
+// Owners of SUNDIALS objects.
+struct Context {
+  SUNContext ctx = nullptr;
+  Context() {
+    if (SUNContext_Create(nullptr, &ctx) != 0) throw std::runtime_error("SUNContext_Create failed");
+  }
+  ~Context() { SUNContext_Free(&ctx); }
+};
+struct FreeKin {
+  void operator()(void* mem) const { KINFree(&mem); }
+};
+struct FreeVector {
+  void operator()(N_Vector v) const { N_VDestroy(v); }
+};
+struct FreeMatrix {
+  void operator()(SUNMatrix m) const { SUNMatDestroy(m); }
+};
+struct FreeSolver {
+  void operator()(SUNLinearSolver s) const { SUNLinSolFree(s); }
+};
+using Vector = std::unique_ptr<std::remove_pointer_t<N_Vector>, FreeVector>;
+
+struct Problem {
+  CycleMap* P = nullptr;
+  const ShootingOptions* opt = nullptr;
+  int n = 0;
+  long long maps = 0;
+  int failures = 0;            // map failures at trial points
+  Eigen::VectorXd z, Pz;       // scratch
+  Eigen::VectorXd best_z, best_Pz;
+  double best = std::numeric_limits<double>::infinity();
+};
+
+int residual_cb(N_Vector u, N_Vector f, void* data) {
+  auto& pb = *static_cast<Problem*>(data);
+  const double* ud = N_VGetArrayPointer(u);
+  double* fd = N_VGetArrayPointer(f);
+  for (int i = 0; i < pb.n; ++i) pb.z(i) = ud[i];
+  ++pb.maps;
+  if (pb.P->apply(pb.z.data(), pb.Pz.data()) != 0) {
+    ++pb.failures;
+    return 1;  // recoverable: the line search shortens the step
+  }
+  double r = 0.0;
+  for (int i = 0; i < pb.n; ++i) {
+    fd[i] = pb.Pz(i) - pb.z(i);
+    r = std::max(r, std::abs(fd[i]) / pb.opt->scales[static_cast<size_t>(i)]);
+  }
+  if (r < pb.best) {
+    pb.best = r;
+    pb.best_z = pb.z;
+    pb.best_Pz = pb.Pz;
+  }
+  return 0;
+}
+
+// J = ∂(P(z) − z)/∂z = M − I by forward differences from P(u) = fu + u.
+int jacobian_cb(N_Vector u, N_Vector fu, SUNMatrix J, void* data, N_Vector, N_Vector) {
+  auto& pb = *static_cast<Problem*>(data);
+  const double* ud = N_VGetArrayPointer(u);
+  const double* fd = N_VGetArrayPointer(fu);
+  Eigen::VectorXd z(pb.n), Pz(pb.n);
+  for (int i = 0; i < pb.n; ++i) z(i) = ud[i], Pz(i) = fd[i] + ud[i];
+  MonodromyOptions mo{pb.opt->scales, pb.opt->step, false};
+  const Monodromy m = monodromy_by_differences(*pb.P, z, Pz, mo);
+  pb.maps += m.maps;
+  if (m.failed) {
+    ++pb.failures;
+    return 1;
+  }
+  for (int j = 0; j < pb.n; ++j)
+    for (int i = 0; i < pb.n; ++i) SM_ELEMENT_D(J, i, j) = m.M(i, j) - (i == j ? 1.0 : 0.0);
+  return 0;
+}
+
+void silent(int, const char*, const char*, char*, void*) {}
+
+}  // namespace
+
+ShootingResult solve_periodic_orbit(CycleMap& P, const Eigen::VectorXd& z0, const ShootingOptions& opt) {
+  const int n = P.dim();
+  if (static_cast<int>(opt.scales.size()) != n || z0.size() != n)
+    throw std::invalid_argument("solve_periodic_orbit: scales and z0 must have the map's dimension");
+  Problem pb;
+  pb.P = &P;
+  pb.opt = &opt;
+  pb.n = n;
+  pb.z.resize(n);
+  pb.Pz.resize(n);
+
+  Context c;
+  Vector u(N_VNew_Serial(n, c.ctx)), us(N_VNew_Serial(n, c.ctx)), fs(N_VNew_Serial(n, c.ctx));
+  for (int i = 0; i < n; ++i) {
+    NV_Ith_S(u.get(), i) = z0(i);
+    NV_Ith_S(us.get(), i) = 1.0 / opt.scales[static_cast<size_t>(i)];
+    NV_Ith_S(fs.get(), i) = 1.0 / opt.scales[static_cast<size_t>(i)];
+  }
+  std::unique_ptr<void, FreeKin> mem(KINCreate(c.ctx));
+  std::unique_ptr<std::remove_pointer_t<SUNMatrix>, FreeMatrix> J(SUNDenseMatrix(n, n, c.ctx));
+  std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, FreeSolver> LS(SUNLinSol_Dense(u.get(), J.get(), c.ctx));
+  if (!mem || !J || !LS) throw std::runtime_error("KINSOL: out of memory");
+  void* m = mem.get();
+  auto check = [](int flag, const char* what) {
+    if (flag < 0) throw std::runtime_error(std::string("KINSOL: ") + what + " failed");
+  };
+  check(KINSetErrHandlerFn(m, silent, nullptr), "KINSetErrHandlerFn");
+  check(KINInit(m, residual_cb, u.get()), "KINInit");
+  check(KINSetUserData(m, &pb), "KINSetUserData");
+  check(KINSetLinearSolver(m, LS.get(), J.get()), "KINSetLinearSolver");
+  check(KINSetJacFn(m, jacobian_cb), "KINSetJacFn");
+  check(KINSetFuncNormTol(m, opt.tolerance), "KINSetFuncNormTol");
+  check(KINSetScaledStepTol(m, 1e-3 * opt.tolerance), "KINSetScaledStepTol");
+  check(KINSetNumMaxIters(m, opt.max_iterations), "KINSetNumMaxIters");
+  // A fresh Jacobian every iteration: a slowly contracting cycle has M − I nearly
+  // singular, where a stale one points the step the wrong way.
+  check(KINSetMaxSetupCalls(m, 1), "KINSetMaxSetupCalls");
+  check(KINSetMaxNewtonStep(m, opt.max_newton_step), "KINSetMaxNewtonStep");
+  const int flag = KINSol(m, u.get(), KIN_LINESEARCH, us.get(), fs.get());
+
+  ShootingResult out;
+  long nni = 0;
+  KINGetNumNonlinSolvIters(m, &nni);
+  out.iterations = nni;
+  out.maps = pb.maps;
+  if (std::isfinite(pb.best)) {
+    out.z = pb.best_z;
+    out.Pz = pb.best_Pz;
+    out.residual = pb.best;
+  } else {
+    out.z = z0;
+  }
+  if (out.residual >= 0 && out.residual <= opt.tolerance) {
+    out.outcome = ShootingOutcome::converged;
+    return out;
+  }
+  // Stalled at the map's own noise: the line search finds no decrease where the map is
+  // not smooth (an integration's step sequence changes with z), within noise_factor of
+  // the tolerance.
+  if ((flag == KIN_LINESEARCH_NONCONV || flag == KIN_STEP_LT_STPTOL) && out.residual >= 0 &&
+      out.residual <= opt.noise_factor * opt.tolerance) {
+    out.outcome = ShootingOutcome::converged;
+    out.at_noise_floor = true;
+    return out;
+  }
+  const char* name = KINGetReturnFlagName(flag);
+  std::string flag_name = name ? name : "";
+  if (flag_name.empty() || flag_name == "NONE") flag_name = "KINSOL flag " + std::to_string(flag);
+  out.message = "Newton on P(z) = z: " + flag_name;
+  std::free(const_cast<char*>(name));
+  out.outcome = pb.failures > 0 && (out.residual < 0 || flag == KIN_REPTD_SYSFUNC_ERR ||
+                                    flag == KIN_FIRST_SYSFUNC_ERR || flag == KIN_LINESEARCH_NONCONV)
+                    ? ShootingOutcome::left_domain
+                    : ShootingOutcome::not_converged;
+  return out;
+}
+
+}  // namespace lub::steady

@@ -1,0 +1,206 @@
+// The steady stage on systems whose periodic orbits and Floquet multipliers are known in
+// closed form: an affine period map, a damped linear oscillator under periodic forcing
+// integrated by CVODE, and the contraction estimate on synthetic transients.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <limits>
+
+#include "lub/integrators/integrator.hpp"
+#include "lub/steady/contraction.hpp"
+#include "lub/steady/periodic_orbit.hpp"
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// P(z) = A z + b with A = r R(θ) ⊕ diag(d): multipliers r e^{±iθ} and d; fixed point
+// (I − A)⁻¹ b. `fail_beyond`: the map cannot be evaluated where |z|∞ exceeds it.
+class AffineMap final : public lub::steady::CycleMap {
+ public:
+  AffineMap(double r, double theta, double d, double fail_beyond = 1e300) : fail_(fail_beyond) {
+    A_.setZero(3, 3);
+    A_ << r * std::cos(theta), -r * std::sin(theta), 0, r * std::sin(theta), r * std::cos(theta), 0, 0, 0, d;
+    b_ = Eigen::Vector3d(0.3, -0.2, 0.1);
+  }
+  int dim() const override { return 3; }
+  int apply(const double* z, double* Pz) override {
+    const Eigen::Map<const Eigen::Vector3d> zv(z);
+    if (zv.lpNorm<Eigen::Infinity>() > fail_) return 1;
+    Eigen::Map<Eigen::Vector3d> out(Pz);
+    out = A_ * zv + b_;
+    return 0;
+  }
+  Eigen::Vector3d fixed_point() const { return (Eigen::Matrix3d::Identity() - A_).lu().solve(b_); }
+
+ private:
+  Eigen::MatrixXd A_;
+  Eigen::Vector3d b_;
+  double fail_;
+};
+
+TEST(PeriodicOrbit, AffineMapFixedPointAndMultipliersToRoundOff) {
+  // A slowly turning, weakly damped pair (like Frêne long's) and a fast decaying mode.
+  AffineMap P(0.998, 0.93, 1e-3);
+  lub::steady::ShootingOptions o;
+  o.scales = {1.0, 1.0, 1.0};
+  o.tolerance = 1e-13;
+  o.step = 1e-2;
+  const auto sh = lub::steady::solve_periodic_orbit(P, Eigen::Vector3d(0.5, 0.5, 0.5), o);
+  ASSERT_EQ(sh.outcome, lub::steady::ShootingOutcome::converged) << sh.message;
+  // A linear residual: Newton with the exact Jacobian (differences of an affine map are
+  // exact up to round-off) lands on the fixed point in one step; the iteration limit would
+  // show a wrong Jacobian.
+  EXPECT_LE(sh.iterations, 3);
+  EXPECT_LT((sh.z - P.fixed_point()).lpNorm<Eigen::Infinity>(), 1e-10);  // (I − A)⁻¹ ~ 1/0.002 × 1e-13
+  lub::steady::MonodromyOptions mo{o.scales, 1e-2, true};
+  const auto mono = lub::steady::monodromy_by_differences(P, sh.z, sh.Pz, mo);
+  ASSERT_EQ(mono.failed, 0);
+  const auto mu = lub::steady::floquet_multipliers(mono.M);
+  ASSERT_EQ(mu.size(), 3u);
+  // Round-off of a difference quotient with step 1e-2 on values of order 1: ~1e-14.
+  EXPECT_NEAR(std::abs(mu[0]), 0.998, 1e-13);
+  EXPECT_NEAR(std::abs(mu[1]), 0.998, 1e-13);
+  EXPECT_NEAR(std::abs(std::arg(mu[0])), 0.93, 1e-13);
+  EXPECT_NEAR(std::arg(mu[0]), -std::arg(mu[1]), 1e-13);
+  EXPECT_NEAR(std::abs(mu[2]), 1e-3, 1e-13);
+}
+
+TEST(PeriodicOrbit, WalkingOutOfTheDomainIsReportedAsSuch) {
+  // An unstable affine map whose fixed point lies outside the domain |z| <= 0.5: Newton
+  // heads for it and every trial beyond the domain fails.
+  AffineMap P(1.5, 0.0, 1.5, 0.5);
+  lub::steady::ShootingOptions o;
+  o.scales = {1.0, 1.0, 1.0};
+  o.max_newton_step = 10.0;
+  // (I − A)⁻¹ b = −2 b: (−0.6, 0.4, −0.2), |z| = 0.6 > 0.5.
+  const auto sh = lub::steady::solve_periodic_orbit(P, Eigen::Vector3d(0.0, 0.0, 0.0), o);
+  EXPECT_NE(sh.outcome, lub::steady::ShootingOutcome::converged);
+  EXPECT_EQ(sh.outcome, lub::steady::ShootingOutcome::left_domain) << sh.message;
+}
+
+// x'' + 2ζω x' + ω² x = F cos(Ω t), one forcing period T = 2π/Ω per map, by CVODE BDF.
+class ForcedOscillator final : public lub::OdeSystem {
+ public:
+  double zeta = 0.05, omega = 7.0, F = 3.0, Omega = 2.0;
+  int size() const override { return 2; }
+  int rhs(double t, const double* y, double* yd) override {
+    yd[0] = y[1];
+    yd[1] = F * std::cos(Omega * t) - 2 * zeta * omega * y[1] - omega * omega * y[0];
+    return 0;
+  }
+};
+
+class OscillatorMap final : public lub::steady::CycleMap {
+ public:
+  explicit OscillatorMap(double rtol) : rtol_(rtol) {}
+  ForcedOscillator sys;
+  int dim() const override { return 2; }
+  int apply(const double* z, double* Pz) override {
+    const double T = 2 * kPi / sys.Omega;
+    lub::IntegratorSettings s;
+    s.method = lub::Method::cvode_bdf;
+    s.rtol = rtol_;
+    s.atol = {rtol_, rtol_ * sys.omega};
+    s.t_stop = T;
+    auto integ = lub::make_integrator(s, sys, 0.0, std::vector<double>{z[0], z[1]});
+    double t = 0.0;
+    while (t < T * (1 - 1e-15))
+      if (integ->step(t) == lub::StepOutcome::failure) return 1;
+    Pz[0] = integ->y()[0];
+    Pz[1] = integ->y()[1];
+    return 0;
+  }
+
+ private:
+  double rtol_;
+};
+
+TEST(PeriodicOrbit, ForcedDampedOscillatorMatchesItsClosedForm) {
+  OscillatorMap P(1e-12);
+  const ForcedOscillator& s = P.sys;
+  // The steady response X cos(Ωt − φ): z* = (X cos φ, X Ω sin φ).
+  const std::complex<double> H = 1.0 / std::complex<double>(s.omega * s.omega - s.Omega * s.Omega,
+                                                            2 * s.zeta * s.omega * s.Omega);
+  const double X = s.F * std::abs(H), phi = -std::arg(H);
+  const Eigen::Vector2d z_exact(X * std::cos(phi), X * s.Omega * std::sin(phi));
+  lub::steady::ShootingOptions o;
+  o.scales = {X, X * s.omega};
+  o.tolerance = 1e-10;
+  o.step = 1e-2;
+  const auto sh = lub::steady::solve_periodic_orbit(P, Eigen::Vector2d(0.0, 0.0), o);
+  ASSERT_EQ(sh.outcome, lub::steady::ShootingOutcome::converged) << sh.message;
+  // The orbit to the integration's accuracy (rtol 1e-12 over one period, amplified by
+  // (I − M)⁻¹ ~ 1 here: the multipliers are small).
+  EXPECT_LT((sh.z - z_exact).cwiseQuotient(Eigen::Vector2d(X, X * s.omega)).lpNorm<Eigen::Infinity>(), 1e-8);
+  // Multipliers e^{λT}, λ = −ζω ± iω√(1 − ζ²): modulus e^{−ζωT}, angle ω√(1 − ζ²) T mod 2π.
+  // The map is linear: a difference step of the state's own size has no truncation error
+  // and divides the integration error by the most.
+  lub::steady::MonodromyOptions mo{o.scales, 1.0, true};
+  const auto mono = lub::steady::monodromy_by_differences(P, sh.z, sh.Pz, mo);
+  const auto mu = lub::steady::floquet_multipliers(mono.M);
+  const double T = 2 * kPi / s.Omega;
+  const double modulus = std::exp(-s.zeta * s.omega * T);
+  const double angle = std::remainder(s.omega * std::sqrt(1 - s.zeta * s.zeta) * T, 2 * kPi);
+  ASSERT_EQ(mu.size(), 2u);
+  // The quotients carry only the integration error: CVODE's global error over a period
+  // at rtol 1e-12 is ~1e-9 of the state (with a step of 1e-2 of the state the multipliers
+  // were off by 1.3e-7); over a step of the state's size, 1e-8 holds.
+  EXPECT_NEAR(std::abs(mu[0]), modulus, 1e-8 * modulus + 1e-10);
+  EXPECT_NEAR(std::abs(mu[1]), modulus, 1e-8 * modulus + 1e-10);
+  EXPECT_NEAR(std::abs(std::arg(mu[0])), std::abs(angle), 1e-8);
+}
+
+TEST(Contraction, GeometricDistancesGiveTheirRateAndRemainingDistance) {
+  std::vector<double> d = {-1.0};  // the first cycle has no distance
+  for (int k = 1; k <= 20; ++k) d.push_back(0.4 * std::pow(0.9, k));
+  const auto e = lub::steady::estimate_contraction(d, 10, 1e-12);
+  ASSERT_TRUE(e.known);
+  EXPECT_NEAR(e.rate, 0.9, 1e-12);
+  EXPECT_NEAR(e.remaining, d.back() * 0.9 / 0.1, 1e-12);
+  EXPECT_FALSE(lub::steady::transient_converged(e, 1e-3));
+  EXPECT_TRUE(lub::steady::transient_converged(e, 0.5));  // remaining 0.437
+  // Cycles still needed to reach 1e-3: log(1e-3 / remaining) / log 0.9.
+  EXPECT_NEAR(lub::steady::cycles_to_converge(e, 1e-3), std::log(1e-3 / e.remaining) / std::log(0.9), 1e-9);
+}
+
+TEST(Contraction, ASlowDriftBelowTheOldThresholdIsNotSteady) {
+  // δ = 2e-4 per cycle, shrinking 1 % per cycle: each cycle repeats the last within the
+  // old 1e-3 threshold, but the orbit is still 2e-2 from its limit.
+  std::vector<double> d;
+  for (int k = 0; k < 20; ++k) d.push_back(2e-4 * std::pow(0.99, k));
+  const auto e = lub::steady::estimate_contraction(d, 10, 1e-12);
+  ASSERT_TRUE(e.known);
+  EXPECT_GT(e.remaining, 1e-2);
+  EXPECT_FALSE(lub::steady::transient_converged(e, 1e-3));
+  // A distance that does not shrink at all: unbounded.
+  const auto flat = lub::steady::estimate_contraction(std::vector<double>(12, 1e-4), 10, 1e-12);
+  EXPECT_GE(flat.rate, 1.0);
+  EXPECT_FALSE(lub::steady::transient_converged(flat, 1e-3));
+}
+
+TEST(Contraction, AComplexPairIsNotMistakenForConvergenceAtATrough) {
+  // δ_k = ρ^k |cos(kθ)|: the last value sits near a zero of the cosine.
+  std::vector<double> d;
+  const double theta = 0.93;
+  int last = 0;
+  for (int k = 1; k < 60; ++k)
+    if (std::abs(std::cos(k * theta)) < 0.05) last = k;
+  for (int k = 1; k <= last; ++k) d.push_back(1e-2 * std::pow(0.98, k) * (std::abs(std::cos(k * theta)) + 1e-3));
+  const auto e = lub::steady::estimate_contraction(d, 10, 1e-12);
+  ASSERT_TRUE(e.known);
+  EXPECT_GT(e.remaining, 10 * d.back());  // not fooled by the small last distance
+  EXPECT_FALSE(lub::steady::transient_converged(e, 1e-3));
+}
+
+TEST(Contraction, NoiseFloorAndTooFewCycles) {
+  EXPECT_FALSE(lub::steady::estimate_contraction({-1.0, 1e-3, 1e-4}, 10, 1e-9).known);
+  const auto e = lub::steady::estimate_contraction(std::vector<double>(8, 1e-12), 10, 1e-9);
+  ASSERT_TRUE(e.known);
+  EXPECT_TRUE(lub::steady::transient_converged(e, 1e-3));
+  EXPECT_NEAR(lub::steady::trend_per_cycle({5.0, 4.0, 3.0, 2.0}, 10), -1.0, 1e-14);
+  EXPECT_EQ(lub::steady::trend_per_cycle({5.0}, 10), 0.0);
+}
+
+}  // namespace
