@@ -264,6 +264,11 @@ bool SteadyRun::transient(int cycles, std::function<bool(const std::vector<Cycle
   o.cycles = res_.cycles.empty() ? 0 : cycles;
   // Continuations keep the cycle count going: the stop rule sees every cycle so far.
   const size_t before = res_.cycles.size();
+  // A continuation that takes far more steps per cycle than the transient did is crawling
+  // (near the wall the printed law's corrector crawls at h ~ 1e-8 s, D7): it stops there,
+  // and the run keeps what it has.
+  if (before > 0)
+    o.max_steps = 20 * res_.stats.steps / static_cast<long long>(before) * cycles + 1000;
   std::vector<CycleMetrics> previous = res_.cycles;
   if (stop)
     o.stop_after_cycle = [&, stop](const std::vector<CycleMetrics>& cs) {
@@ -272,6 +277,12 @@ bool SteadyRun::transient(int cycles, std::function<bool(const std::vector<Cycle
       return stop(all);
     };
   SegmentResult seg = detail::run_segment(scene_, o);
+  if (before > 0 && seg.res.status == RunStatus::budget_exceeded && o.max_steps > 0 &&
+      seg.res.stats.steps >= o.max_steps) {
+    detail::accumulate(res_.stats, seg.res.stats);
+    res_.steady.periods += static_cast<long long>(seg.res.cycles.size());
+    return false;  // crawling: not the user's budget, the run stays ok
+  }
   if (before == 0) {
     const SolverStats keep = res_.stats;
     res_ = std::move(seg.res);
@@ -298,12 +309,22 @@ bool SteadyRun::transient(int cycles, std::function<bool(const std::vector<Cycle
 }
 
 bool SteadyRun::transient_drifts() const {
-  // The per-cycle minimum film moved the same way in every cycle of the window.
+  // The per-cycle minimum film moved the same way in every cycle of the window, and does
+  // not stop inside the clearance: its changes do not contract (ρ >= 1), or, thinning,
+  // their geometric sum h ρ/(1 − ρ)·|Δh| reaches the wall. A film that approaches its
+  // limit from one side (most transients do) is not drifting.
   const std::vector<double> h = cycle_min_films(res_.cycles);
   if (h.size() < static_cast<size_t>(kWindow)) return false;
   int down = 0, up = 0;
-  for (size_t i = h.size() - kWindow + 1; i < h.size(); ++i) (h[i] < h[i - 1] ? down : up) += 1;
-  return down == kWindow - 1 || up == kWindow - 1;
+  std::vector<double> dh;
+  for (size_t i = h.size() - kWindow + 1; i < h.size(); ++i) {
+    (h[i] < h[i - 1] ? down : up) += 1;
+    dh.push_back(std::abs(h[i] - h[i - 1]));
+  }
+  if (down != kWindow - 1 && up != kWindow - 1) return false;
+  const steady::ContractionEstimate e = steady::estimate_contraction(dh, kWindow, 1e-300);
+  if (!e.known || e.rate >= 1.0) return true;
+  return down == kWindow - 1 && e.remaining >= h.back();
 }
 
 SegmentResult SteadyRun::measure(const StartState& s, double factor, bool series, int cycles) {
@@ -356,7 +377,17 @@ void SteadyRun::shoot() {
   // it: at most a tenth of the thinnest gap of the last cycle, 1 − ε_max (in clearances).
   const double gap = res_.cycles.empty() || !(res_.cycles.back().max_eps > 0.0) ? 1.0 : 1.0 - res_.cycles.back().max_eps;
   so.step = std::min(kDifferenceStep, 0.1 * gap);
+  // Newton's steps no longer than the gap either (they are measured in the same units).
+  so.max_newton_step = std::min(so.max_newton_step, gap);
+  // The Jacobians: central differences of periods at rtol/100.
+  SolverStats jac_stats;
+  long long jac_periods = 0;
+  PeriodMap Pj(scene_, chart, base, winding, kTightFactor, jac_stats, jac_periods);
+  Pj.set_step_budget(10 * budget);
+  so.jacobian_map = &Pj;
   const steady::ShootingResult sh = steady::solve_periodic_orbit(P, chart.reduce(base.qv), so);
+  detail::accumulate(res_.stats, jac_stats);
+  sc.periods += jac_periods;
   sc.newton_iterations += static_cast<int>(sh.iterations);
   sc.orbit_residual = sh.residual;
   if (sh.outcome != steady::ShootingOutcome::converged) {
@@ -496,21 +527,25 @@ RunResult SteadyRun::run() {
     if (ok) {
       finish_transient();
       shoot();
-      // Not converged: more transient cycles bring a better start, as long as max_cycles
-      // allows; a transient that converges by itself meanwhile is steady by the transient's
-      // test (its multipliers unknown).
-      while (sc.kind == SteadyClass::not_converged && res_.status == RunStatus::ok) {
-        const int left = sim_.max_cycles - static_cast<int>(res_.cycles.size());
-        if (left <= 0) break;
-        const int more = std::min(left, std::max(2 * n0, kWindow));
-        if (!transient(more, nullptr)) break;
+      // Shooting found no orbit from there: the transient goes on, up to max_cycles or
+      // until its own test says steady (the direct evidence), and shooting tries once more
+      // from where it ends. A transient that converged is periodic whatever shooting says;
+      // one that drifts is drifting.
+      const int left = sim_.max_cycles - static_cast<int>(res_.cycles.size());
+      if (sc.kind != SteadyClass::periodic && sc.kind != SteadyClass::periodic_unstable && left > 0 &&
+          transient(left, [&](const std::vector<CycleMetrics>& cs) { return transient_steady(scene_, cs, tol); })) {
         finish_transient();
+        const bool converged = transient_steady(scene_, res_.cycles, tol);
         shoot();
-        if (sc.kind == SteadyClass::not_converged && transient_steady(scene_, res_.cycles, tol)) {
-          sc.kind = SteadyClass::periodic;
-          sc.method = "transient";
-          res_.message = "periodic by the transient's contraction estimate; " + res_.message;
-          if (sim_.error_bars) transient_error_bars();
+        if (sc.kind != SteadyClass::periodic && sc.kind != SteadyClass::periodic_unstable) {
+          if (converged) {
+            sc.kind = SteadyClass::periodic;
+            sc.method = "transient";
+            res_.message = "periodic by the transient's contraction estimate; " + res_.message;
+            if (sim_.error_bars) transient_error_bars();
+          } else if (transient_drifts()) {
+            sc.kind = SteadyClass::drifting;
+          }
         }
       }
       if (res_.status == RunStatus::ok && sc.kind == SteadyClass::drifting && res_.message.empty())

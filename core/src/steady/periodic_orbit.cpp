@@ -122,15 +122,16 @@ int residual_cb(N_Vector u, N_Vector f, void* data) {
   return 0;
 }
 
-// J = ∂(P(z) − z)/∂z = M − I by forward differences from P(u) = fu + u.
+// J = ∂(P(z) − z)/∂z = M − I by differences (forward ones from P(u) = fu + u).
 int jacobian_cb(N_Vector u, N_Vector fu, SUNMatrix J, void* data, N_Vector, N_Vector) {
   auto& pb = *static_cast<Problem*>(data);
   const double* ud = N_VGetArrayPointer(u);
   const double* fd = N_VGetArrayPointer(fu);
   Eigen::VectorXd z(pb.n), Pz(pb.n);
   for (int i = 0; i < pb.n; ++i) z(i) = ud[i], Pz(i) = fd[i] + ud[i];
-  MonodromyOptions mo{pb.opt->scales, pb.opt->step, false};
-  const Monodromy m = monodromy_by_differences(*pb.P, z, Pz, mo);
+  MonodromyOptions mo{pb.opt->scales, pb.opt->step, pb.opt->central_jacobian};
+  CycleMap& map = pb.opt->jacobian_map ? *pb.opt->jacobian_map : *pb.P;
+  const Monodromy m = monodromy_by_differences(map, z, Pz, mo);
   pb.maps += m.maps;
   if (m.failed) {
     ++pb.failures;
@@ -215,8 +216,12 @@ ShootingResult solve_periodic_orbit(CycleMap& P, const Eigen::VectorXd& z0, cons
   if (flag_name.empty() || flag_name == "NONE") flag_name = "KINSOL flag " + std::to_string(flag);
   out.message = "Newton on P(z) = z: " + flag_name;
   std::free(const_cast<char*>(name));
+  // Left the domain: the map's failures stopped Newton, or a Jacobian's difference step
+  // from the iterate failed (the iterate is within a step of the wall); not a line search
+  // that merely met one failing trial point on its way.
   out.outcome = pb.failures > 0 && (out.residual < 0 || flag == KIN_REPTD_SYSFUNC_ERR ||
-                                    flag == KIN_FIRST_SYSFUNC_ERR || flag == KIN_LINESEARCH_NONCONV)
+                                    flag == KIN_FIRST_SYSFUNC_ERR || flag == KIN_SYSFUNC_FAIL ||
+                                    flag == KIN_LSETUP_FAIL)
                     ? ShootingOutcome::left_domain
                     : ShootingOutcome::not_converged;
   return out;

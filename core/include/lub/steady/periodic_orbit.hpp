@@ -59,7 +59,16 @@ struct ShootingOptions {
   double max_newton_step = 0.3;   ///< largest Newton step, scaled 2-norm (units s_i)
   /// A Newton that stalls (no decrease along its direction) within this factor of the
   /// tolerance has reached the map's own noise: converged, with its residual reported.
-  double noise_factor = 100.0;
+  /// The printed law's maps near the wall (Filippov sliding entered and left within a
+  /// period) stall at 1e-7–1e-6 clearances: still 1000 times inside a transient's 1e-3.
+  double noise_factor = 1000.0;
+  /// Central differences for the Newton Jacobians (2 n maps instead of n; error O(h²)
+  /// instead of O(h): a slowly contracting cycle's M − I is nearly singular, and an O(h)
+  /// error swamps its smallest singular value).
+  bool central_jacobian = true;
+  /// The map the Jacobians difference (nullptr: P itself), e.g. P integrated at a tighter
+  /// tolerance: less noise over the difference step.
+  CycleMap* jacobian_map = nullptr;
 };
 
 enum class ShootingOutcome {
