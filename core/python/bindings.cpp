@@ -107,6 +107,11 @@ py::dict simulate(const std::optional<std::string>& scene_path, const std::optio
                                  i < long_names.size() ? long_names[i] : std::string(),
                                  to_array(r.series.data[i])));
   out["series"] = series;
+  py::list orbit;  // the periodic orbit's channels (shooting), as series
+  for (size_t i = 0; i < r.orbit.names.size(); ++i)
+    orbit.append(py::make_tuple(r.orbit.names[i], lub::cf_units(r.orbit.units[i]), std::string(),
+                                to_array(r.orbit.data[i])));
+  out["orbit"] = orbit;
   // /cycles of the run file, as columns (name, CF unit, long_name, values).
   py::list cycles;
   for (const lub::CycleField& f : lub::cycle_fields()) {

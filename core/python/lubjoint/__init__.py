@@ -130,6 +130,12 @@ def simulate(scene, overrides=None, output=None):
         coords["t"] = ("t", t, attrs_of(unit, long_name or "time"))
         for name, unit, long_name, values in series[1:]:
             data_vars[name] = ("t", values, attrs_of(unit, long_name))
+    orbit = r["orbit"]
+    if orbit:  # the periodic orbit found by shooting (run file /orbit), on its own time axis
+        name, unit, long_name, t = orbit[0]
+        coords["orbit_t"] = ("orbit_t", t, attrs_of(unit, "time on the periodic orbit"))
+        for name, unit, long_name, values in orbit[1:]:
+            data_vars["orbit_" + name] = ("orbit_t", values, attrs_of(unit, f"{name} on the periodic orbit"))
     cycles = r["cycles"]
     n_cycles = len(cycles[0][3]) if cycles else 0
     coords["cycle"] = ("cycle", np.arange(1, n_cycles + 1, dtype=np.int64),

@@ -294,6 +294,8 @@ bool SteadyRun::transient(int cycles, std::function<bool(const std::vector<Cycle
     // The continuation's first cycle has no previous one of its own: its distance is to
     // the transient's last cycle, measured again from the boundary state.
     res_.cycles.insert(res_.cycles.end(), seg.res.cycles.begin(), seg.res.cycles.end());
+    // The metrics describe the transient's last cycles: now the continuation's.
+    res_.metrics = detail::steady_cycle_metrics(scene_, res_.cycles, static_cast<int>(res_.cycles.size()));
     for (size_t c = 0; c < res_.series.data.size() && c < seg.res.series.data.size(); ++c)
       res_.series.data[c].insert(res_.series.data[c].end(), seg.res.series.data[c].begin(),
                                  seg.res.series.data[c].end());

@@ -1,0 +1,129 @@
+#!/usr/bin/python3
+"""Figures of steady cycles (README "Steady cycles").
+
+    /usr/bin/python3 tools/plot_steady.py STUDY.h5 -o DIR [--orbit]
+
+From a study over clearance x viscosity x crank speed x force law (configs/grids/
+full_factorial.json):
+  steady_classification.png   each case's classification, one panel per law and speed
+  steady_multiplier.png       the dominant Floquet multiplier's modulus |mu|max there
+With --orbit (needs the lubjoint module, build/python): Frene long at the reference case,
+  steady_frene_long_orbit.png  the journal's orbit over a 40-cycle transient, its Poincare
+                               points at crank angle 0, and the periodic orbit shooting finds.
+"""
+import argparse
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+here = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, here)
+import study_io  # noqa: E402
+
+CLASSES = ["periodic", "periodic_unstable", "drifting", "not_converged", "film_collapse", "solver_failure",
+           "budget_exceeded"]
+COLOURS = ["#2a9d8f", "#e9c46a", "#e76f51", "#8d99ae", "#6d597a", "#000000", "#444444"]
+
+
+def grid_panels(cases, value, title, out, cmap=None, norm=None, categorical=False):
+    laws = list(dict.fromkeys(cases["force_law"]))
+    speeds = sorted(set(cases["speed_rpm"]), reverse=True)
+    clearances = sorted(set(cases["clearance_m"]), reverse=True)
+    viscosities = sorted(set(cases["viscosity_Pa_s"]), reverse=True)
+    fig, axs = plt.subplots(len(laws), len(speeds), figsize=(3.0 * len(speeds), 2.6 * len(laws)), squeeze=False)
+    for i, law in enumerate(laws):
+        for j, speed in enumerate(speeds):
+            ax = axs[i][j]
+            img = np.full((len(clearances), len(viscosities)), np.nan)
+            sel = cases[(cases["force_law"] == law) & (cases["speed_rpm"] == speed)]
+            for _, r in sel.iterrows():
+                img[clearances.index(r["clearance_m"]), viscosities.index(r["viscosity_Pa_s"])] = value(r)
+            im = ax.imshow(img, cmap=cmap, norm=norm, aspect="auto")
+            ax.set_xticks(range(len(viscosities)), [f"{v * 1e3:g}" for v in viscosities], fontsize=7)
+            ax.set_yticks(range(len(clearances)), [f"{c * 1e3:g}" for c in clearances], fontsize=7)
+            if i == len(laws) - 1:
+                ax.set_xlabel("viscosity [cP]", fontsize=8)
+            if j == 0:
+                ax.set_ylabel(f"{law}\nclearance [mm]", fontsize=8)
+            if i == 0:
+                ax.set_title(f"{speed:g} rpm", fontsize=9)
+    if categorical:
+        handles = [plt.Rectangle((0, 0), 1, 1, color=c) for c in COLOURS]
+        fig.legend(handles, CLASSES, loc="lower center", ncol=4, fontsize=8)
+        fig.subplots_adjust(bottom=0.12)
+    else:
+        fig.colorbar(im, ax=axs, shrink=0.6, label="|mu|max (dominant Floquet multiplier)")
+    fig.suptitle(title, fontsize=10)
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+    print(out)
+
+
+def orbit_figure(out):
+    sys.path.insert(0, os.path.join(here, "..", "build", "python"))
+    import lubjoint
+    scene = os.path.join(here, "..", "configs", "scenes", "slider_crank.json")
+    base = {"/joints/3/force_law": "frene_long", "/outputs/last_cycles": 0}
+    tr = lubjoint.simulate(scene, {**base, "/simulation/max_cycles": 40})
+    sh = lubjoint.simulate(scene, {**base, "/simulation/steady": "shooting", "/simulation/max_cycles": 40})
+    c = 0.5e-3
+    fig, ax = plt.subplots(1, 2, figsize=(11, 5))
+    ax[0].plot(tr["e_x"] / c, tr["e_y"] / c, lw=0.3, color="0.6", label="transient, 40 cycles from the centre")
+    ax[0].plot(tr["cycle_end_eccentricity_x"], tr["cycle_end_eccentricity_y"], "o", ms=3, color="C0",
+               label="its Poincare points (crank angle 0)")
+    ax[0].add_patch(plt.Circle((0, 0), 1.0, fill=False, color="k", lw=0.8))
+    ax[0].set_aspect("equal")
+    ax[0].set_xlabel("e_x / c")
+    ax[0].set_ylabel("e_y / c")
+    ax[0].plot(sh["orbit_e_x"] / c, sh["orbit_e_y"] / c, lw=1.5, color="C3", label="periodic orbit (shooting)")
+    mu = sh["multiplier_modulus"].values
+    ang = sh["multiplier_angle_rad"].values
+    ax[0].set_title(f"Frene long, reference case: {sh.attrs['classification']}, |mu|max = {mu[0]:.4f}", fontsize=9)
+    ax[0].legend(fontsize=7, loc="lower left")
+    k = np.arange(1, tr.sizes["cycle"] + 1)
+    ax[1].semilogy(k, tr["cycle_periodicity"], "o-", ms=3, label="orbit change per cycle / c (transient)")
+    ax[1].semilogy(k, np.abs(tr["cycle_min_film_thickness_m"] - sh["min_film_thickness_m"].item()) /
+                   sh["min_film_thickness_m"].item(), "s-", ms=3,
+                   label=f"|h_min(cycle) - h_min(orbit)| / h_min(orbit); h_min(orbit) = "
+                         f"{sh['min_film_thickness_m'].item() * 1e6:.3f} um")
+    kk = np.linspace(1, 40, 100)
+    ax[1].semilogy(kk, tr["cycle_periodicity"].values[1] * mu[0] ** (kk - 2), "k--", lw=0.8,
+                   label=f"|mu|max^k: the decay shooting predicts ({mu[0]:.4f}, angle {abs(ang[0]):.3f} rad)")
+    ax[1].set_xlabel("cycle")
+    ax[1].legend(fontsize=7)
+    ax[1].set_title(f"shooting: {int(sh['periods_integrated'].item())} periods, "
+                    f"{int(sh['newton_iterations'].item())} Newton iterations", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+    print(out)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("study")
+    ap.add_argument("-o", "--outdir", default="out/figures")
+    ap.add_argument("--orbit", action="store_true")
+    a = ap.parse_args()
+    study_io.check(a.study)
+    cases = study_io.cases(a.study)
+    os.makedirs(a.outdir, exist_ok=True)
+    from matplotlib.colors import BoundaryNorm, ListedColormap
+    cmap = ListedColormap(COLOURS)
+    norm = BoundaryNorm(np.arange(len(CLASSES) + 1) - 0.5, len(CLASSES))
+    grid_panels(cases, lambda r: CLASSES.index(r["classification"]) if r["classification"] in CLASSES else np.nan,
+                "steady-cycle classification (simulation.steady = auto)",
+                os.path.join(a.outdir, "steady_classification.png"), cmap=cmap, norm=norm, categorical=True)
+    grid_panels(cases, lambda r: r["multiplier_1_modulus"], "dominant Floquet multiplier |mu|max (periodic cases)",
+                os.path.join(a.outdir, "steady_multiplier.png"), cmap="viridis")
+    if a.orbit:
+        orbit_figure(os.path.join(a.outdir, "steady_frene_long_orbit.png"))
+
+
+if __name__ == "__main__":
+    main()
