@@ -48,8 +48,8 @@ void accumulate(SolverStats& total, const SolverStats& s);
 /// The absolute tolerances are rtol times these; shooting measures residuals in them.
 Eigen::VectorXd state_units(const Scene& scene, const Model& m);
 
-/// The orbit distance between two cycles' phase points is measured in the clearance; the
-/// integration resolves it to about this (the contraction estimate's noise floor).
+/// The orbit distance between two cycles' phase points is measured in the clearance; below
+/// this it is noise (the contraction estimate's floor): max(10 rtol, 1e-3 steady_tolerance).
 double orbit_noise_floor(const Scene& scene, double rtol_factor = 1.0);
 
 }  // namespace lub::detail
