@@ -251,6 +251,7 @@ class SteadyRun {
   /// state they started at, plus |Δ per cycle| ρ/(1 − ρ), what it would still change.
   void transient_error_bars();
   void shoot();
+  void shoot_from_transient();
   bool transient_drifts() const;
   /// The metric cycles (or `cycles`) from a state (rtol × factor): their metrics and channels.
   SegmentResult measure(const StartState& s, double factor, bool series, int cycles = 0);
@@ -354,6 +355,18 @@ void SteadyRun::finish_transient() {
 }
 
 void SteadyRun::shoot() {
+  // A case that cannot be shot (a rank-deficient constraint Jacobian where shooting would
+  // start, KINSOL out of memory) is not converged, with the reason: never an exception
+  // out of run_scene.
+  try {
+    shoot_from_transient();
+  } catch (const std::exception& e) {
+    res_.steady.kind = SteadyClass::not_converged;
+    res_.message = std::string("shooting: ") + e.what();
+  }
+}
+
+void SteadyRun::shoot_from_transient() {
   SteadyCycle& sc = res_.steady;
   if (boundaries_.size() < 2) return;  // the transient is shorter than two cycles
   const StartState base = end_;
