@@ -292,8 +292,8 @@ bool SteadyRun::transient(int cycles, std::function<bool(const std::vector<Cycle
     detail::accumulate(res_.stats, seg.res.stats);
     res_.status = seg.res.status;
     res_.message = seg.res.message;
-    // The continuation's first cycle has no previous one of its own: its distance is to
-    // the transient's last cycle, measured again from the boundary state.
+    // The continuation's first cycle has no previous one of its own (periodicity −1): the
+    // contraction estimate looks at the continuation's cycles only.
     res_.cycles.insert(res_.cycles.end(), seg.res.cycles.begin(), seg.res.cycles.end());
     // The metrics describe the transient's last cycles: now the continuation's.
     res_.metrics = detail::steady_cycle_metrics(scene_, res_.cycles, static_cast<int>(res_.cycles.size()));
