@@ -110,7 +110,7 @@ class ArkodeIntegrator final : public Integrator {
       ARKStepGetNumLinRhsEvals(mem_, &v); s.rhs_evals_jac = v;
       ARKStepGetNumLinSolvSetups(mem_, &v); s.lin_setups = v;
     }
-    detail::add_counters(s, base_);
+    s += base_;
   }
 
   std::string error_message() const override { return data_.error; }

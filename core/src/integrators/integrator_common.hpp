@@ -17,62 +17,10 @@
 #include <type_traits>
 #include <vector>
 
+#include "common/sundials_owned.hpp"
 #include "lub/integrators/integrator.hpp"
 
 namespace lub::detail {
-
-// --- Ownership of SUNDIALS handles ------------------------------------------------------
-// Each handle an adapter creates is held by an Owned<> member from the moment it exists,
-// so it is freed whether the adapter's constructor completes or throws half-way (a failed
-// Set call, an inconsistent initial state). Members are destroyed in reverse declaration
-// order: declare the context first and the integrator memory last (the memory refers to
-// the solvers and vectors, everything to the context).
-
-/// A unique_ptr to a SUNDIALS handle type H (a pointer type), freed by `Free`, that reads
-/// as the raw handle where SUNDIALS' C API wants one.
-template <class H, class Free>
-class Owned {
- public:
-  Owned() = default;
-  Owned& operator=(H raw) {
-    p_.reset(raw);
-    return *this;
-  }
-  operator H() const { return p_.get(); }  // NOLINT: passes as the handle to the C API
-  H operator->() const { return p_.get(); }
-  H get() const { return p_.get(); }
-
- private:
-  std::unique_ptr<std::remove_pointer_t<H>, Free> p_;
-};
-
-struct FreeContext {
-  void operator()(SUNContext c) const { SUNContext_Free(&c); }
-};
-struct FreeVector {
-  void operator()(N_Vector v) const { N_VDestroy(v); }
-};
-struct FreeMatrix {
-  void operator()(SUNMatrix a) const { SUNMatDestroy(a); }
-};
-struct FreeLinearSolver {
-  void operator()(SUNLinearSolver s) const { SUNLinSolFree(s); }
-};
-struct FreeNonlinearSolver {
-  void operator()(SUNNonlinearSolver s) const { SUNNonlinSolFree(s); }
-};
-using OwnedContext = Owned<SUNContext, FreeContext>;
-using OwnedVector = Owned<N_Vector, FreeVector>;
-using OwnedMatrix = Owned<SUNMatrix, FreeMatrix>;
-using OwnedLinearSolver = Owned<SUNLinearSolver, FreeLinearSolver>;
-using OwnedNonlinearSolver = Owned<SUNNonlinearSolver, FreeNonlinearSolver>;
-
-/// A new SUNDIALS context (throws if it cannot be created).
-inline SUNContext new_context() {
-  SUNContext ctx = nullptr;
-  if (SUNContext_Create(nullptr, &ctx) != 0) throw std::runtime_error("SUNContext_Create failed");
-  return ctx;
-}
 
 struct CallbackData {
   OdeSystem* sys = nullptr;
@@ -159,19 +107,6 @@ inline void err_cb(int /*code*/, const char* module, const char* function, char*
   d->error = std::string(module ? module : "") + "/" + (function ? function : "") + ": " + (msg ? msg : "");
 }
 
-/// Adds the counters of `base` (those accumulated before the last restart: SUNDIALS
-/// resets its counters at every reinit) to `s`.
-inline void add_counters(IntegratorStats& s, const IntegratorStats& base) {
-  s.steps += base.steps;
-  s.rhs_evals += base.rhs_evals;
-  s.err_test_fails += base.err_test_fails;
-  s.nonlin_iters += base.nonlin_iters;
-  s.nonlin_conv_fails += base.nonlin_conv_fails;
-  s.root_evals += base.root_evals;
-  s.jac_evals += base.jac_evals;
-  s.rhs_evals_jac += base.rhs_evals_jac;
-  s.lin_setups += base.lin_setups;
-}
 
 }  // namespace lub::detail
 

@@ -124,7 +124,7 @@ class CvodeIntegrator final : public Integrator {
 
   void statistics(IntegratorStats& s) const override {
     current(s);
-    detail::add_counters(s, base_);
+    s += base_;
   }
 
   // Counters since the last (re)initialisation: CVodeReInit resets them.

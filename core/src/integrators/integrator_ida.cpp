@@ -153,7 +153,7 @@ class IdaIntegrator final : public Integrator {
     IDAGetNumJacEvals(mem_, &v); s.jac_evals = v;
     IDAGetNumLinResEvals(mem_, &v); s.rhs_evals_jac = v;
     IDAGetNumLinSolvSetups(mem_, &v); s.lin_setups = v;
-    detail::add_counters(s, base_);
+    s += base_;
   }
 
   std::string error_message() const override { return data_.error; }

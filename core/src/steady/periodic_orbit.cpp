@@ -11,6 +11,8 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+
+#include "common/sundials_owned.hpp"
 #include <stdexcept>
 
 namespace lub::steady {
@@ -66,27 +68,15 @@ std::vector<std::complex<double>> floquet_multipliers(const Eigen::MatrixXd& M) 
 
 namespace {
 
-// Owners of SUNDIALS objects.
-struct Context {
-  SUNContext ctx = nullptr;
-  Context() {
-    if (SUNContext_Create(nullptr, &ctx) != 0) throw std::runtime_error("SUNContext_Create failed");
-  }
-  ~Context() { SUNContext_Free(&ctx); }
-};
+// KINSOL's memory, owned like the other SUNDIALS handles (common/sundials_owned.hpp).
 struct FreeKin {
   void operator()(void* mem) const { KINFree(&mem); }
 };
-struct FreeVector {
-  void operator()(N_Vector v) const { N_VDestroy(v); }
-};
-struct FreeMatrix {
-  void operator()(SUNMatrix m) const { SUNMatDestroy(m); }
-};
-struct FreeSolver {
-  void operator()(SUNLinearSolver s) const { SUNLinSolFree(s); }
-};
-using Vector = std::unique_ptr<std::remove_pointer_t<N_Vector>, FreeVector>;
+using detail::OwnedContext;
+using detail::OwnedLinearSolver;
+using detail::OwnedMatrix;
+using detail::OwnedVector;
+using OwnedKin = detail::Owned<void*, FreeKin>;
 
 struct Problem {
   CycleMap* P = nullptr;
@@ -157,17 +147,26 @@ ShootingResult solve_periodic_orbit(CycleMap& P, const Eigen::VectorXd& z0, cons
   pb.z.resize(n);
   pb.Pz.resize(n);
 
-  Context c;
-  Vector u(N_VNew_Serial(n, c.ctx)), us(N_VNew_Serial(n, c.ctx)), fs(N_VNew_Serial(n, c.ctx));
+  // Destroyed in reverse order of declaration: KINSOL's memory first, the context last.
+  OwnedContext ctx;
+  ctx = detail::new_context();
+  OwnedVector u, us, fs;
+  u = N_VNew_Serial(n, ctx);
+  us = N_VNew_Serial(n, ctx);
+  fs = N_VNew_Serial(n, ctx);
+  if (!u || !us || !fs) throw std::runtime_error("KINSOL: out of memory");
   for (int i = 0; i < n; ++i) {
     NV_Ith_S(u.get(), i) = z0(i);
     NV_Ith_S(us.get(), i) = 1.0 / opt.scales[static_cast<size_t>(i)];
     NV_Ith_S(fs.get(), i) = 1.0 / opt.scales[static_cast<size_t>(i)];
   }
-  std::unique_ptr<void, FreeKin> mem(KINCreate(c.ctx));
-  std::unique_ptr<std::remove_pointer_t<SUNMatrix>, FreeMatrix> J(SUNDenseMatrix(n, n, c.ctx));
-  std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, FreeSolver> LS(SUNLinSol_Dense(u.get(), J.get(), c.ctx));
-  if (!mem || !J || !LS) throw std::runtime_error("KINSOL: out of memory");
+  OwnedMatrix J;
+  J = SUNDenseMatrix(n, n, ctx);
+  OwnedLinearSolver LS;
+  LS = SUNLinSol_Dense(u, J, ctx);
+  OwnedKin mem;
+  mem = KINCreate(ctx);
+  if (!J || !LS || !mem) throw std::runtime_error("KINSOL: out of memory");
   void* m = mem.get();
   auto check = [](int flag, const char* what) {
     if (flag < 0) throw std::runtime_error(std::string("KINSOL: ") + what + " failed");

@@ -64,6 +64,21 @@ struct IntegratorStats {
   long long root_evals = 0;
 };
 
+/// Adds the counters of `b` to `a` (a run of several integrations; the counters kept
+/// across a restart: SUNDIALS resets its own at every reinit).
+inline IntegratorStats& operator+=(IntegratorStats& a, const IntegratorStats& b) {
+  a.steps += b.steps;
+  a.rhs_evals += b.rhs_evals;
+  a.jac_evals += b.jac_evals;
+  a.rhs_evals_jac += b.rhs_evals_jac;
+  a.lin_setups += b.lin_setups;
+  a.err_test_fails += b.err_test_fails;
+  a.nonlin_iters += b.nonlin_iters;
+  a.nonlin_conv_fails += b.nonlin_conv_fails;
+  a.root_evals += b.root_evals;
+  return a;
+}
+
 struct IntegratorSettings {
   Method method = Method::cvode_bdf;
   double rtol = 1e-6;
