@@ -270,10 +270,10 @@ bool SteadyRun::transient(int cycles, std::function<bool(const std::vector<Cycle
   // and the run keeps what it has.
   if (before > 0)
     o.max_steps = 20 * res_.stats.steps / static_cast<long long>(before) * cycles + 1000;
-  std::vector<CycleMetrics> previous = res_.cycles;
   if (stop)
     o.stop_after_cycle = [&, stop](const std::vector<CycleMetrics>& cs) {
-      std::vector<CycleMetrics> all = previous;
+      if (before == 0) return stop(cs);  // the first segment's cycles are all there are
+      std::vector<CycleMetrics> all = res_.cycles;
       all.insert(all.end(), cs.begin(), cs.end());
       return stop(all);
     };
@@ -394,15 +394,14 @@ void SteadyRun::shoot_from_transient() {
   so.step = std::min(kDifferenceStep, 0.1 * gap);
   // Newton's steps no longer than the gap either (they are measured in the same units).
   so.max_newton_step = std::min(so.max_newton_step, gap);
-  // The Jacobians: central differences of periods at rtol/100.
-  SolverStats jac_stats;
-  long long jac_periods = 0;
-  PeriodMap Pj(scene_, chart, base, winding, kTightFactor, jac_stats, jac_periods);
-  Pj.set_step_budget(10 * budget);
-  so.jacobian_map = &Pj;
+  // Periods at rtol/100: the Newton Jacobians' and the monodromy's central differences
+  // (the map's noise at rtol, ~1e-5 c at 1e-8, over a step of ~1e-2 c would be ~1e-3 in
+  // them: Frêne long's |μ|max 0.9973 or 0.9990 with steps 1e-2 and 8.8e-3 at rtol 1e-8,
+  // against 0.9966 from the transient's own decay), and the error bars.
+  PeriodMap Pt(scene_, chart, base, winding, kTightFactor, res_.stats, sc.periods);
+  Pt.set_step_budget(10 * budget);
+  so.jacobian_map = &Pt;
   const steady::ShootingResult sh = steady::solve_periodic_orbit(P, chart.reduce(base.qv), so);
-  detail::accumulate(res_.stats, jac_stats);
-  sc.periods += jac_periods;
   sc.newton_iterations += static_cast<int>(sh.iterations);
   sc.orbit_residual = sh.residual;
   if (sh.outcome != steady::ShootingOutcome::converged) {
@@ -415,20 +414,9 @@ void SteadyRun::shoot_from_transient() {
     res_.message = msg.str();
     return;
   }
-  // Floquet multipliers: central differences at the orbit (error O(h²)), of periods
-  // integrated at rtol/100: the map's noise (~1e-5 c at rtol 1e-8) over the step (~1e-2 c)
-  // would otherwise be ~1e-3 in the multipliers (Frêne long: |μ|max 0.9973 or 0.9990 with
-  // steps 1e-2 and 8.8e-3 at rtol 1e-8, against 0.9966 from the transient's own decay).
-  SolverStats tight_stats;
-  long long tight_periods = 0;
-  PeriodMap Pt(scene_, chart, base, winding, kTightFactor, tight_stats, tight_periods);
-  Pt.set_step_budget(10 * budget);
+  // Floquet multipliers: central differences at the orbit (error O(h²)).
   steady::MonodromyOptions mo{chart.units, so.step, true};
   const steady::Monodromy mono = steady::monodromy_by_differences(Pt, sh.z, sh.Pz, mo);
-  detail::accumulate(res_.stats, tight_stats);
-  sc.periods += tight_periods;
-  tight_stats = SolverStats{};
-  tight_periods = 0;
   if (mono.failed) {
     sc.kind = SteadyClass::not_converged;
     res_.message = "shooting converged, but a perturbed period failed: " + Pt.last_failure();
@@ -455,7 +443,6 @@ void SteadyRun::shoot_from_transient() {
   res_.metrics = seg.res.metrics;
   res_.orbit = std::move(seg.res.series);
 
-
   if (!sim_.error_bars) return;
   // Error bars: the orbit re-found at rtol/100 by one Newton step with the monodromy
   // (z_t = z* − (M − I)⁻¹ (P_t(z*) − z*)) and measured there.
@@ -468,9 +455,6 @@ void SteadyRun::shoot_from_transient() {
     const SegmentResult st = measure(tight, kTightFactor, false);
     if (st.res.status == RunStatus::ok) set_errors(res_.metrics, st.res.metrics);
   }
-  detail::accumulate(res_.stats, tight_stats);
-  sc.periods += tight_periods;
-
 }
 
 void SteadyRun::transient_error_bars() {
@@ -581,15 +565,7 @@ RunResult SteadyRun::run() {
 namespace detail {
 
 void accumulate(SolverStats& t, const SolverStats& s) {
-  t.steps += s.steps;
-  t.rhs_evals += s.rhs_evals;
-  t.rhs_evals_jac += s.rhs_evals_jac;
-  t.jac_evals += s.jac_evals;
-  t.lin_setups += s.lin_setups;
-  t.err_test_fails += s.err_test_fails;
-  t.nonlin_iters += s.nonlin_iters;
-  t.nonlin_conv_fails += s.nonlin_conv_fails;
-  t.root_evals += s.root_evals;
+  static_cast<IntegratorStats&>(t) += s;
   t.film_law_evals_jac += s.film_law_evals_jac;
   t.observer_evals += s.observer_evals;
   t.repartitions += s.repartitions;

@@ -379,7 +379,7 @@ void check_whole_scene(const Scene& scene, const json& doc) {
     fail("simulation.steady", json(name_of(sim.steady)),
          "needs a cycle: simulation.cycle_period_s or a driver with non-zero speed");
   if (sim.stop_when_steady) {
-    // Steady means the last metric_cycles cycles each repeat the one before.
+    // The contraction estimate needs the metric cycles and one before them (README "Steady cycles").
     const json& value = doc.at("simulation").at("stop_when_steady");
     if (!period)
       fail("simulation.stop_when_steady", value,
