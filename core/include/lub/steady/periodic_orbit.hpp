@@ -89,7 +89,8 @@ struct ShootingResult {
 };
 
 /// Solves z = P(z) from z0 by KINSOL's Newton with a line search (globalised), the
-/// Jacobian M − I by forward differences of the map. A map failure at a trial point is
+/// Jacobian M − I by differences of the map (ShootingOptions::central_jacobian,
+/// jacobian_map). A map failure at a trial point is
 /// reported to KINSOL as recoverable (it shortens the step).
 ShootingResult solve_periodic_orbit(CycleMap& P, const Eigen::VectorXd& z0, const ShootingOptions& opt);
 
