@@ -219,3 +219,71 @@ TEST(SweepScheduler, MalformedResultMessageIsRefusedClearly) {
     EXPECT_NE(std::string(e.what()).find("malformed result message"), std::string::npos) << e.what();
   }
 }
+
+namespace {
+
+/// A coordinator transport driven by the test: one worker that answers every task it holds
+/// at once, in order, and a log of how many tasks it held when it was given each one.
+class ScriptedWorker final : public CoordinatorTransport {
+ public:
+  int workers() const override { return 1; }
+  std::optional<WorkerMessage> poll(std::chrono::microseconds) override {
+    if (!ready_sent_) {
+      ready_sent_ = true;
+      return WorkerMessage{1, std::nullopt};
+    }
+    if (held_.empty()) return std::nullopt;
+    CaseResult r;
+    r.case_id = held_.front();
+    r.status = r.case_id == fail_ ? "solver_failure" : "ok";
+    held_.pop_front();
+    return WorkerMessage{1, r};
+  }
+  void send_task(int, const Task& t) override {
+    held_.push_back(t.case_id);
+    held_when_given.push_back(held_.size());
+  }
+  void send_stop(int) override { stopped_with = held_.size(), ++stops; }
+  [[noreturn]] void abort(int) override { throw std::runtime_error("abort"); }
+
+  int fail_ = -1;
+  std::vector<std::size_t> held_when_given;
+  std::size_t stopped_with = 99;
+  int stops = 0;
+
+ private:
+  bool ready_sent_ = false;
+  std::deque<int> held_;
+};
+
+}  // namespace
+
+TEST(SweepScheduler, RemoteWorkersHoldTheirNextCaseWhileTheQueueIsLong) {
+  // 10 cases, one remote worker, no local one: while at least 2 cases per worker wait, the
+  // worker holds two (it starts the next without waiting for the coordinator); the last
+  // ones go one at a time; it is stopped holding nothing; every case is recorded once.
+  const Grid g = fake_grid(10);
+  ScriptedWorker w;
+  std::vector<int> recorded;
+  Schedule s;
+  s.record = [&](const CaseResult& r) { recorded.push_back(r.case_id); };
+  EXPECT_FALSE(schedule(g, cases_to_run(g, {}), w, s));
+  EXPECT_EQ(recorded, (std::vector<int>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9}));
+  ASSERT_EQ(w.held_when_given.size(), 10u);
+  EXPECT_EQ(w.held_when_given.front(), 1u);
+  EXPECT_EQ(w.held_when_given[1], 2u) << "the second case is handed out ahead";
+  EXPECT_EQ(w.held_when_given.back(), 1u) << "the last case is not queued behind another";
+  EXPECT_EQ(w.stops, 1);
+  EXPECT_EQ(w.stopped_with, 0u);
+
+  // on_failure = abort: one case at a time, and nothing handed out after the failure.
+  Grid ga = fake_grid(10, FailurePolicy::abort_on_failure);
+  ScriptedWorker wa;
+  wa.fail_ = 4;
+  recorded.clear();
+  s.on_failure = FailurePolicy::abort_on_failure;
+  EXPECT_TRUE(schedule(ga, cases_to_run(ga, {}), wa, s));
+  for (std::size_t held : wa.held_when_given) EXPECT_EQ(held, 1u);
+  EXPECT_EQ(recorded, (std::vector<int>{0, 1, 2, 3, 4}));
+  EXPECT_EQ(wa.stopped_with, 0u);
+}

@@ -19,6 +19,7 @@
 #include "lub/sweep/case_result.hpp"
 #include "lub/io/output_path.hpp"
 #include "lub/sweep/grid.hpp"
+#include "lub/sweep/hash.hpp"
 #include "lub/sweep/output_lock.hpp"
 #include "lub/sweep/progress.hpp"
 #include "lub/sweep/sweep.hpp"
@@ -126,10 +127,19 @@ TEST_F(StudyFile, LayoutUnitsAndAttributes) {
   EXPECT_EQ(t.read_doubles("solver.rtol")[4], 1e-7);
   EXPECT_EQ(t.read_strings("hash")[3], g.cases[3].hash);
 
-  // Every case's scene, by case id.
-  const auto scenes = f.open_dataset("scenes").read_strings();
-  ASSERT_EQ(scenes.size(), 5u);
-  EXPECT_EQ(scenes[2], g.cases[2].scene);
+  // Every case's scene, by case id: a JSON Patch of case 0's scene that gives the case's
+  // canonical scene, byte for byte (and so its hash).
+  const auto patches = f.open_dataset("scene_patches").read_strings();
+  ASSERT_EQ(patches.size(), 5u);
+  const json reference = json::parse(f.attribute_string("reference_scene"));
+  EXPECT_EQ(f.attribute_string("reference_scene"), g.cases[0].scene);
+  EXPECT_EQ(patches[0], "[]");
+  for (std::size_t i = 0; i < 5; ++i) {
+    const json scene = reference.patch(json::parse(patches[i]));
+    EXPECT_EQ(canonical_json(scene), g.cases[i].scene) << "case " << i;
+    EXPECT_EQ(scene_hash(scene), g.cases[i].hash) << "case " << i;
+    EXPECT_LT(patches[i].size(), 300u) << "a case differs from the reference in a few values: " << patches[i];
+  }
 
   // The factorial's case ids over its axes, with dimension scales.
   const auto idx = f.open_dataset("grids/main/case_id");
@@ -304,9 +314,14 @@ TEST_F(StudyFile, KilledWriterLeavesAFileThatResumes) {
   const pid_t pid = ::fork();
   ASSERT_GE(pid, 0);
   if (pid == 0) {
-    StudyWriter w(path, g, {}, "");
+    // Rows are written in batches: those flushed survive the kill, the one still held does
+    // not (a killed sweep loses at most its last flush interval).
+    StudyWriter w(path, g, {}, "", 3600.0);
     w.append(fake(g, 0));
     w.append(fake(g, 4));
+    if (w.pending() != 2) ::_exit(3);
+    w.flush();
+    w.append(fake(g, 2));
     ::kill(::getpid(), SIGKILL);  // no close, no finalize
     ::_exit(0);
   }

@@ -8,13 +8,14 @@ python3-h5netcdf, python3-pandas.
     cases = study_io.cases("out/study.h5")              # pandas DataFrame, index: case id
     ds = study_io.grid("out/study.h5", "clearance")     # xarray Dataset over the sub-grid's axes
     s = study_io.series("out/study.h5", "case_0003")    # xarray Dataset indexed by t, or None
+    sc = study_io.scene("out/study.h5", 3)              # case 3's effective scene (dict)
 """
 import json
 
 import h5py
 import xarray as xr
 
-FORMAT = "lubsweep-study-3"
+FORMAT = "lubsweep-study-4"
 
 
 def _open(path, group=None):
@@ -62,4 +63,12 @@ def series(path, case_name):
 
 
 def scene(path, case_id):
-    return json.loads(_open(path).scenes.sel(scene=int(case_id)).item())
+    """The effective scene of a case (a dict): its JSON Patch applied to reference_scene."""
+    import jsonpatch  # Debian: python3-jsonpatch
+
+    with h5py.File(path, "r") as f:
+        reference = f.attrs["reference_scene"]
+        ids = list(f["scene"][:])
+        patch = f["scene_patches"][ids.index(int(case_id))]
+    as_text = lambda b: b.decode() if isinstance(b, bytes) else b
+    return jsonpatch.apply_patch(json.loads(as_text(reference)), json.loads(as_text(patch)))

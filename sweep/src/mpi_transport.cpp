@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <iterator>
 #include <thread>
 
 namespace lub::sweep {
@@ -40,17 +41,53 @@ std::string receive_bytes(MPI_Comm comm, const MPI_Status& probed) {
   return buf;
 }
 
+/// Waits for `request` with MPI_Test and sleeps growing from 20 µs to 1 ms (a blocking wait
+/// would spin the core).
+void polite_wait(MPI_Request& request) {
+  auto idle = std::chrono::microseconds(20);
+  for (;;) {
+    int done = 0;
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    if (done) return;
+    std::this_thread::sleep_for(idle);
+    idle = std::min(idle * 2, std::chrono::microseconds(1000));
+  }
+}
+
+/// A worker's send: returns once the message has gone (the coordinator probes often).
 void send_bytes(MPI_Comm comm, int dest, int tag, const std::string& bytes) {
-  MPI_Send(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, dest, tag, comm);
+  MPI_Request request;
+  MPI_Isend(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, dest, tag, comm, &request);
+  polite_wait(request);
 }
 
 }  // namespace
 
 MpiCoordinator::MpiCoordinator(MPI_Comm comm) : comm_(comm) { MPI_Comm_size(comm_, &size_); }
 
+MpiCoordinator::~MpiCoordinator() {
+  for (Send& s : sends_) polite_wait(s.request);
+}
+
+void MpiCoordinator::send(int worker, int tag, std::string bytes) {
+  reap();
+  Send& s = sends_.emplace_back();
+  s.bytes = std::move(bytes);
+  MPI_Isend(s.bytes.data(), static_cast<int>(s.bytes.size()), MPI_BYTE, worker, tag, comm_, &s.request);
+}
+
+void MpiCoordinator::reap() {
+  for (auto it = sends_.begin(); it != sends_.end();) {
+    int done = 0;
+    MPI_Test(&it->request, &done, MPI_STATUS_IGNORE);
+    it = done ? sends_.erase(it) : std::next(it);
+  }
+}
+
 int MpiCoordinator::workers() const { return size_ - 1; }
 
 std::optional<WorkerMessage> MpiCoordinator::poll(std::chrono::microseconds timeout) {
+  reap();
   MPI_Status st;
   if (!probe(comm_, MPI_ANY_SOURCE, timeout, st)) return std::nullopt;
   const std::string bytes = receive_bytes(comm_, st);
@@ -65,9 +102,9 @@ std::optional<WorkerMessage> MpiCoordinator::poll(std::chrono::microseconds time
   return m;
 }
 
-void MpiCoordinator::send_task(int worker, const Task& task) { send_bytes(comm_, worker, kTagTask, encode(task)); }
+void MpiCoordinator::send_task(int worker, const Task& task) { send(worker, kTagTask, encode(task)); }
 
-void MpiCoordinator::send_stop(int worker) { send_bytes(comm_, worker, kTagStop, std::string()); }
+void MpiCoordinator::send_stop(int worker) { send(worker, kTagStop, std::string()); }
 
 void MpiCoordinator::abort(int code) {
   MPI_Abort(comm_, code);

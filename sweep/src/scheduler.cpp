@@ -90,8 +90,10 @@ std::deque<int> cases_to_run(const Grid& grid, const std::map<int, CaseResult>& 
 bool schedule(const Grid& grid, std::deque<int> queue, CoordinatorTransport& transport, const Schedule& s) {
   if (!s.local && transport.workers() == 0) throw std::invalid_argument("schedule: no worker to run the cases");
   bool aborting = false;
-  auto record = [&](const CaseResult& r) {
-    s.record(r);
+  // A result is judged first (a failure under abort stops the hand-out at once), its worker
+  // given its next case, and only then the result recorded: the worker computes while the
+  // coordinator writes.
+  auto judge = [&](const CaseResult& r) {
     if (!r.ok() && s.on_failure == FailurePolicy::abort_on_failure && !aborting) {
       aborting = true;
       if (s.on_abort) s.on_abort(r);
@@ -108,31 +110,52 @@ bool schedule(const Grid& grid, std::deque<int> queue, CoordinatorTransport& tra
   if (s.local) local.emplace(s.local);
   const auto local_busy = [&] { return local && local->busy(); };
   int remote_active = transport.workers();
+  // Prefetch: a remote worker holds the case it computes and, while the queue is long, the
+  // next one, so that it starts that one the moment it sends a result instead of waiting a
+  // round trip and the coordinator's next look (up to ~1 ms each with the idle waits below;
+  // 13 % of a 15 ms case). Near the end of the queue (fewer than two cases per worker
+  // left) one case each: a long case queued behind another must not idle the others. Not
+  // with on_failure = abort: there a failure must stop every case not yet started, and a
+  // queued case could start before the stop reaches its worker.
+  const int depth = s.on_failure == FailurePolicy::abort_on_failure ? 1 : s.prefetch;
+  std::vector<int> outstanding(static_cast<std::size_t>(transport.workers()) + 1, 0);  // by worker id
+  const auto top_up = [&](int worker) {
+    int& held = outstanding.at(static_cast<std::size_t>(worker));
+    const auto long_queue = [&] { return queue.size() >= 2 * static_cast<std::size_t>(transport.workers()); };
+    while (held < 1 || (held < depth && long_queue())) {
+      const Case* c = next();
+      if (!c) break;
+      transport.send_task(worker, Task{c->id, c->scene});
+      ++held;
+    }
+    if (held == 0) {
+      transport.send_stop(worker);
+      --remote_active;
+    }
+  };
   // Idle waits grow from 50 µs to 1 ms: a worker waiting for its next case waits at most
   // ~1 ms, and the polling costs the coordinator's core ~1 % (Open MPI would spin at 100 %).
   auto idle = std::chrono::microseconds(50);
   for (;;) {
     bool progressed = false;
     if (local) {
-      if (auto r = local->take()) {
-        record(*r);
-        progressed = true;
-      }
+      std::optional<CaseResult> r = local->take();
+      if (r) judge(*r), progressed = true;
       if (!local->busy())
         if (const Case* c = next()) local->give(*c), progressed = true;
+      if (r) s.record(*r);
     }
     if (remote_active > 0) {
       // While the local worker computes, only look: its result must not wait for a message.
       const auto wait = progressed || local_busy() ? std::chrono::microseconds(0) : idle;
       if (auto m = transport.poll(wait)) {
         progressed = true;
-        if (m->result) record(*m->result);
-        if (const Case* c = next()) {
-          transport.send_task(m->worker, Task{c->id, c->scene});
-        } else {
-          transport.send_stop(m->worker);
-          --remote_active;
+        if (m->result) {
+          judge(*m->result);
+          --outstanding.at(static_cast<std::size_t>(m->worker));
         }
+        top_up(m->worker);
+        if (m->result) s.record(*m->result);
       }
     }
     if (remote_active == 0 && !local_busy() && (queue.empty() || aborting)) break;

@@ -212,7 +212,10 @@ int coordinate(const Options& o, const Grid& grid, const ResumeState& resume, bo
     }
     const std::string line = progress.record(c, r, seconds_since(t0));
     if (!o.quiet) std::fprintf(stderr, "lubsweep: %s\n", line.c_str());
-    if (o.kill_after >= 0 && ++new_rows >= o.kill_after) std::raise(SIGKILL);  // tests only
+    if (o.kill_after >= 0 && ++new_rows >= o.kill_after) {  // tests only: killed with these rows on disk
+      writer->flush();
+      std::raise(SIGKILL);
+    }
   };
   s.on_abort = [&](const CaseResult& r) {
     std::fprintf(stderr, "lubsweep: %s failed (%s: %s); on_failure = abort: stopping\n",

@@ -308,7 +308,7 @@ def study_file(tmp_path_factory):
 
 
 def test_load_study(study_file):
-    assert lubjoint.study_format(study_file) == "lubsweep-study-3"  # the xarray layout (issue 15)
+    assert lubjoint.study_format(study_file) == "lubsweep-study-4"  # the xarray layout (issue 15), scene patches (16)
     s = lubjoint.load_study(study_file)
     assert list(s) == ["grid"]
     g = s["grid"]
@@ -317,14 +317,15 @@ def test_load_study(study_file):
     assert g["viscosity_Pa_s"].attrs["units"] == "Pa s"
     assert s.cases.sizes["case"] == 2
     assert list(s.cases["status"].values.astype(str)) == ["ok", "ok"]
-    # A case's metric equals simulate's on the case's effective scene (/scenes, if the
-    # layout keeps it): the same functions, bit for bit.
-    with h5py.File(study_file, "r") as f:
-        if "scenes" not in f:
-            return
-        text = f["scenes"][0]
-    one = lubjoint.simulate(json.loads(text.decode() if isinstance(text, bytes) else text))
-    assert s.cases["max_eps"].values[0] == one["max_eps"].item()
+    # A case's metric equals simulate's on the case's effective scene (its JSON Patch of
+    # reference_scene, applied by python3-jsonpatch): the same functions, bit for bit.
+    sys.path.insert(0, str(SOURCE / "tools"))
+    import study_io
+
+    for case in (0, 1):
+        one = lubjoint.simulate(study_io.scene(study_file, case))
+        assert s.cases["max_eps"].values[case] == one["max_eps"].item()
+    assert s.cases["max_eps"].values[0] != s.cases["max_eps"].values[1]
 
 
 def test_load_study_reads_xarray_layout(tmp_path):
@@ -339,9 +340,9 @@ def test_load_study_reads_xarray_layout(tmp_path):
     g.to_netcdf(path, group="grids/clearance", engine="h5netcdf", mode="a")
     with h5py.File(path, "a") as f:
         f.attrs["program"] = "lubsweep"
-        f.attrs["format"] = "lubsweep-study-3"
+        f.attrs["format"] = "lubsweep-study-4"
     s = lubjoint.load_study(path)
-    assert list(s) == ["clearance"] and s.attrs["format"] == "lubsweep-study-3"
+    assert list(s) == ["clearance"] and s.attrs["format"] == "lubsweep-study-4"
     np.testing.assert_array_equal(s["clearance"]["max_eps"].sel(clearance_m=1e-4).values, 0.6)
     assert s.cases.to_dataframe()["status"].tolist() == ["ok", "ok", "film_collapse"]
     with h5py.File(path, "a") as f:

@@ -1,7 +1,8 @@
 // Dynamic scheduling of a sweep's cases, over any transport (transport.hpp).
 //
-// The coordinator hands out cases one at a time to whichever worker asks (a worker asks
-// again by returning a result), computes cases itself on a worker thread of its own while
+// The coordinator hands out cases to whichever worker asks (a worker asks again by
+// returning a result; a remote worker holds its next case ahead while the queue is long,
+// Schedule::prefetch), computes cases itself on a worker thread of its own while
 // its calling thread serves the others and records results, and stops handing out work
 // after the first failure when the grid says on_failure = abort. Every case is computed
 // from its own scene, so the results do not depend on how many workers there are or on
@@ -27,10 +28,14 @@ struct Schedule {
   /// Runs a case on the coordinator's own worker thread; empty: the coordinator computes
   /// nothing itself (then the transport must have workers).
   std::function<CaseResult(const Case&)> local;
-  /// Called on the calling thread for every result, in the order they arrive.
+  /// Called on the calling thread for every result, in the order they arrive, after the
+  /// worker that returned it has been given its next case.
   std::function<void(const CaseResult&)> record;
-  /// Called once, after `record`, for the result that stops a sweep with on_failure = abort.
+  /// Called once, before `record`, for the result that stops a sweep with on_failure = abort.
   std::function<void(const CaseResult&)> on_abort;
+  /// Cases a remote worker holds at once while the queue is long (its running one and the
+  /// next): 1 hands out one at a time. Always 1 with on_failure = abort.
+  int prefetch = 2;
 };
 
 /// Runs the cases `queue` names (ids into grid.cases) on the transport's workers and the

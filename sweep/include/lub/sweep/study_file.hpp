@@ -2,9 +2,11 @@
 // style so that xarray (h5netcdf) and pandas read every group without custom code:
 //
 //   /                 attributes: program, format, version, revision, description, grid,
-//                     grid_file, base_scene, base_scene_file, on_failure, cases_total, complete
-//   /scene, /scenes   the case ids of the grid (dimension scale) and the effective scene of
-//                     each case (canonical JSON)
+//                     grid_file, base_scene, base_scene_file, reference_scene, on_failure,
+//                     cases_total, complete
+//   /scene, /scene_patches  the case ids of the grid (dimension scale) and the effective
+//                     scene of each case as a JSON Patch (RFC 6902) of the root attribute
+//                     reference_scene (case 0's scene, canonical JSON)
 //   /cases            a table of columns (lub::h5::Table) on the dimension `case` (the case
 //                     id): name, hash, <axes>, status, message, <metric fields>, <solver
 //                     fields>, rank, revision; each with units and long_name
@@ -14,11 +16,14 @@
 //                     list of cases has the dimension `case` instead, and its axes as variables
 //   /series/<case>/<channel>  the channels the grid stores, on the dimension scale `t`
 //
-// While a sweep runs, rows are appended (and flushed) as results arrive, so a killed sweep
-// leaves a file that opens and resumes. At the end the file is rewritten canonically (rows
+// While a sweep runs, rows are appended as results arrive, in batches flushed at most every
+// `flush_interval_s` (1 s by default): a killed sweep leaves a file that opens and resumes,
+// missing at most the results of its last second. One batch costs about what one row
+// costs (a write per column), so cheap cases do not wait for the writer (issue 16). At the end the file is rewritten canonically (rows
 // in case-id order, so the case id is also the row number) into PATH.partial and renamed.
 #pragma once
 
+#include <chrono>
 #include <map>
 #include <optional>
 #include <string>
@@ -31,7 +36,7 @@
 namespace lub::sweep {
 
 /// Version of the layout above, in the root attribute `format`.
-inline constexpr const char* kStudyFormat = "lubsweep-study-3";
+inline constexpr const char* kStudyFormat = "lubsweep-study-4";
 
 /// Columns of /cases for a grid.
 std::vector<h5::Column> case_columns(const Grid& grid);
@@ -61,18 +66,25 @@ class StudyWriter {
   /// copied from `reuse_from` (the previous file at `path`; "" if none). Written to
   /// PATH.partial, then renamed: the previous file stays intact until then.
   StudyWriter(std::string path, const Grid& grid, const std::map<int, CaseResult>& reused,
-              const std::string& reuse_from);
+              const std::string& reuse_from, double flush_interval_s = 1.0);
+  /// Writes the results still held (a sweep that ends without finalize keeps them).
+  ~StudyWriter();
   StudyWriter(const StudyWriter&) = delete;
   StudyWriter& operator=(const StudyWriter&) = delete;
 
-  /// Writes one result (its series first, then its row) and flushes the file.
+  /// Takes one result; writes the results held (their series first, then their rows) and
+  /// flushes the file once `flush_interval_s` has passed since the last write (0: at once).
   void append(const CaseResult& result);
+  /// Writes and flushes the results held now.
+  void flush();
+  /// Results taken but not yet on disk.
+  std::size_t pending() const { return pending_.size(); }
   /// Rewrites the file canonically (rows in case-id order) and closes it. `complete`:
   /// every case of the grid has a row.
   void finalize();
 
-  std::size_t rows() const { return results_.size(); }
-  bool complete() const { return results_.size() == grid_.cases.size(); }
+  std::size_t rows() const { return results_.size() + pending_.size(); }
+  bool complete() const { return rows() == grid_.cases.size(); }
 
  private:
   std::string path_;
@@ -80,6 +92,9 @@ class StudyWriter {
   h5::File file_;
   h5::Table table_;
   std::map<int, CaseResult> results_;  ///< every row, series dropped
+  std::vector<CaseResult> pending_;    ///< taken, not yet written (series kept)
+  double flush_interval_s_;
+  std::chrono::steady_clock::time_point last_flush_;
 };
 
 
