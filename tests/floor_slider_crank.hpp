@@ -34,6 +34,9 @@ struct Params {
   lub::BearingGeometry geom{0.0095, 0.0100, 0.040};
   double mu = 0.4;
   lub::ForceLaw law = lub::ForceLaw::frene_long;
+  /// Absolute tolerances: false, rtol × c for every state (as first written); true, each
+  /// state in its own unit, as the engine does: x in c, β in c/l, ẋ in c ω, β̇ in c ω/l.
+  bool atol_per_state = false;
 };
 
 // y = (β, x, β̇, ẋ)
@@ -100,7 +103,11 @@ inline Result integrate(const Params& p, double cycles, double rtol, bool bdf, d
   };
   CVodeInit(mem, f, 0.0, y);
   CVodeSetUserData(mem, const_cast<Params*>(&p));
-  CVodeSStolerances(mem, rtol, rtol * p.geom.clearance_m());
+  N_Vector atol = N_VNew_Serial(4, ctx);
+  const double c = p.geom.clearance_m();
+  const double units[4] = {c / p.l, c, c * p.omega / p.l, c * p.omega};
+  for (int i = 0; i < 4; ++i) NV_Ith_S(atol, i) = rtol * (p.atol_per_state ? units[i] : c);
+  CVodeSVtolerances(mem, rtol, atol);
   CVodeSetMaxNumSteps(mem, -1);
   SUNMatrix A = nullptr;
   SUNLinearSolver LS = nullptr;
@@ -140,6 +147,7 @@ inline Result integrate(const Params& p, double cycles, double rtol, bool bdf, d
   if (A) SUNMatDestroy(A);
   if (NLS) SUNNonlinSolFree(NLS);
   N_VDestroy(y);
+  N_VDestroy(atol);
   SUNContext_Free(&ctx);
   return res;
 }

@@ -200,8 +200,8 @@ int coordinate(const Options& o, const Grid& grid, const ResumeState& resume, bo
   long new_rows = 0;
   Schedule s;
   s.on_failure = grid.on_failure;
-  // Rank 0 runs the scene the grid parsed: a case is parsed once per process.
-  s.local = [](const Case& c) { return run_case(c.id, *c.parsed, 0); };
+  // Rank 0 runs a case from its canonical JSON, as the other ranks do.
+  s.local = [](const Case& c) { return run_case(c.id, c.scene, 0); };
   s.record = [&](const CaseResult& r) {
     const Case& c = grid.cases.at(static_cast<std::size_t>(r.case_id));
     try {

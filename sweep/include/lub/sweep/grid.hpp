@@ -63,7 +63,6 @@ struct Case {
   std::string name;                          ///< "case_0007": its /series group
   std::string scene;                         ///< canonical JSON of the effective scene: what runs
   std::string hash;                          ///< SHA-256 of `scene`: identity for resume
-  std::shared_ptr<const Scene> parsed;       ///< `scene` as the scene parser read it (rank 0 runs it)
   std::vector<nlohmann::json> axis_values;   ///< per Grid::axes, read back from the scene (null: unset)
   std::string label;                         ///< "clearance_m=0.0001" (the values its grid varies)
 };

@@ -1,0 +1,187 @@
+// Engine against the floor at equal accuracy (issue 16): work-precision of the general engine
+// (partitioned formulation, CVODE BDF, observers and metrics: run_scene as a study runs it)
+// and of the hand-written two-degree-of-freedom model (tests/floor_slider_crank.hpp, CVODE
+// BDF with a dense solver, absolute tolerances per state in their own units), each at
+// rtol 1e-5 ... 1e-11, 4 crank cycles from the paper's initial state (ε = 0).
+//
+// Error: the largest distance, in clearances, between the joint's eccentricity vector at the
+// 4 cycle ends and a reference's: the floor at rtol 1e-12 for the laws it integrates (checked
+// against the engine at 1e-12: printed), the engine at 1e-12 for the printed Pinkus–Sternlicht
+// law (the floor has no events for its jump at ε̇ = 0). Cost: the best of `repeats` CPU
+// times (steady_clock on an otherwise idle core), per cycle. The costs at errors 1e-4 c and
+// 1e-6 c come from log-log interpolation between the neighbouring tolerances; the ratio of
+// the engine's cost to the floor's at the same error is what issue 16 asks to bring
+// to ≤ 1.5, and the per-step ratio at rtol 1e-8 to ≤ 2.
+//
+//   build/tests/bench/bench_floor_accuracy [--repeats N]
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "../floor_slider_crank.hpp"
+#include "lub/io/json_reader.hpp"
+#include "lub/run/run.hpp"
+#include "lub/scene/scene.hpp"
+
+namespace {
+
+constexpr int kCycles = 4;
+const double kRtols[] = {1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11};
+const double kTargets[] = {1e-4, 1e-6};
+
+struct Point {
+  double rtol = 0, cost_ms = 0, error_c = 0;  // cost per cycle [ms], error [clearances]
+  double steps_per_cycle = 0;
+  bool ok = true;
+};
+
+using Ends = std::vector<std::array<double, 2>>;  // e at each cycle end [m]
+
+double seconds(const std::chrono::steady_clock::time_point& t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+lub::Scene engine_scene(const std::string& law, double rtol) {
+  nlohmann::json doc = lub::read_json_file(std::string(LUB_SOURCE_DIR) + "/configs/scenes/slider_crank.json");
+  doc["joints"][3]["force_law"] = law;
+  doc["solver"]["rtol"] = rtol;
+  doc["solver"]["formulation"] = "partitioned";
+  doc["simulation"]["max_cycles"] = kCycles;
+  doc["simulation"]["steady"] = "transient";
+  doc["simulation"]["stop_when_steady"] = false;
+  doc["outputs"]["channels"] = nlohmann::json::array();
+  return lub::parse_scene(doc);
+}
+
+bool run_engine(const std::string& law, double rtol, int repeats, Ends& ends, Point& pt) {
+  const lub::Scene s = engine_scene(law, rtol);
+  double best = INFINITY;
+  lub::RunResult r;
+  for (int k = 0; k < repeats; ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    r = lub::run_scene(s);
+    best = std::min(best, seconds(t0));
+  }
+  pt.rtol = rtol;
+  pt.cost_ms = 1e3 * best / kCycles;
+  pt.steps_per_cycle = double(r.stats.steps) / kCycles;
+  ends.clear();
+  const double c = s.min_clearance_m().value_or(1.0);  // the run's end eccentricity is in clearances
+  for (const lub::CycleMetrics& cy : r.cycles) ends.push_back({cy.end_eccentricity_x * c, cy.end_eccentricity_y * c});
+  return r.status == lub::RunStatus::ok && static_cast<int>(ends.size()) == kCycles;
+}
+
+bool run_floor(lub::ForceLaw law, double rtol, int repeats, Ends& ends, Point& pt) {
+  floor_model::Params p;
+  p.law = law;
+  p.atol_per_state = true;
+  const double T = 2 * M_PI / p.omega;
+  double best = INFINITY;
+  floor_model::Result r;
+  for (int k = 0; k < repeats; ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    r = floor_model::integrate(p, kCycles, rtol, true, T);
+    best = std::min(best, seconds(t0));
+  }
+  pt.rtol = rtol;
+  pt.cost_ms = 1e3 * best / kCycles;
+  pt.steps_per_cycle = double(r.steps) / kCycles;
+  ends.clear();
+  for (std::size_t i = 0; i < r.e_x.size(); ++i) ends.push_back({r.e_x[i], r.e_y[i]});
+  return static_cast<int>(ends.size()) == kCycles;
+}
+
+double distance_c(const Ends& a, const Ends& b, double c) {
+  double d = 0;
+  for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i)
+    d = std::max(d, std::hypot(a[i][0] - b[i][0], a[i][1] - b[i][1]) / c);
+  return d;
+}
+
+/// Cost at `err` by log-log interpolation between the two points that bracket it; NaN if
+/// none does.
+double cost_at(const std::vector<Point>& pts, double err) {
+  for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+    const Point &a = pts[i], &b = pts[i + 1];
+    if (!a.ok || !b.ok) continue;
+    const double lo = std::min(a.error_c, b.error_c), hi = std::max(a.error_c, b.error_c);
+    if (err < lo || err > hi || lo <= 0) continue;
+    const double w = (std::log(err) - std::log(a.error_c)) / (std::log(b.error_c) - std::log(a.error_c));
+    return std::exp(std::log(a.cost_ms) + w * (std::log(b.cost_ms) - std::log(a.cost_ms)));
+  }
+  return NAN;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int repeats = 3;
+  for (int i = 1; i < argc; ++i)
+    if (std::string(argv[i]) == "--repeats" && i + 1 < argc) repeats = std::atoi(argv[++i]);
+  const double c = floor_model::Params{}.geom.clearance_m();
+  struct Law {
+    const char* name;
+    lub::ForceLaw id;
+    bool floor;
+  };
+  const Law laws[] = {{"frene_long", lub::ForceLaw::frene_long, true},
+                      {"frene_short", lub::ForceLaw::frene_short, true},
+                      {"gumbel_long", lub::ForceLaw::gumbel_long, true},
+                      {"pinkus_sternlicht_continuous", lub::ForceLaw::pinkus_sternlicht_continuous, true},
+                      {"pinkus_sternlicht", lub::ForceLaw::pinkus_sternlicht, false}};
+  std::printf("Work-precision, %d cycles from eps = 0, best of %d; error = max |e - e_ref| / c at the cycle ends\n",
+              kCycles, repeats);
+  std::printf("%-30s %8s | %10s %10s %9s | %10s %10s %9s\n", "law", "rtol", "engine ms", "error [c]", "steps",
+              "floor ms", "error [c]", "steps");
+  struct Summary {
+    std::string law;
+    double ratio[2], step_ratio;
+  };
+  std::vector<Summary> summary;
+  for (const Law& law : laws) {
+    Ends ref, ends;
+    Point dummy;
+    Ends engine_ref;
+    run_engine(law.name, 1e-12, 1, engine_ref, dummy);
+    if (law.floor) {
+      run_floor(law.id, 1e-12, 1, ref, dummy);
+      std::printf("%-30s reference: floor at rtol 1e-12; the engine at 1e-12 is %.1e c from it\n", law.name,
+                  distance_c(engine_ref, ref, c));
+    } else {
+      ref = engine_ref;
+      std::printf("%-30s reference: engine at rtol 1e-12 (no floor with events)\n", law.name);
+    }
+    std::vector<Point> eng, flo;
+    for (double rtol : kRtols) {
+      Point e, f;
+      e.ok = run_engine(law.name, rtol, repeats, ends, e);
+      e.error_c = distance_c(ends, ref, c);
+      eng.push_back(e);
+      if (law.floor) {
+        f.ok = run_floor(law.id, rtol, repeats, ends, f);
+        f.error_c = distance_c(ends, ref, c);
+        flo.push_back(f);
+        std::printf("%-30s %8.0e | %10.3f %10.2e %9.0f | %10.3f %10.2e %9.0f\n", law.name, rtol, e.cost_ms,
+                    e.error_c, e.steps_per_cycle, f.cost_ms, f.error_c, f.steps_per_cycle);
+      } else {
+        std::printf("%-30s %8.0e | %10.3f %10.2e %9.0f | %10s %10s %9s\n", law.name, rtol, e.cost_ms, e.error_c,
+                    e.steps_per_cycle, "-", "-", "-");
+      }
+    }
+    if (law.floor) {
+      Summary s{law.name, {NAN, NAN}, NAN};
+      for (int k = 0; k < 2; ++k) s.ratio[k] = cost_at(eng, kTargets[k]) / cost_at(flo, kTargets[k]);
+      const Point &e8 = eng[3], &f8 = flo[3];  // rtol 1e-8
+      s.step_ratio = (e8.cost_ms / e8.steps_per_cycle) / (f8.cost_ms / f8.steps_per_cycle);
+      summary.push_back(s);
+    }
+  }
+  std::printf("\nEngine cost over the floor's at equal accuracy (per cycle), and per step at rtol 1e-8:\n");
+  std::printf("%-30s %14s %14s %14s\n", "law", "at 1e-4 c", "at 1e-6 c", "per step");
+  for (const Summary& s : summary)
+    std::printf("%-30s %13.2fx %13.2fx %13.2fx\n", s.law.c_str(), s.ratio[0], s.ratio[1], s.step_ratio);
+  return 0;
+}
