@@ -92,6 +92,7 @@ class StudyWriter {
   h5::File file_;
   h5::Table table_;
   std::map<int, CaseResult> results_;  ///< every row, series dropped
+  std::vector<std::string> patches_;   ///< /scene_patches, by case id
   std::vector<CaseResult> pending_;    ///< taken, not yet written (series kept)
   double flush_interval_s_;
   std::chrono::steady_clock::time_point last_flush_;
