@@ -14,6 +14,8 @@
 // to ≤ 1.5, and the per-step ratio at rtol 1e-8 to ≤ 2.
 //
 //   build/tests/bench/bench_floor_accuracy [--repeats N]
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>

@@ -23,13 +23,8 @@
 #include <nlohmann/json.hpp>
 
 #include <cstddef>
-#include <memory>
 #include <string>
 #include <vector>
-
-namespace lub {
-struct Scene;
-}
 
 namespace lub::sweep {
 
