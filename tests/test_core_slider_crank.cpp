@@ -168,9 +168,13 @@ json lubricated(const std::string& law, double rtol, int cycles) {
 // A scene that gives no solver.rtol runs at the default, chosen in README "Work-precision"
 // (1e-8 since issue 12; 1e-6 before). The paper's scene without its rtol, four cycles
 // from the centred start, against the study's reference (CVODE BDF partitioned, rtol
-// 1e-12: h_min 1.20181e-5 m, peak reaction 9718.32 N): measured 3.3e-7 and 2.1e-6
-// relative at 1e-8, 2.6e-3 and 5.2e-5 at 1e-6. Bounds 1e-5 (30x the 1e-8 error, 1/260 of
-// the 1e-6 one) and 1e-4.
+// 1e-12: h_min 1.20181e-5 m, peak reaction 9718.32 N). What rtol 1e-8 delivers on this
+// orbit is ~3.4e-6 c at the cycle ends (bench_floor_accuracy, printed law, either
+// Jacobian), i.e. up to 1.4e-4 of h_min (c = 0.5 mm): measured 5.4e-5 with the structured
+// Jacobian (the default since issue 16), 3.3e-7 with difference quotients (a favourable
+// cancellation: the bound of 1e-5 first set on it was tighter than the tolerance gives),
+// 2.6e-3 at rtol 1e-6. Bound 2e-4: the 1e-8 orbit error with room, 1/13 of the 1e-6 one.
+// Peak reaction: 2.1e-6 relative at 1e-8, 5.2e-5 at 1e-6; bound 1e-4.
 TEST(SliderCrankLubricated, SceneWithoutRtolMeetsTheStudyAccuracy) {
   json doc = load("slider_crank.json");
   doc["solver"].erase("rtol");
@@ -181,7 +185,7 @@ TEST(SliderCrankLubricated, SceneWithoutRtolMeetsTheStudyAccuracy) {
   EXPECT_EQ(scene.solver.rtol, 1e-8);
   const RunResult r = lub::run_scene(scene);
   ASSERT_EQ(r.status, RunStatus::ok) << r.message;
-  EXPECT_NEAR(r.metrics.min_film_thickness_m / 1.20181e-5, 1.0, 1e-5);
+  EXPECT_NEAR(r.metrics.min_film_thickness_m / 1.20181e-5, 1.0, 2e-4);
   EXPECT_NEAR(r.metrics.peak_reaction_N / 9718.32, 1.0, 1e-4);
 }
 

@@ -190,12 +190,6 @@ const std::vector<Case>& cases() {
        nullptr,
        {"solver.jacobian = \"structured\": applies only to the methods with a Newton iteration (cvode_bdf, "
         "arkode_dirk, ida)"}},
-      {"structured Jacobian of the partitioned formulation", "four_bar.json",
-       [](json& d) {
-         d["solver"]["formulation"] = "partitioned";
-         d["solver"]["jacobian"] = "structured";
-       },
-       nullptr, {"solver.jacobian = \"structured\": structured requires solver.formulation = baumgarte"}},
       {"unknown Jacobian", "four_bar.json", [](json& d) { d["solver"]["jacobian"] = "exact"; }, nullptr,
        {"solver.jacobian = \"exact\": must be one of"}},
       {"eps limit of 1", "four_bar.json", [](json& d) { d["simulation"]["eps_limit"] = 1; }, nullptr,

@@ -46,11 +46,12 @@ double seconds(const std::chrono::steady_clock::time_point& t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-lub::Scene engine_scene(const std::string& law, double rtol) {
+lub::Scene engine_scene(const std::string& law, double rtol, const std::string& jacobian) {
   nlohmann::json doc = lub::read_json_file(std::string(LUB_SOURCE_DIR) + "/configs/scenes/slider_crank.json");
   doc["joints"][3]["force_law"] = law;
   doc["solver"]["rtol"] = rtol;
   doc["solver"]["formulation"] = "partitioned";
+  doc["solver"]["jacobian"] = jacobian;
   doc["simulation"]["max_cycles"] = kCycles;
   doc["simulation"]["steady"] = "transient";
   doc["simulation"]["stop_when_steady"] = false;
@@ -58,8 +59,9 @@ lub::Scene engine_scene(const std::string& law, double rtol) {
   return lub::parse_scene(doc);
 }
 
-bool run_engine(const std::string& law, double rtol, int repeats, Ends& ends, Point& pt) {
-  const lub::Scene s = engine_scene(law, rtol);
+bool run_engine(const std::string& law, double rtol, int repeats, Ends& ends, Point& pt,
+                const std::string& jacobian = "structured") {
+  const lub::Scene s = engine_scene(law, rtol, jacobian);
   double best = INFINITY;
   lub::RunResult r;
   for (int k = 0; k < repeats; ++k) {
@@ -136,13 +138,22 @@ int main(int argc, char** argv) {
                       {"pinkus_sternlicht", lub::ForceLaw::pinkus_sternlicht, false}};
   std::printf("Work-precision, %d cycles from eps = 0, best of %d; error = max |e - e_ref| / c at the cycle ends\n",
               kCycles, repeats);
-  std::printf("%-30s %8s | %10s %10s %9s | %10s %10s %9s\n", "law", "rtol", "engine ms", "error [c]", "steps",
-              "floor ms", "error [c]", "steps");
+  std::printf("engine: partitioned, CVODE BDF, its structured Jacobian (default) and SUNDIALS' difference quotients\n");
+  std::printf("%-30s %8s | %27s | %27s | %27s\n", "", "", "engine, structured", "engine, difference quotients",
+              "floor");
+  std::printf("%-30s %8s | %8s %10s %7s | %8s %10s %7s | %8s %10s %7s\n", "law", "rtol", "ms", "error [c]", "steps",
+              "ms", "error [c]", "steps", "ms", "error [c]", "steps");
   struct Summary {
     std::string law;
-    double ratio[2], step_ratio;
+    double ratio[2], step_ratio;        // structured engine over the floor
+    double ratio_dq[2], step_ratio_dq;  // difference-quotient engine over the floor
+    double gain[2];                     // difference quotients over structured, same error
   };
   std::vector<Summary> summary;
+  auto print_point = [](const Point& p) {
+    if (p.rtol == 0) return std::printf(" | %8s %10s %7s", "-", "-", "-");
+    return std::printf(" | %8.3f %10.2e %7.0f", p.cost_ms, p.error_c, p.steps_per_cycle);
+  };
   for (const Law& law : laws) {
     Ends ref, ends;
     Point dummy;
@@ -156,34 +167,44 @@ int main(int argc, char** argv) {
       ref = engine_ref;
       std::printf("%-30s reference: engine at rtol 1e-12 (no floor with events)\n", law.name);
     }
-    std::vector<Point> eng, flo;
+    std::vector<Point> eng, eng_dq, flo;
     for (double rtol : kRtols) {
-      Point e, f;
-      e.ok = run_engine(law.name, rtol, repeats, ends, e);
+      Point e, d, f;
+      e.ok = run_engine(law.name, rtol, repeats, ends, e, "structured");
       e.error_c = distance_c(ends, ref, c);
       eng.push_back(e);
+      d.ok = run_engine(law.name, rtol, repeats, ends, d, "difference_quotients");
+      d.error_c = distance_c(ends, ref, c);
+      eng_dq.push_back(d);
       if (law.floor) {
         f.ok = run_floor(law.id, rtol, repeats, ends, f);
         f.error_c = distance_c(ends, ref, c);
-        flo.push_back(f);
-        std::printf("%-30s %8.0e | %10.3f %10.2e %9.0f | %10.3f %10.2e %9.0f\n", law.name, rtol, e.cost_ms,
-                    e.error_c, e.steps_per_cycle, f.cost_ms, f.error_c, f.steps_per_cycle);
-      } else {
-        std::printf("%-30s %8.0e | %10.3f %10.2e %9.0f | %10s %10s %9s\n", law.name, rtol, e.cost_ms, e.error_c,
-                    e.steps_per_cycle, "-", "-", "-");
       }
+      flo.push_back(f);
+      std::printf("%-30s %8.0e", law.name, rtol);
+      print_point(e);
+      print_point(d);
+      print_point(f);
+      std::printf("\n");
     }
+    Summary s{law.name, {NAN, NAN}, NAN, {NAN, NAN}, NAN, {NAN, NAN}};
+    for (int k = 0; k < 2; ++k) s.gain[k] = cost_at(eng_dq, kTargets[k]) / cost_at(eng, kTargets[k]);
     if (law.floor) {
-      Summary s{law.name, {NAN, NAN}, NAN};
-      for (int k = 0; k < 2; ++k) s.ratio[k] = cost_at(eng, kTargets[k]) / cost_at(flo, kTargets[k]);
-      const Point &e8 = eng[3], &f8 = flo[3];  // rtol 1e-8
+      for (int k = 0; k < 2; ++k) {
+        s.ratio[k] = cost_at(eng, kTargets[k]) / cost_at(flo, kTargets[k]);
+        s.ratio_dq[k] = cost_at(eng_dq, kTargets[k]) / cost_at(flo, kTargets[k]);
+      }
+      const Point &e8 = eng[3], &d8 = eng_dq[3], &f8 = flo[3];  // rtol 1e-8
       s.step_ratio = (e8.cost_ms / e8.steps_per_cycle) / (f8.cost_ms / f8.steps_per_cycle);
-      summary.push_back(s);
+      s.step_ratio_dq = (d8.cost_ms / d8.steps_per_cycle) / (f8.cost_ms / f8.steps_per_cycle);
     }
+    summary.push_back(s);
   }
-  std::printf("\nEngine cost over the floor's at equal accuracy (per cycle), and per step at rtol 1e-8:\n");
-  std::printf("%-30s %14s %14s %14s\n", "law", "at 1e-4 c", "at 1e-6 c", "per step");
+  std::printf("\nEngine cost over the floor's at equal accuracy (per cycle), and per step at rtol 1e-8;\n"
+              "structured Jacobian (difference quotients in brackets); last: DQ cost over structured at 1e-4 / 1e-6 c\n");
+  std::printf("%-30s %18s %18s %18s %14s\n", "law", "at 1e-4 c", "at 1e-6 c", "per step", "DQ/structured");
   for (const Summary& s : summary)
-    std::printf("%-30s %13.2fx %13.2fx %13.2fx\n", s.law.c_str(), s.ratio[0], s.ratio[1], s.step_ratio);
+    std::printf("%-30s %6.2fx (%6.2fx) %6.2fx (%6.2fx) %6.2fx (%6.2fx) %6.2f / %.2f\n", s.law.c_str(), s.ratio[0],
+                s.ratio_dq[0], s.ratio[1], s.ratio_dq[1], s.step_ratio, s.step_ratio_dq, s.gain[0], s.gain[1]);
   return 0;
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <limits>
 
 #include "common/central_difference.hpp"
 #include "lub/mechanism/film_element.hpp"
@@ -33,6 +34,22 @@ bool film_generalised_force(const Model& m, Workspace& ws, int k, const double* 
   FilmKinematics fk;
   return film_element_load(m, ws, k, body_state(f.bearing, q, v), body_state(f.journal, q, v), sliding_radial_N,
                            &ws.counters.film_jacobian, fk, out);
+}
+
+// Velocity step of the film elements' difference quotients [m/s]. The force laws are
+// positively homogeneous of degree 1 in the film's velocities (ε̇, ε w/2): linear for the
+// smooth laws, not differentiable at zero for the printed law (q = hypot(ε w/2, ε̇), Eq. 14)
+// and the cavitated ones. A derivative is therefore smooth on the scale of those velocities
+// themselves, c |(ε̇, ε w/2)|, and the step is u^(1/3) of it. A step scaled with the shafts'
+// speeds instead (as first written) straddles the cone where a journal creeps (50 rpm,
+// ε̇ ~ 1e-5 1/s while w crosses zero): the partitioned Jacobian's Newton iteration then
+// stalled on the full factorial's 50 rpm printed-law cases. The floor, 1e-3 c at the
+// shafts' speeds, keeps the step clear of the round-off in ė (a difference of the bodies'
+// velocities): with 1e-6 c there, IDA's GGL iteration matrix for the printed law at rtol
+// 1e-12 failed (IdaGgl.PrintedLawAtTightToleranceDoesNotStall).
+double film_velocity_step(const FilmKinematics& fk, double c, double shaft_rates) {
+  const double film = c * std::hypot(fk.state.eps_dot, 0.5 * fk.state.eps * fk.state.wedge);
+  return std::cbrt(DBL_EPSILON) * std::max(film, 1e-3 * c * (1.0 + shaft_rates));
 }
 
 // Φ̈ + 2α Φ̇ + β² Φ of the sliding row of film k at (q, v, q̈ = a): Φ = |e| − e_s,
@@ -103,11 +120,7 @@ int add_film_force_jacobian(const Model& m, Workspace& ws, double* q, double* v,
     const double c = f.clearance;
     const double wall = std::max(std::abs(1.0 - fk.state.eps), 1e-4);
     const double h_pos = delta * c * wall;  // [m]
-    // Velocity scale: the journal's relative speed and the clearance at the shaft speeds
-    // (the laws are close to linear in ε̇ and w, so the step is not critical).
-    const double vel_scale =
-        fk.e_dot.norm() + c * (1.0 + std::abs(rate(f.bearing, v)) + std::abs(rate(f.journal, v)));
-    const double h_vel = delta * vel_scale;  // [m/s]
+    const double h_vel = film_velocity_step(fk, c, std::abs(rate(f.bearing, v)) + std::abs(rate(f.journal, v)));
     const int bodies[2] = {f.bearing, f.journal};
     const double arms[2] = {std::max(f.s_bearing.norm(), c), std::max(f.s_journal.norm(), c)};
     double plus[6], minus[6];
@@ -133,6 +146,82 @@ int add_film_force_jacobian(const Model& m, Workspace& ws, double* q, double* v,
             for (int r = 0; r < 3; ++r) G(3 * bodies[s2] + r, col) += (plus[3 * s2 + r] - minus[3 * s2 + r]) / span;
           }
         }
+      }
+    }
+    ws.contact_N[k] = contact_N;
+  }
+  return 0;
+}
+
+int add_film_force_directional(const Model& m, Workspace& ws, double* q, double* v, int n_dir, const double* dq,
+                               const double* dv, double* out) {
+  const double delta = std::cbrt(DBL_EPSILON);  // as add_film_force_jacobian: error ~ u^(2/3)
+  const int nq = m.nq;
+  for (int k = 0; k < static_cast<int>(m.films.size()); ++k) {
+    const FilmElement& f = m.films[k];
+    const int bodies[2] = {f.bearing, f.journal};
+    const Vector2d* points[2] = {&f.s_bearing, &f.s_journal};
+    const FilmKinematics fk = film_kinematics(m, k, q, v);
+    const double c = f.clearance;
+    const double wall = std::max(std::abs(1.0 - fk.state.eps), 1e-4);
+    const double h_pos = delta * c * wall;  // [m]
+    const double h_vel = film_velocity_step(fk, c, std::abs(rate(f.bearing, v)) + std::abs(rate(f.journal, v)));
+    const double contact_N = ws.contact_N[k];
+    double saved[12] = {};
+    for (int side = 0; side < 2; ++side) {
+      const int b = bodies[side];
+      if (b == kGround) continue;
+      for (int i = 0; i < 3; ++i) saved[6 * side + i] = q[3 * b + i], saved[6 * side + 3 + i] = v[3 * b + i];
+    }
+    for (int d = 0; d < n_dir; ++d) {
+      const double* dqd = dq ? dq + static_cast<size_t>(d) * nq : nullptr;
+      const double* dvd = dv ? dv + static_cast<size_t>(d) * nq : nullptr;
+      // How far the direction moves the journal in its bearing per unit step: δe from δq
+      // (translations and the points' rotations), δė from δv (its leading part).
+      Vector2d de(0, 0), ded(0, 0);
+      for (int side = 0; side < 2; ++side) {
+        const int b = bodies[side];
+        if (b == kGround) continue;
+        const double sign = side == 0 ? -1.0 : 1.0;
+        const Vector2d s = perp(rot(angle(b, q), *points[side]));
+        const int o = 3 * b;
+        if (dqd) de += sign * (Vector2d(dqd[o], dqd[o + 1]) + dqd[o + 2] * s);
+        if (dvd) ded += sign * (Vector2d(dvd[o], dvd[o + 1]) + dvd[o + 2] * s);
+      }
+      const double nde = de.norm(), nded = ded.norm();
+      if (nde == 0.0 && nded == 0.0) continue;  // the direction does not move this film
+      double h = std::numeric_limits<double>::infinity();
+      if (nde > 0.0) h = h_pos / nde;
+      if (nded > 0.0) h = std::min(h, h_vel / nded);
+      // Perturb the film's bodies only (film_element_load reads nothing else); restore exactly.
+      double plus[6], minus[6];
+      bool ok = true;
+      for (int pass = 0; pass < 2 && ok; ++pass) {
+        const double step = pass == 0 ? h : -h;
+        for (int side = 0; side < 2; ++side) {
+          const int b = bodies[side];
+          if (b == kGround) continue;
+          for (int i = 0; i < 3; ++i) {
+            const int o = 3 * b + i;
+            if (dqd) q[o] = saved[6 * side + i] + step * dqd[o];
+            if (dvd) v[o] = saved[6 * side + 3 + i] + step * dvd[o];
+          }
+        }
+        ok = film_generalised_force(m, ws, k, q, v, SlidingRadial::held_multiplier, pass == 0 ? plus : minus);
+      }
+      for (int side = 0; side < 2; ++side) {
+        const int b = bodies[side];
+        if (b == kGround) continue;
+        for (int i = 0; i < 3; ++i) q[3 * b + i] = saved[6 * side + i], v[3 * b + i] = saved[6 * side + 3 + i];
+      }
+      if (!ok) {
+        ws.contact_N[k] = contact_N;
+        return 1;
+      }
+      double* o = out + static_cast<size_t>(d) * nq;
+      for (int side = 0; side < 2; ++side) {
+        if (bodies[side] == kGround) continue;
+        for (int r = 0; r < 3; ++r) o[3 * bodies[side] + r] += (plus[3 * side + r] - minus[3 * side + r]) / (2.0 * h);
       }
     }
     ws.contact_N[k] = contact_N;

@@ -42,6 +42,7 @@
 #include <cmath>
 
 #include "common/central_difference.hpp"
+#include "common/small_dense.hpp"
 #include "lub/formulation/multibody_system.hpp"
 
 namespace lub {
@@ -62,9 +63,17 @@ JacobianScratch::JacobianScratch(const Model& m)
       slot_active(static_cast<size_t>(m.nc + m.n_switching), 0),
       Lq(Eigen::MatrixXd::Zero(m.nq, m.nq)),
       Uq(Eigen::MatrixXd::Zero(m.nq, m.nq)),
-      Dq(Eigen::MatrixXd::Zero(m.nc + m.n_switching, m.nq)) {}
+      Dq(Eigen::MatrixXd::Zero(m.nc + m.n_switching, m.nq)),
+      T(Eigen::MatrixXd::Zero(m.nq, std::max(m.nq - m.nc, 0))),
+      W(Eigen::MatrixXd::Zero(m.nq, std::max(m.nq - m.nc, 0))),
+      Fz(Eigen::MatrixXd::Zero(m.nq, std::max(m.nq - m.nc, 0))),
+      Fzd(Eigen::MatrixXd::Zero(m.nq, std::max(m.nq - m.nc, 0))),
+      U(Eigen::MatrixXd::Zero(m.nc, std::max(m.nq - m.nc, 0))),
+      N(Eigen::MatrixXd::Zero(std::max(m.nq - m.nc, 0), std::max(m.nq - m.nc, 0))),
+      piv_n(static_cast<size_t>(std::max(m.nq - m.nc, 0)), 0) {}
 
-int MultibodySystem::jacobian(double t, const double* y, const double* /*fy*/, double* Jout) {
+int MultibodySystem::jacobian(double t, const double* y, const double* fy, double* Jout) {
+  if (form_ == Formulation::partitioned) return partitioned_jacobian(t, y, fy, Jout);
   if (form_ != Formulation::baumgarte) return -1;
   const int nq = m_.nq;
   JacobianScratch& s = jac_;
@@ -119,6 +128,119 @@ int MultibodySystem::jacobian(double t, const double* y, const double* /*fy*/, d
   J.topRightCorner(nq, nq).setIdentity();
   J.bottomLeftCorner(nq, nq).noalias() = Minv.asDiagonal() * s.Gq;
   J.bottomRightCorner(nq, nq).noalias() = Minv.asDiagonal() * s.Gv;
+  return 0;
+}
+
+// Jacobian of the partitioned formulation, y = (z, ż), f = (ż, a_z). On Φ = 0, Φ̇ = 0
+// (where the recovery puts every state) evaluate()'s solve is, in reduced form,
+//     a_z = N⁻¹ Tᵀ (g(q, v) − M q̈_p),   N = TᵀMT,
+//     T = ∂q/∂z: rows ind = I, rows dep = −Φ_dep⁻¹ Φ_ind   (Φ_q T = 0),
+//     q̈_p: rows ind = 0, rows dep = Φ_dep⁻¹ γ(q, v)       (Φ_q q̈_p = γ),
+// because its q̈ = T a_z + q̈_p is the one with Tᵀ(M q̈ − g) = 0 (the multipliers' forces
+// do no work along T). The velocities are v = T ż + v_p(q), so ∂v/∂ż = T exactly, and
+// ∂v/∂z = W with W_ind = 0 and
+//     Φ_dep W_dep = −(∂Φ̇/∂q) T = ½ (∂γ/∂v) T:
+// γ = −(Φ_q v)_q v − 2 Φ_qt v − Φ_tt is quadratic in v, so ∂γ/∂v = −2 (Φ_q v)_q − 2 Φ_qt,
+// while ∂Φ̇/∂q = (Φ_q v)_q + Φ_tq (Φ̇ = Φ_q v + Φ_t). Then
+//     ∂a_z/∂ż = N⁻¹ Tᵀ (∂g/∂v T − M ∂q̈_p/∂v T)                   (exact)
+//     ∂a_z/∂z ≈ N⁻¹ Tᵀ (∂g/∂q T + ∂g/∂v W)
+// with ∂q̈_p/∂v = [0; Φ_dep⁻¹ ∂γ/∂v] (analytic: the Coriolis terms, 2ω ≈ 1000 1/s, which
+// enter the Newton matrix as γ_h × 1000 ≈ 0.04). The film terms are derivatives along the
+// 2 nz directions (T_j, W_j) and (0, T_j) of the state space (add_film_force_directional:
+// 8 film-law calls for the slider-crank, whose 2 degrees of freedom are all the Newton
+// matrix needs); ∂g/∂v W, the film's damping times the velocities a change of
+// configuration brings, is of the order of its stiffness. Neglected in ∂a_z/∂z, as in the
+// baumgarte Jacobian: M ∂q̈_p/∂v W and ∂q̈_p/∂q (the constraint geometry's curvature times
+// the velocities squared, ω² ≈ 3e5 1/s² at 5000 rpm) and the derivatives of N⁻¹Tᵀ (the
+// curvature times the forces, |F|/(m L) ≈ 1e4 N / (0.2 kg × 0.12 m) ≈ 4e5 1/s²), against
+// the film's stiffness per unit mass of 1e7–1e10 1/s²; in the Newton matrix they would
+// enter as γ_h² × 4e5 ≈ 1e-3 at the ~300 steps a cycle of rtol 1e-8.
+// tests/test_core_jacobian.cpp compares the result with central differences of rhs().
+//
+// A sliding film adds a constraint row that the reduced form above does not carry: while
+// one slides, forward differences of rhs() (forward_difference_jacobian), as SUNDIALS'.
+int MultibodySystem::partitioned_jacobian(double t, const double* y, const double* fy, double* Jout) {
+  for (size_t k = 0; k < m_.films.size(); ++k)
+    if (ws_.film_mode[k] == FilmMode::sliding) return forward_difference_jacobian(t, y, fy, Jout);
+  const int nq = m_.nq, nc = m_.nc, nd = nz_;
+  JacobianScratch& s = jac_;
+  if (expand(t, y, scratch_.data()) != 0) return 1;
+  double* q = s.q.data();
+  double* v = s.v.data();
+  std::copy(scratch_.begin(), scratch_.begin() + nq, q);
+  std::copy(scratch_.begin() + nq, scratch_.begin() + 2 * nq, v);
+  Eigen::MatrixXd& T = s.T;
+  Eigen::MatrixXd& W = s.W;
+  T.setZero();
+  W.setZero();
+  for (int j = 0; j < nd; ++j) T(ind_[j], j) = 1.0;
+  if (nc > 0) {
+    // The recovery has just factored the dependent block at this q (expand); Φ_q at q.
+    const Recovery& rc = integ_rec_;
+    constraint_residual(m_, ws_, t, q, v);
+    for (int j = 0; j < nd; ++j) {
+      for (int i = 0; i < nc; ++i) r_[i] = ws_.Phi_q(i, ind_[j]);
+      dense::lu_solve(rc.lu.data(), nc, nc, rc.piv.data(), r_.data());
+      for (int i = 0; i < nc; ++i) T(dep_[i], j) = -r_[i];
+    }
+    auto Gam = s.Gamma_v.topRows(nc);
+    constraint_gamma_velocity_jacobian(m_, ws_, q, v, Gam);
+    // U = Φ_dep⁻¹ (∂γ/∂v) T = ∂q̈_p/∂v T (dependent rows), and W_dep = U / 2.
+    for (int j = 0; j < nd; ++j) {
+      for (int i = 0; i < nc; ++i) s.U(i, j) = Gam.row(i).dot(T.col(j));
+      dense::lu_solve(rc.lu.data(), nc, nc, rc.piv.data(), s.U.col(j).data());
+      for (int i = 0; i < nc; ++i) W(dep_[i], j) = 0.5 * s.U(i, j);
+    }
+  }
+  // Film forces along (T_j, W_j) (position columns) and (0, T_j) (velocity columns); then
+  // − M ∂q̈_p/∂v T in the velocity columns.
+  s.Fz.setZero();
+  s.Fzd.setZero();
+  if (add_film_force_directional(m_, ws_, q, v, nd, T.data(), W.data(), s.Fz.data()) != 0) return 1;
+  if (add_film_force_directional(m_, ws_, q, v, nd, nullptr, T.data(), s.Fzd.data()) != 0) return 1;
+  for (int j = 0; j < nd; ++j)
+    for (int i = 0; i < nc; ++i) s.Fzd(dep_[i], j) -= m_.mass_diag(dep_[i]) * s.U(i, j);
+  // N = TᵀMT (M diagonal), factored; the acceleration rows N⁻¹ Tᵀ F.
+  for (int j = 0; j < nd; ++j)
+    for (int i = 0; i < nd; ++i) {
+      double sum = 0.0;
+      for (int k = 0; k < nq; ++k) sum += T(k, i) * m_.mass_diag(k) * T(k, j);
+      s.N(i, j) = sum;
+    }
+  dense::lu(s.N.data(), nd, nd, s.piv_n.data());
+  const int n = 2 * nd;
+  Eigen::Map<Eigen::MatrixXd> J(Jout, n, n);
+  J.setZero();
+  J.topRightCorner(nd, nd).setIdentity();
+  for (int j = 0; j < nd; ++j) {
+    double* col_z = &J(nd, j);        // ∂a_z/∂z_j: rows nd … 2nd − 1, contiguous
+    double* col_zd = &J(nd, nd + j);  // ∂a_z/∂ż_j
+    for (int i = 0; i < nd; ++i) {
+      col_z[i] = T.col(i).dot(s.Fz.col(j));
+      col_zd[i] = T.col(i).dot(s.Fzd.col(j));
+    }
+    dense::lu_solve(s.N.data(), nd, nd, s.piv_n.data(), col_z);
+    dense::lu_solve(s.N.data(), nd, nd, s.piv_n.data(), col_zd);
+  }
+  return 0;
+}
+
+// Forward differences of rhs(), column by column, increments √u max(|y_j|, scale_j) with
+// scale_j the state's size in its own unit (set_difference_scales; 1 if not set).
+int MultibodySystem::forward_difference_jacobian(double t, const double* y, const double* fy, double* Jout) {
+  const int n = 2 * nz_;
+  const double srur = std::sqrt(DBL_EPSILON);
+  std::copy(y, y + n, dq_y_.begin());
+  for (int j = 0; j < n; ++j) {
+    const double scale = static_cast<size_t>(j) < dq_scale_.size() ? dq_scale_[j] : 1.0;
+    const double yj = dq_y_[j];
+    dq_y_[j] = yj + srur * std::max(std::abs(yj), scale);
+    const double inc = dq_y_[j] - yj;
+    const int rc = rhs(t, dq_y_.data(), dq_f_.data());
+    dq_y_[j] = yj;
+    if (rc != 0) return rc;
+    for (int i = 0; i < n; ++i) Jout[static_cast<size_t>(j) * n + i] = (dq_f_[i] - fy[i]) / inc;
+  }
   return 0;
 }
 

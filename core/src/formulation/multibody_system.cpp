@@ -29,7 +29,11 @@ MultibodySystem::MultibodySystem(const Model& m, Workspace& ws, double eps_limit
     rc->piv.assign(static_cast<size_t>(m.nc), 0);
     rc->last_y.assign(static_cast<size_t>(2 * nz_), 0.0);
   }
-  if (f == Formulation::partitioned) r_.assign(static_cast<size_t>(m.nc), 0.0);
+  if (f == Formulation::partitioned) {
+    r_.assign(static_cast<size_t>(m.nc), 0.0);
+    dq_y_.assign(static_cast<size_t>(2 * nz_), 0.0);
+    dq_f_ = dq_y_;
+  }
 }
 
 void MultibodySystem::partition(double t, const double* qv) {

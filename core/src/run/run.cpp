@@ -124,7 +124,7 @@ IntegrationPlan plan_integration(const Scene& scene, const Model& m) {
                                       ? Formulation::baumgarte
                                       : sol.formulation;
   const bool partitioned = plan.formulation == Formulation::partitioned;
-  is.user_jacobian = plan.newton && sol.jacobian == JacobianKind::structured && !partitioned;
+  is.user_jacobian = plan.newton && sol.jacobian == JacobianKind::structured;
   // Partitioned: the integrated coordinates are the mechanism's degrees of freedom (e.g. a
   // rod's angle and the slider's x), and the squeeze film's stiff mode lies almost along
   // one of them. Its Jacobian terms (∝ the journal's whirl rate and the rod's rate) change
@@ -442,6 +442,12 @@ detail::SegmentResult Runner::run() {
   sys.reduce(qv0.data(), y0.data());
   is.atol.assign(y0.size(), 0.0);
   sys.reduce(atol_full.data(), is.atol.data());
+  auto set_difference_scales = [&] {
+    std::vector<double> scales(is.atol.size());
+    for (size_t i = 0; i < scales.size(); ++i) scales[i] = is.atol[i] / is.rtol;
+    sys.set_difference_scales(scales);
+  };
+  set_difference_scales();
   yint_.assign(y0.size(), 0.0);
   std::unique_ptr<Integrator> integ;
   try {
@@ -509,6 +515,7 @@ detail::SegmentResult Runner::run() {
       integ->reinit(t, yint_.data());
       sys.reduce(atol_full.data(), is.atol.data());
       integ->set_abs_tolerances(is.atol);
+      set_difference_scales();
       integ->set_root_directions(sys.root_directions());
       ++res_.stats.repartitions;
     } else if (int resynced = have_state && m_.n_switching > 0 ? sys.resync_modes(t, yfull_.data()) : 0;

@@ -230,17 +230,15 @@ SolverSpec parse_solver(const json& j) {
     fail("solver.formulation", form,
          "solver.method = ida integrates the GGL index-2 DAE: the formulation must be ggl (or absent)");
   s.projection = r.boolean_or("projection", false);
-  // IDA: the structured iteration matrix by default (README "Integration", Jacobian).
-  s.jacobian = ida ? JacobianKind::structured : JacobianKind::difference_quotients;
+  // Structured by default for ida (its iteration matrix) and for the partitioned
+  // formulation (its degrees of freedom); difference quotients for baumgarte (README
+  // "Integration", Jacobian).
+  s.jacobian = ida || partitioned ? JacobianKind::structured : JacobianKind::difference_quotients;
   if (const json* jac = r.raw_optional("jacobian")) {
     s.jacobian = r.choice_of<JacobianKind>("jacobian");
     if (!is_newton(s.method))
       fail("solver.jacobian", *jac,
            "applies only to the methods with a Newton iteration (cvode_bdf, arkode_dirk, ida)");
-    if (s.jacobian == JacobianKind::structured && partitioned)
-      fail("solver.jacobian", *jac,
-           "structured requires solver.formulation = baumgarte (the partitioned formulation, the "
-           "default, uses difference quotients)");
   }
   if (s.projection && partitioned)
     fail("solver.projection", json(true),

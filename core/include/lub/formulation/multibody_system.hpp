@@ -38,6 +38,11 @@ struct JacobianScratch {
   std::vector<int> slot_of_row;
   std::vector<char> slot_active;
   Eigen::MatrixXd Lq, Uq, Dq;
+  // partitioned (partitioned_jacobian), nz = nq − nc degrees of freedom: the null-space
+  // basis T = ∂q/∂z and W = ∂v/∂z (nq × nz), the film forces' derivatives along them
+  // (nq × nz each), Φ_dep⁻¹ ∂γ/∂v T (nc × nz), TᵀMT (nz × nz).
+  Eigen::MatrixXd T, W, Fz, Fzd, U, N;
+  std::vector<int> piv_n;
 };
 
 class MultibodySystem final : public OdeSystem {
@@ -55,8 +60,9 @@ class MultibodySystem final : public OdeSystem {
   int residual(double t, const double* Y, const double* Yp, double* F) override;
   int consistent_state(double t, const double* y, double* Y, double* Yp) override;
   void algebraic_tolerances(double rtol, double atol, double* out) const override;
-  /// Structured Jacobian of the baumgarte formulation (multibody_jacobian.cpp); −1 (not
-  /// provided: difference quotients) for the partitioned one.
+  /// Structured Jacobian (multibody_jacobian.cpp) of the baumgarte formulation, or of the
+  /// partitioned one (its degrees of freedom; forward differences of rhs() while a film
+  /// slides); −1 (not provided) for ggl.
   int jacobian(double t, const double* y, const double* fy, double* J) override;
   /// Structured iteration matrix of the GGL DAE (ida; multibody_jacobian.cpp); −1 for the
   /// ODE formulations.
@@ -100,6 +106,10 @@ class MultibodySystem final : public OdeSystem {
   /// of switches (0: none; the integrator must be restarted otherwise).
   int resync_modes(double t, const double* y);
   void set_projection_tolerance(double tol) { projection_tol_ = tol; }
+  /// Size of each integrated state in its own unit (atol / rtol: 2 nz entries, in the
+  /// current partition's order): the increments of the partitioned Jacobian's forward
+  /// differences while a film slides.
+  void set_difference_scales(const std::vector<double>& scales) { dq_scale_ = scales; }
 
  private:
   const Model& m_;
@@ -132,6 +142,10 @@ class MultibodySystem final : public OdeSystem {
   // film order) — a switching film's sliding row keeps one slot whether active or not.
   std::vector<int> slot_of_switching_;  // per film: nc + its index among switching films, or −1
   JacobianScratch jac_{m_};
+  std::vector<double> dq_scale_, dq_y_, dq_f_;  // partitioned: the forward differences' scales and scratch
+
+  int partitioned_jacobian(double t, const double* y, const double* fy, double* J);
+  int forward_difference_jacobian(double t, const double* y, const double* fy, double* J);
 
   void factor_dependent_block(Recovery& rc);
 };

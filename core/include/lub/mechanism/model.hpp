@@ -191,6 +191,19 @@ int add_film_force_jacobian(const Model& m, Workspace& ws, double* q, double* v,
                             Eigen::Ref<Eigen::MatrixXd> Gv,
                             SlidingRadial sliding = SlidingRadial::held_multiplier);
 
+/// Directional form of add_film_force_jacobian: adds (∂g/∂q) dq_d + (∂g/∂v) dv_d of every
+/// film element at (q, v) to column d of `out` (nq × n_dir, column-major), for n_dir
+/// directions (dq_d, dv_d) of the state space (columns of dq, dv, nq × n_dir; nullptr: zero),
+/// from two evaluations of each film element a direction moves (central differences along
+/// it, the step scaled with the distance to the wall as there). The partitioned
+/// formulation's Jacobian needs the force derivatives only along its degrees of freedom: 4
+/// directions for the slider-crank (8 film-law calls) against the 24 of the full blocks.
+/// q and v are scratch copies (perturbed and restored in place). Films held in their
+/// current modes (not for sliding films: their radial force is a multiplier). No
+/// allocation. Returns 0, or 1 if a perturbed state leaves the model's domain.
+int add_film_force_directional(const Model& m, Workspace& ws, double* q, double* v, int n_dir, const double* dq,
+                               const double* dv, double* out);
+
 /// Rows of the sliding films' constraints: ∂(Φ̈ + 2αΦ̇ + β²Φ)/∂q at fixed (v, q̈ = a)
 /// into the sliding rows of D (ws.slide_row; other rows untouched): the curvature of a
 /// sliding row has the clearance as its length scale, so unlike that of the ideal joints it
