@@ -57,6 +57,19 @@ Eigen::MatrixXd full_difference_jacobian(NearWall& s) {
   return J;
 }
 
+// Every force law near the wall, the printed one also sliding, and the contact hand-over:
+// the cases of both structured Jacobians' suites.
+const Case kCases[] = {Case{"pinkus_sternlicht", "pinkus_sternlicht"},
+                       Case{"pinkus_sternlicht_sliding", "pinkus_sternlicht", true},
+                       Case{"frene_long", "frene_long"},
+                       Case{"frene_short", "frene_short"},
+                       Case{"gumbel_long", "gumbel_long"},
+                       Case{"gumbel_short", "gumbel_short"},
+                       Case{"pinkus_sternlicht_continuous", "pinkus_sternlicht_continuous"},
+                       Case{"finite_reynolds", "finite_reynolds"},
+                       Case{"frene_long_contact_handover", "frene_long", false, true}};
+std::string case_name(const ::testing::TestParamInfo<Case>& i) { return i.param.name; }
+
 class StructuredJacobian : public ::testing::TestWithParam<Case> {};
 
 // The velocity block J_v = ∂a/∂v is exact in the structured Jacobian (the film's
@@ -135,14 +148,7 @@ TEST_P(StructuredJacobian, DaeJacobianDoesNotAllocate) {
 
 INSTANTIATE_TEST_SUITE_P(
     ForceLaws, StructuredJacobian,
-    ::testing::Values(Case{"pinkus_sternlicht", "pinkus_sternlicht"},
-                      Case{"pinkus_sternlicht_sliding", "pinkus_sternlicht", true},
-                      Case{"frene_long", "frene_long"}, Case{"frene_short", "frene_short"},
-                      Case{"gumbel_long", "gumbel_long"}, Case{"gumbel_short", "gumbel_short"},
-                      Case{"pinkus_sternlicht_continuous", "pinkus_sternlicht_continuous"},
-                      Case{"finite_reynolds", "finite_reynolds"},
-                      Case{"frene_long_contact_handover", "frene_long", false, true}),
-    [](const ::testing::TestParamInfo<Case>& i) { return i.param.name; });
+    ::testing::ValuesIn(kCases), case_name);
 
 // A consistent state (Φ = 0, Φ̇ = 0) of the reference slider-crank with the journal at
 // ε = 0.95, moving outwards and round the bearing (NearWall's e and ė), for the partitioned
@@ -284,14 +290,7 @@ TEST_P(PartitionedJacobian, DoesNotAllocate) {
 
 INSTANTIATE_TEST_SUITE_P(
     ForceLaws, PartitionedJacobian,
-    ::testing::Values(Case{"pinkus_sternlicht", "pinkus_sternlicht"},
-                      Case{"pinkus_sternlicht_sliding", "pinkus_sternlicht", true},
-                      Case{"frene_long", "frene_long"}, Case{"frene_short", "frene_short"},
-                      Case{"gumbel_long", "gumbel_long"}, Case{"gumbel_short", "gumbel_short"},
-                      Case{"pinkus_sternlicht_continuous", "pinkus_sternlicht_continuous"},
-                      Case{"finite_reynolds", "finite_reynolds"},
-                      Case{"frene_long_contact_handover", "frene_long", false, true}),
-    [](const ::testing::TestParamInfo<Case>& i) { return i.param.name; });
+    ::testing::ValuesIn(kCases), case_name);
 
 lub::RunResult run(const std::string& method, const std::string& jacobian, const std::string& law, double rtol,
                    int cycles) {
