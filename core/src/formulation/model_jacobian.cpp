@@ -36,6 +36,14 @@ bool film_generalised_force(const Model& m, Workspace& ws, int k, const double* 
                            &ws.counters.film_jacobian, fk, out);
 }
 
+// Position step of the film elements' difference quotients [m]: u^(1/3) of the distance to
+// the wall, (1 − ε) c (floored at 1e-4 c), the length over which the force changes:
+// truncation ~ (h/d)² and round-off ~ u d/h balance at ~ u^(2/3) ≈ 4e-11 relative,
+// uniformly up to the wall.
+double film_position_step(const FilmKinematics& fk, double c) {
+  return std::cbrt(DBL_EPSILON) * c * std::max(std::abs(1.0 - fk.state.eps), 1e-4);
+}
+
 // Velocity step of the film elements' difference quotients [m/s]. The force laws are
 // positively homogeneous of degree 1 in the film's velocities (ε̇, ε w/2): linear for the
 // smooth laws, not differentiable at zero for the printed law (q = hypot(ε w/2, ε̇), Eq. 14)
@@ -109,17 +117,13 @@ void sliding_rows_position_jacobian(const Model& m, const Workspace& ws, double*
 
 int add_film_force_jacobian(const Model& m, Workspace& ws, double* q, double* v, Eigen::Ref<Eigen::MatrixXd> Gq,
                             Eigen::Ref<Eigen::MatrixXd> Gv, SlidingRadial sliding) {
-  // Central differences: truncation ~ (h/d)² with d the length over which the force
-  // changes (the distance to the wall, (1 − ε) c), round-off ~ u d/h. h = u^(1/3) d
-  // balances them at ~ u^(2/3) ≈ 4e-11 relative, uniformly up to the wall.
-  const double delta = std::cbrt(DBL_EPSILON);
+  // Central differences, steps film_position_step and film_velocity_step.
   for (int k = 0; k < static_cast<int>(m.films.size()); ++k) {
     const FilmElement& f = m.films[k];
     const double contact_N = ws.contact_N[k];  // film_element_force writes it: restore
     const FilmKinematics fk = film_kinematics(m, k, q, v);
     const double c = f.clearance;
-    const double wall = std::max(std::abs(1.0 - fk.state.eps), 1e-4);
-    const double h_pos = delta * c * wall;  // [m]
+    const double h_pos = film_position_step(fk, c);
     const double h_vel = film_velocity_step(fk, c, std::abs(rate(f.bearing, v)) + std::abs(rate(f.journal, v)));
     const int bodies[2] = {f.bearing, f.journal};
     const double arms[2] = {std::max(f.s_bearing.norm(), c), std::max(f.s_journal.norm(), c)};
@@ -155,7 +159,6 @@ int add_film_force_jacobian(const Model& m, Workspace& ws, double* q, double* v,
 
 int add_film_force_directional(const Model& m, Workspace& ws, double* q, double* v, int n_dir, const double* dq,
                                const double* dv, double* out) {
-  const double delta = std::cbrt(DBL_EPSILON);  // as add_film_force_jacobian: error ~ u^(2/3)
   const int nq = m.nq;
   for (int k = 0; k < static_cast<int>(m.films.size()); ++k) {
     const FilmElement& f = m.films[k];
@@ -163,8 +166,7 @@ int add_film_force_directional(const Model& m, Workspace& ws, double* q, double*
     const Vector2d* points[2] = {&f.s_bearing, &f.s_journal};
     const FilmKinematics fk = film_kinematics(m, k, q, v);
     const double c = f.clearance;
-    const double wall = std::max(std::abs(1.0 - fk.state.eps), 1e-4);
-    const double h_pos = delta * c * wall;  // [m]
+    const double h_pos = film_position_step(fk, c);
     const double h_vel = film_velocity_step(fk, c, std::abs(rate(f.bearing, v)) + std::abs(rate(f.journal, v)));
     const double contact_N = ws.contact_N[k];
     double saved[12] = {};
