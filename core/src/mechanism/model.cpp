@@ -35,6 +35,7 @@ Workspace::Workspace(const Model& m)
       row_bodies(static_cast<size_t>(m.nc + m.n_switching), {kGround, kGround}),
       cos_phi(static_cast<size_t>(m.nb), 1.0),
       sin_phi(static_cast<size_t>(m.nb), 0.0),
+      trig_phi(static_cast<size_t>(m.nb), std::numeric_limits<double>::quiet_NaN()),
       films(m.films.size()),
       film_mode(m.films.size(), FilmMode::natural),
       slide_radius(m.films.size(), 0.0),
@@ -182,7 +183,7 @@ int evaluate_forces(const Model& m, Workspace& ws, double t, const double* q, co
   ++ws.counters.rhs;
   const double* cphi = ws.cos_phi.data();
   const double* sphi = ws.sin_phi.data();
-  body_trig(m.nb, q, ws.cos_phi.data(), ws.sin_phi.data());
+  body_trig(m.nb, q, ws.cos_phi.data(), ws.sin_phi.data(), ws.trig_phi.data());
   ws.g.setZero();
   if (m.gravity) {
     ++ws.counters.gravity;
@@ -251,7 +252,7 @@ int evaluate(const Model& m, Workspace& ws, double t, const double* q, const dou
 void constraint_residual(const Model& m, Workspace& ws, double t, const double* q, const double* v) {
   const double* cphi = ws.cos_phi.data();
   const double* sphi = ws.sin_phi.data();
-  body_trig(m.nb, q, ws.cos_phi.data(), ws.sin_phi.data());
+  body_trig(m.nb, q, ws.cos_phi.data(), ws.sin_phi.data(), ws.trig_phi.data());
   fill_constraints(m.constraints, t, q, v, cphi, sphi, ws.Phi_q, ws.Phi, ws.Phi_dot, nullptr);
   int n_sliding = 0;
   for (size_t k = 0; k < m.films.size(); ++k) {

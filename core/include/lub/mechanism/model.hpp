@@ -123,6 +123,9 @@ struct Workspace {
   /// (r, s, b): constraint rows r >= s that share moving body b, the nonzero terms of S.
   std::vector<std::array<int, 3>> schur_pairs;
   std::vector<double> cos_phi, sin_phi;  ///< of each body's angle, at the last evaluation
+  /// The angles cos_phi and sin_phi were computed at (NaN: none yet): an evaluation at the
+  /// same angles (the recovery's last check, then evaluate(); the Jacobian) reuses them.
+  std::vector<double> trig_phi;
   std::vector<FilmKinematics> films;
   EvalCounters counters;
   // Switching films: mode, and in sliding mode the held |e| [m] and the constraint row.

@@ -33,9 +33,15 @@ struct BodyState {
 };
 // The trigonometric functions are most of the cost of the kinematics: an evaluation
 // computes them once per body (body_trig) and every constraint and film reads the table.
-inline void body_trig(int nb, const double* q, double* cphi, double* sphi) {
+// With `last` (the angles the table holds, NaN for none) a body whose angle has not changed
+// keeps its entries: the same argument gives the same values, so this changes no result.
+inline void body_trig(int nb, const double* q, double* cphi, double* sphi, double* last = nullptr) {
   for (int b = 0; b < nb; ++b) {
     const double phi = q[3 * b + 2];  // one local argument: the compiler fuses sin and cos
+    if (last) {
+      if (last[b] == phi) continue;
+      last[b] = phi;
+    }
     cphi[b] = std::cos(phi);
     sphi[b] = std::sin(phi);
   }
