@@ -8,6 +8,7 @@
 
 #include "lub/bearing/film_force.hpp"
 #include "lub/common/check.hpp"
+#include "lub/io/json_reader.hpp"
 #include "lub/mechanism/builder.hpp"
 #include "lub/mechanism/model.hpp"
 
@@ -185,4 +186,35 @@ TEST(ModelWorkspace, AWorkspaceOfAnotherModelIsAnInternalError) {
   }
   lub::Workspace own(m);
   EXPECT_EQ(lub::evaluate(m, own, 0.0, q.data(), v.data(), a.data()), 0);
+}
+
+// body_trig keeps a body's sin/cos while its angle is unchanged (Workspace::trig_phi): an
+// evaluation must give bit for bit what a fresh workspace gives, whichever angles changed
+// since the last one — none, one body's, all, and back to an earlier angle.
+TEST(ModelWorkspace, KeptTrigonometryChangesNoResult) {
+  json doc = lub::read_json_file(std::string(LUB_SOURCE_DIR) + "/configs/scenes/slider_crank.json");
+  const lub::Scene s = lub::parse_scene(doc);
+  const lub::Model m = lub::build_model(s);
+  Eigen::VectorXd q0, v0;
+  lub::assemble_initial_state(m, s, 0.0, q0, v0);
+  lub::Workspace kept(m);
+  std::vector<double> a(static_cast<size_t>(m.nq)), b(a);
+  auto q = q0;
+  auto check = [&](const char* what) {
+    lub::Workspace fresh(m);
+    ASSERT_EQ(lub::evaluate(m, kept, 0.0, q.data(), v0.data(), a.data()), 0) << what;
+    ASSERT_EQ(lub::evaluate(m, fresh, 0.0, q.data(), v0.data(), b.data()), 0) << what;
+    for (int i = 0; i < m.nq; ++i) EXPECT_EQ(a[i], b[i]) << what << ", coordinate " << i;
+    EXPECT_EQ(kept.cos_phi, fresh.cos_phi) << what;
+    EXPECT_EQ(kept.sin_phi, fresh.sin_phi) << what;
+  };
+  check("first evaluation");
+  q[0] += 1e-6;  // a position only
+  check("no angle changed");
+  q[5] += 1e-3;  // the rod's angle (body 1)
+  check("one angle changed");
+  for (int b = 0; b < m.nb; ++b) q[3 * b + 2] += 1e-4 * (b + 1);  // journal stays in its bearing
+  check("every angle changed");
+  q = q0;
+  check("back to the first state");
 }

@@ -161,7 +161,10 @@ class Runner {
  private:
   // Evaluates the model at (t, y) once: constraint drift and the cycle's extremes, and
   // with `record` the series channels.
-  void observe(double t, const double* y, bool record);
+  /// One observation at (t, y): with `record` a row of the series; with `measure` the
+  /// cycle's extremes and the drift statistics. Output samples that fall at neither a
+  /// step end nor a phase point only record: the metrics must not depend on the output rate.
+  void observe(double t, const double* y, bool record, bool measure = true);
   void observe_phase(double t, const double* y);
   void close_cycle(double t_end);
   /// The metric joint's eccentricity and its rate at a cycle's end, into cur_.
@@ -202,7 +205,7 @@ class Runner {
   std::vector<detail::StartState> boundaries_;
 };
 
-void Runner::observe(double t, const double* y, bool record) {
+void Runner::observe(double t, const double* y, bool record, bool measure) {
   const double* q = y;
   const double* v = y + m_.nq;
   std::copy(ws_.film_mode.begin(), ws_.film_mode.end(), obs_ws_.film_mode.begin());
@@ -217,6 +220,7 @@ void Runner::observe(double t, const double* y, bool record) {
     for (size_t c = 0; c < scene_.output.channels.size(); ++c)
       data[c + 1].push_back(channel_value(scene_, m_, ws, scene_.output.channels[c], p));
   }
+  if (!measure) return;
   res_.stats.max_position_drift =
       std::max(res_.stats.max_position_drift, m_.nc ? ws.Phi.head(m_.nc).lpNorm<Eigen::Infinity>() : 0.0);
   res_.stats.max_velocity_drift =
@@ -351,7 +355,7 @@ bool Runner::sample_step(Integrator& integ, MultibodySystem& sys, double t_prev,
       }
     } else {
       ++sample_k_;
-      if (ts > t_prev && state_at(ts)) observe(ts, ytmp_.data(), true);
+      if (ts > t_prev && state_at(ts)) observe(ts, ytmp_.data(), /*record=*/true, /*measure=*/false);
     }
   }
   return stop;
