@@ -36,4 +36,27 @@ Metrics steady_cycle_metrics(const Scene& scene, const std::vector<CycleMetrics>
   return mt;
 }
 
+InteriorMax hermite_interior_max(double t0, double x0, double r0, double t1, double x1, double r1) {
+  // On s ∈ [0, 1], h = t1 − t0, m_i = h r_i:
+  //   p(s)  = (2s³ − 3s² + 1) x0 + (s³ − 2s² + s) m0 + (−2s³ + 3s²) x1 + (s³ − s²) m1,
+  //   p'(s) = a s² + b s + m0,  a = 6(x0 − x1) + 3(m0 + m1),  b = 6(x1 − x0) − 4 m0 − 2 m1,
+  // with p'(0) = m0 > 0 > m1 = p'(1): exactly one root in (0, 1), the maximum. The root
+  // formula that does not cancel (q = −(b + sign(b)√disc)/2: roots q/a and m0/q).
+  const double h = t1 - t0, m0 = h * r0, m1 = h * r1;
+  const double a = 6.0 * (x0 - x1) + 3.0 * (m0 + m1), b = 6.0 * (x1 - x0) - 4.0 * m0 - 2.0 * m1;
+  double s = 0.5;
+  if (std::abs(a) <= 1e-14 * (std::abs(b) + std::abs(m0))) {
+    s = -m0 / b;  // p' linear (b = m1 − m0 < 0 then)
+  } else {
+    const double disc = std::max(0.0, b * b - 4.0 * a * m0);
+    const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
+    for (const double root : {q / a, q != 0.0 ? m0 / q : -1.0})
+      if (root > 0.0 && root < 1.0) s = root;
+  }
+  s = std::clamp(s, 0.0, 1.0);
+  const double s2 = s * s, s3 = s2 * s;
+  const double p = (2 * s3 - 3 * s2 + 1) * x0 + (s3 - 2 * s2 + s) * m0 + (-2 * s3 + 3 * s2) * x1 + (s3 - s2) * m1;
+  return {t0 + s * h, std::max({p, x0, x1})};
+}
+
 }  // namespace lub::detail

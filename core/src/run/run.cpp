@@ -193,6 +193,13 @@ class Runner {
   std::vector<double> qdd_, ytmp_, yfull_, yint_;
   CycleMetrics cur_;
   bool cur_empty_ = true;
+  /// The metric film at this cycle's last measuring observation (step end or phase point):
+  /// the other end of the interval an ε peak is interpolated on. A peak in the interval
+  /// that spans a cycle boundary is not interpolated (the closed cycle cannot change).
+  struct FilmObservation {
+    bool valid = false;
+    double t = 0.0, eps = 0.0, eps_dot = 0.0;
+  } prev_film_;
   // orbit of every film at the phase points: current and previous cycle
   std::vector<double> orbit_cur_, orbit_prev_;
   int phase_index_ = 0;
@@ -240,13 +247,26 @@ void Runner::observe(double t, const double* y, bool record, bool measure) {
     if (scene_.joints[mj].type == JointType::lubricated_revolute) {
       const int f = m_.joint_film[mj];
       const double eps = f >= 0 ? ws.films[f].state.eps : 0.0;
-      // In contact (ε >= 1) the film thickness is zero: the penetration is not a film.
-      const double h = std::max(0.0, scene_.joints[mj].bearing.clearance_m() * (1.0 - eps));
-      cur_.max_eps = std::max(cur_.max_eps, eps);
-      if (h < cur_.min_film_m) {
-        cur_.min_film_m = h;
-        cur_.angle_at_min_film_rad = angle;
+      const double eps_dot = f >= 0 ? ws.films[f].state.eps_dot : 0.0;
+      const double c = scene_.joints[mj].bearing.clearance_m();
+      auto film_extreme = [&](double e, double at_angle) {
+        // In contact (ε >= 1) the film thickness is zero: the penetration is not a film.
+        const double h = std::max(0.0, c * (1.0 - e));
+        cur_.max_eps = std::max(cur_.max_eps, e);
+        if (h < cur_.min_film_m) {
+          cur_.min_film_m = h;
+          cur_.angle_at_min_film_rad = at_angle;
+        }
+      };
+      // ε peaked since the last observation of this cycle (ε̇ from + to −): the peak from
+      // the cubic through both ends' ε and ε̇ (metrics.hpp, hermite_interior_max).
+      if (prev_film_.valid && t > prev_film_.t && prev_film_.eps_dot > 0.0 && eps_dot < 0.0) {
+        const detail::InteriorMax mx =
+            detail::hermite_interior_max(prev_film_.t, prev_film_.eps, prev_film_.eps_dot, t, eps, eps_dot);
+        film_extreme(mx.value, phase_angle(mx.t));
       }
+      film_extreme(eps, angle);
+      prev_film_ = {true, t, eps, eps_dot};
     }
   }
   if (const int b = scene_.metrics.body; b >= 0) {
@@ -314,6 +334,7 @@ void Runner::close_cycle(double t_end) {
   cur_ = CycleMetrics{};
   cur_.t_start_s = t_end;
   cur_empty_ = true;
+  prev_film_ = {};
 }
 
 bool Runner::sample_step(Integrator& integ, MultibodySystem& sys, double t_prev, double t, double t_end) {
