@@ -160,8 +160,9 @@ class Runner {
 
  private:
   /// One observation at (t, y), one evaluation of the model: with `record` a row of the
-  /// series; with `measure` the cycle's extremes and the drift statistics. Output samples that fall at neither a
-  /// step end nor a phase point only record: the metrics must not depend on the output rate.
+  /// series; with `measure` the cycle's extremes and the drift statistics. Output samples
+  /// that fall at neither a step end nor a phase point only record: the metrics must not
+  /// depend on the output rate.
   void observe(double t, const double* y, bool record, bool measure = true);
   void observe_phase(double t, const double* y);
   void close_cycle(double t_end);
