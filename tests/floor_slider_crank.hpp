@@ -10,6 +10,18 @@
 //   (J_r + m_r l²/4) β̈ = l u⊥·F + (l/2) m_r u⊥·(g − Ä)          (Ä = −aω² (cos θ, sin θ))
 //   m_s ẍ = −F_x                                                  (guide frictionless)
 // The mass matrix is diagonal because the only coupling is the film force.
+//
+// The printed Pinkus–Sternlicht law (pinkus_sternlicht) jumps at ε̇ = 0: its radial force
+// changes sign. The floor then integrates it as a Filippov system, the engine's model
+// (README "Discontinuous force laws") written again here on its own: a mode per branch
+// (outward: the ε̇ >= 0 formula, inward: the ε̇ < 0 one), CVODE's root finder on ε̇ = 0,
+// and a restart there on the branch the state moves to, or on a sliding motion along
+// ε̇ = 0 when the radial force that keeps |e| constant lies within the jump. Sliding: the
+// radial force is that multiplier λ, from the second derivative of |e| (Baumgarte-
+// stabilised, α below), the tangential force the law's at ε̇ = 0; it ends where λ leaves
+// [F_r(0⁺), F_r(0⁻)]. Across ε̇ = 0 inside a step (a Newton iterate, or the step that
+// overshoots the root) the branch is continued to first order from ε̇ = 0±, as the engine
+// does, so that the corrector sees no kink; the restart at the root discards that side.
 #pragma once
 
 #include <cvodes/cvodes.h>
@@ -21,6 +33,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -39,8 +52,25 @@ struct Params {
   bool atol_per_state = false;
 };
 
+/// The branch the printed law is held on (switching), or the law as it is (natural).
+enum class Mode { natural, outward, inward, sliding };
+
+/// Sliding: |e| is held at `radius` [m]. Out: the radial force λ that holds it [N], and
+/// the jump's ends F_r(ε̇ = 0⁺) <= F_r(ε̇ = 0⁻) [N] (the root functions of the exits).
+struct Switching {
+  Mode mode = Mode::natural;
+  double radius = 0.0;
+  double lambda = 0.0, f_out = 0.0, f_in = 0.0;
+};
+
+/// Baumgarte rate of the sliding constraint |e| = radius [1/s]: critically damped at the
+/// crank speed's scale, so a drift of |e| (the local error, ~rtol c) decays within a
+/// fraction of a cycle and the constraint adds no stiffness the film does not have.
+inline double sliding_alpha(const Params& p) { return 4.0 * p.omega; }
+
 // y = (β, x, β̇, ẋ)
-inline int rhs(double t, const double* y, double* yd, const Params& p, double* film_out = nullptr) {
+inline int rhs(double t, const double* y, double* yd, const Params& p, double* film_out = nullptr,
+               Switching* sw = nullptr) {
   const double th = p.omega * t;
   const double c = p.geom.clearance_m();
   const double beta = y[0], x = y[1], bd = y[2], xd = y[3];
@@ -68,26 +98,118 @@ inline int rhs(double t, const double* y, double* yd, const Params& p, double* f
   }
   if (!(s.eps < 1.0)) return 1;
   s.wedge = bd - 2 * gamma_dot;  // ω_J = β̇, the slider does not rotate
-  const lub::FilmForce f = lub::film_force(p.law, p.geom, p.mu, s);
-  const double F[2] = {f.radial_N * r[0] - f.tangential_N * r[1], f.radial_N * r[1] + f.tangential_N * r[0]};
-  if (film_out) film_out[0] = F[0], film_out[1] = F[1];
+  const auto law = [&](const lub::BearingState& at) { return lub::film_force(p.law, p.geom, p.mu, at); };
+  // The branch continued to first order from ε̇ = 0 (side +1: 0⁺, −1: 0⁻), slope over a
+  // step of 1e-6 of the state's ε̇ scale (max of |ε w|/2 and |ε̇|).
+  const auto continued = [&](lub::BearingState at, double side) {
+    lub::BearingState a0 = at, a1 = at;
+    a0.eps_dot = side > 0 ? 0.0 : -std::numeric_limits<double>::min();
+    const double d = 1e-6 * std::max({0.5 * std::abs(at.eps * at.wedge), std::abs(at.eps_dot), 1e-12});
+    a1.eps_dot = side * d;
+    const lub::FilmForce f0 = law(a0), f1 = law(a1);
+    const double w = at.eps_dot / (side * d);
+    return lub::FilmForce{f0.radial_N + w * (f1.radial_N - f0.radial_N),
+                          f0.tangential_N + w * (f1.tangential_N - f0.tangential_N)};
+  };
+  const Mode mode = sw ? sw->mode : Mode::natural;
+  lub::FilmForce f;
+  switch (mode) {
+    case Mode::natural: f = law(s); break;
+    case Mode::outward: f = s.eps_dot >= 0.0 ? law(s) : continued(s, +1.0); break;
+    case Mode::inward: f = s.eps_dot < 0.0 ? law(s) : continued(s, -1.0); break;
+    case Mode::sliding: {
+      lub::BearingState s0 = s;
+      s0.eps_dot = 0.0;
+      f = law(s0);
+      break;
+    }
+  }
   const double Ieff = p.Jr + p.mr * p.l * p.l / 4;
   const double gv[2] = {0.0, -p.g};
+  const double tdir[2] = {-r[1], r[0]};
+  const double Gb = 0.5 * p.l * p.mr * (up[0] * (gv[0] - Add[0]) + up[1] * (gv[1] - Add[1]));
+  if (sw && mode == Mode::sliding) {
+    // λ from  d²|e|/dt² = r·ë + (|ė|² − (r·ė)²)/|e| = −2α (r·ė) − α² (|e| − radius),
+    // with ë = Ä + l β̈ u⊥ − l β̇² u − (ẍ, 0), β̈ = (l u⊥·F + G_β)/I, ẍ = −F_x/m_s and
+    // F = λ r + F_t t: r·ë is affine in λ, with slope l² (u⊥·r)²/I + r_x²/m_s > 0.
+    const double a = sliding_alpha(p);
+    const double Ft[2] = {f.tangential_N * tdir[0], f.tangential_N * tdir[1]};
+    const double bdd_t = (p.l * (up[0] * Ft[0] + up[1] * Ft[1]) + Gb) / Ieff;
+    const double xdd_t = -Ft[0] / p.ms;
+    const double edd_t[2] = {Add[0] + p.l * (bdd_t * up[0] - bd * bd * ub[0]) - xdd_t,
+                             Add[1] + p.l * (bdd_t * up[1] - bd * bd * ub[1])};
+    const double er = r[0] * ed[0] + r[1] * ed[1];
+    const double curv = (ed[0] * ed[0] + ed[1] * ed[1] - er * er) / std::max(en, 1e-300);
+    const double upr = up[0] * r[0] + up[1] * r[1];
+    const double slope = p.l * p.l * upr * upr / Ieff + r[0] * r[0] / p.ms;
+    const double target = -2 * a * er - a * a * (en - sw->radius);
+    f.radial_N = (target - (r[0] * edd_t[0] + r[1] * edd_t[1]) - curv) / slope;
+  }
+  if (sw && p.law == lub::ForceLaw::pinkus_sternlicht) {
+    lub::BearingState s0 = s;
+    s0.eps_dot = 0.0;
+    sw->f_out = law(s0).radial_N;
+    s0.eps_dot = -std::numeric_limits<double>::min();
+    sw->f_in = law(s0).radial_N;
+    sw->lambda = f.radial_N;
+  }
+  const double F[2] = {f.radial_N * r[0] + f.tangential_N * tdir[0], f.radial_N * r[1] + f.tangential_N * tdir[1]};
+  if (film_out) film_out[0] = F[0], film_out[1] = F[1];
   yd[0] = bd;
   yd[1] = xd;
-  yd[2] = (p.l * (up[0] * F[0] + up[1] * F[1]) +
-           0.5 * p.l * p.mr * (up[0] * (gv[0] - Add[0]) + up[1] * (gv[1] - Add[1]))) / Ieff;
+  yd[2] = (p.l * (up[0] * F[0] + up[1] * F[1]) + Gb) / Ieff;
   yd[3] = -F[0] / p.ms;
   return 0;
 }
 
 /// Integrates from the paper's initial state (crank and rod aligned, journal centred,
 /// ideal-joint velocities) for `cycles` crank cycles with CVODE; returns the state at
-/// every multiple of `dt_out` and counts steps.
+/// every multiple of `dt_out` and counts steps. The printed law runs with its events
+/// (Switching above): restarts at every mode switch, counted in `switches`.
 struct Result {
   std::vector<double> t, beta, x, e_x, e_y;
-  long steps = 0, rhs_evals = 0;
+  long steps = 0, rhs_evals = 0, switches = 0;
+  bool ok = true;
 };
+
+namespace detail {
+struct UserData {
+  const Params* p;
+  Switching sw;
+};
+
+/// Root functions: free modes g0 = ε̇ (the other constant); sliding the two exits,
+/// λ − F_r(0⁺) and F_r(0⁻) − λ, each falling through 0.
+inline void set_root_directions(void* mem, Mode mode) {
+  int dir[2] = {0, 0};
+  if (mode == Mode::outward) dir[0] = -1;
+  if (mode == Mode::inward) dir[0] = +1;
+  if (mode == Mode::sliding) dir[0] = dir[1] = -1;
+  CVodeSetRootDirection(mem, dir);
+}
+
+/// The mode after a root at state y (t), by the Filippov conditions: from a free branch at
+/// ε̇ = 0, sliding if the multiplier that holds |e| lies within the jump, else the other
+/// branch; from sliding, the branch on the side the multiplier left by.
+inline Mode next_mode(double t, const double* y, UserData& ud, const int* fired) {
+  const Params& p = *ud.p;
+  const Mode from = ud.sw.mode;
+  if (from == Mode::sliding) return fired[0] != 0 ? Mode::outward : Mode::inward;
+  double yd[4];
+  const double th = p.omega * t;
+  const double ex = p.a * std::cos(th) + p.l * std::cos(y[0]) - y[1], ey = p.a * std::sin(th) + p.l * std::sin(y[0]);
+  const double en = std::hypot(ex, ey);
+  const Mode other = from == Mode::outward ? Mode::inward : Mode::outward;
+  if (en <= 1e-9 * p.geom.clearance_m()) return other;
+  Switching trial = ud.sw;
+  trial.mode = Mode::sliding;
+  trial.radius = en;
+  if (rhs(t, y, yd, p, nullptr, &trial) != 0) return other;
+  ud.sw.radius = en;
+  if (from == Mode::outward) return trial.lambda <= trial.f_in ? Mode::sliding : Mode::inward;
+  return trial.lambda >= trial.f_out ? Mode::sliding : Mode::outward;
+}
+}  // namespace detail
 
 inline Result integrate(const Params& p, double cycles, double rtol, bool bdf, double dt_out) {
   SUNContext ctx;
@@ -97,12 +219,41 @@ inline Result integrate(const Params& p, double cycles, double rtol, bool bdf, d
   NV_Ith_S(y, 1) = p.a + p.l;
   NV_Ith_S(y, 2) = -p.a * p.omega / p.l;
   NV_Ith_S(y, 3) = 0.0;
+  const bool switching = p.law == lub::ForceLaw::pinkus_sternlicht;
+  detail::UserData ud{&p, {}};
+  if (switching) ud.sw.mode = Mode::outward;  // ε̇ >= 0 at the centred start
   void* mem = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, ctx);
-  auto f = [](sunrealtype t, N_Vector yv, N_Vector ydv, void* ud) {
-    return rhs(t, N_VGetArrayPointer(yv), N_VGetArrayPointer(ydv), *static_cast<const Params*>(ud));
+  auto f = [](sunrealtype t, N_Vector yv, N_Vector ydv, void* u) {
+    auto* d = static_cast<detail::UserData*>(u);
+    return rhs(t, N_VGetArrayPointer(yv), N_VGetArrayPointer(ydv), *d->p, nullptr,
+               d->p->law == lub::ForceLaw::pinkus_sternlicht ? &d->sw : nullptr);
+  };
+  auto g = [](sunrealtype t, N_Vector yv, sunrealtype* gout, void* u) {
+    auto* d = static_cast<detail::UserData*>(u);
+    const double* yy = N_VGetArrayPointer(yv);
+    double yd[4];
+    if (rhs(t, yy, yd, *d->p, nullptr, &d->sw) != 0) return 1;
+    if (d->sw.mode == Mode::sliding) {
+      gout[0] = d->sw.lambda - d->sw.f_out;
+      gout[1] = d->sw.f_in - d->sw.lambda;
+    } else {
+      const double th = d->p->omega * t;
+      const double e[2] = {d->p->a * std::cos(th) + d->p->l * std::cos(yy[0]) - yy[1],
+                           d->p->a * std::sin(th) + d->p->l * std::sin(yy[0])};
+      const double ed[2] = {-d->p->a * d->p->omega * std::sin(th) - d->p->l * yy[2] * std::sin(yy[0]) - yy[3],
+                            d->p->a * d->p->omega * std::cos(th) + d->p->l * yy[2] * std::cos(yy[0])};
+      gout[0] = (e[0] * ed[0] + e[1] * ed[1]) / std::max(std::hypot(e[0], e[1]), 1e-300);  // |e| ε̇ c
+      gout[1] = 1.0;
+    }
+    return 0;
   };
   CVodeInit(mem, f, 0.0, y);
-  CVodeSetUserData(mem, const_cast<Params*>(&p));
+  CVodeSetUserData(mem, &ud);
+  if (switching) {
+    CVodeRootInit(mem, 2, g);
+    CVodeSetNoInactiveRootWarn(mem);
+    detail::set_root_directions(mem, ud.sw.mode);
+  }
   N_Vector atol = N_VNew_Serial(4, ctx);
   const double c = p.geom.clearance_m();
   const double units[4] = {c / p.l, c, c * p.omega / p.l, c * p.omega};
@@ -123,11 +274,35 @@ inline Result integrate(const Params& p, double cycles, double rtol, bool bdf, d
   const double t_end = cycles * 2 * M_PI / p.omega;
   CVodeSetStopTime(mem, t_end);
   Result res;
+  long steps_before = 0, rhs_before = 0;  // the counters of the runs before each restart
+  const auto count = [&](long& steps, long& evals) {
+    long s = 0, e = 0, je = 0;
+    CVodeGetNumSteps(mem, &s);
+    CVodeGetNumRhsEvals(mem, &e);
+    if (bdf) CVodeGetNumLinRhsEvals(mem, &je);  // the difference-quotient Jacobian's, as the engine counts them
+    steps = s;
+    evals = e + je;
+  };
   const int n_out = static_cast<int>(std::floor(t_end / dt_out + 1e-9));
-  for (int k = 1; k <= n_out; ++k) {
-    double tret;
-    const int flag = CVode(mem, k * dt_out, y, &tret, CV_NORMAL);
-    if (flag < 0) break;
+  for (int k = 1; k <= n_out && res.ok; ++k) {
+    double tret = 0;
+    int flag = 0;
+    while ((flag = CVode(mem, k * dt_out, y, &tret, CV_NORMAL)) == CV_ROOT_RETURN) {
+      int fired[2] = {0, 0};
+      CVodeGetRootInfo(mem, fired);
+      ud.sw.mode = detail::next_mode(tret, N_VGetArrayPointer(y), ud, fired);
+      ++res.switches;
+      long s = 0, e = 0;
+      count(s, e);
+      steps_before += s;
+      rhs_before += e;
+      CVodeReInit(mem, tret, y);
+      detail::set_root_directions(mem, ud.sw.mode);
+    }
+    if (flag < 0) {
+      res.ok = false;
+      break;
+    }
     res.t.push_back(tret);
     res.beta.push_back(NV_Ith_S(y, 0));
     res.x.push_back(NV_Ith_S(y, 1));
@@ -135,13 +310,9 @@ inline Result integrate(const Params& p, double cycles, double rtol, bool bdf, d
     res.e_x.push_back(p.a * std::cos(th) + p.l * std::cos(NV_Ith_S(y, 0)) - NV_Ith_S(y, 1));
     res.e_y.push_back(p.a * std::sin(th) + p.l * std::sin(NV_Ith_S(y, 0)));
   }
-  CVodeGetNumSteps(mem, &res.steps);
-  CVodeGetNumRhsEvals(mem, &res.rhs_evals);
-  if (bdf) {  // with the difference-quotient Jacobian's, as the engine counts them
-    long jac_rhs = 0;
-    CVodeGetNumLinRhsEvals(mem, &jac_rhs);
-    res.rhs_evals += jac_rhs;
-  }
+  count(res.steps, res.rhs_evals);
+  res.steps += steps_before;
+  res.rhs_evals += rhs_before;
   CVodeFree(&mem);
   if (LS) SUNLinSolFree(LS);
   if (A) SUNMatDestroy(A);
