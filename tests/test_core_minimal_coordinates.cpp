@@ -39,10 +39,11 @@ void compare(const std::string& law, lub::ForceLaw flaw, const std::string& form
   if (flaw == lub::ForceLaw::pinkus_sternlicht) {
     // The same events on both sides in these 2 cycles: 12 switches each (3 per ε̇ = 0
     // episode, 2 a cycle: onto sliding, off it inward, back outward). In cycles 3 and 4 the engine
-    // adds a pair twice: at a sliding exit where the force leaves the jump tangentially,
-    // its run loop's resync sees ε̇ > 1e-6 1/s 8 ns later and flips to the outward branch,
-    // and the root finder flips it back at once (28 against the floor's 24 in 4 cycles;
-    // the orbits still agree to 2.3e-9 c at the cycle ends).
+    // adds a pair twice: at a grazing sliding exit (the force leaves the jump
+    // tangentially) ε̇ turns positive from its exact 0 on the inward branch, the resync
+    // puts the film outward 8 ns later, and the next ε̇ = 0 root sends it inward (28
+    // against the floor's 24 in 4 cycles, README "An independent route for the
+    // switching"; the orbits still agree to 2.3e-9 c at the cycle ends).
     EXPECT_EQ(f.switches, r.stats.mode_switches) << formulation;
     EXPECT_GT(f.switches, 0);
   }
