@@ -35,6 +35,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "lub/bearing/film_force.hpp"
@@ -55,13 +56,23 @@ struct Params {
 /// The branch the printed law is held on (switching), or the law as it is (natural).
 enum class Mode { natural, outward, inward, sliding };
 
-/// Sliding: |e| is held at `radius` [m]. Out: the radial force λ that holds it [N], and
-/// the jump's ends F_r(ε̇ = 0⁺) <= F_r(ε̇ = 0⁻) [N] (the root functions of the exits).
+/// In: the mode, and while sliding the |e| it holds, `radius` [m]. Out (rhs): the film's
+/// state, |e| [m] and the radial force [N] (sliding: the multiplier λ that holds |e|).
 struct Switching {
   Mode mode = Mode::natural;
   double radius = 0.0;
-  double lambda = 0.0, f_out = 0.0, f_in = 0.0;
+  lub::BearingState state;
+  double e_norm = 0.0, radial_N = 0.0;
 };
+
+/// The printed law's jump at ε̇ = 0 in the state `s`: its ends F_r(0⁺) <= F_r(0⁻) [N].
+/// Sliding holds while the multiplier lies between them.
+inline std::pair<double, double> jump_limits(const Params& p, lub::BearingState s) {
+  s.eps_dot = 0.0;
+  const double f_out = lub::film_force(p.law, p.geom, p.mu, s).radial_N;
+  s.eps_dot = -std::numeric_limits<double>::min();
+  return {f_out, lub::film_force(p.law, p.geom, p.mu, s).radial_N};
+}
 
 /// Baumgarte rate of the sliding constraint |e| = radius [1/s]: critically damped at the
 /// crank speed's scale, so a drift of |e| (the local error, ~rtol c) decays within a
@@ -145,13 +156,10 @@ inline int rhs(double t, const double* y, double* yd, const Params& p, double* f
     const double target = -2 * a * er - a * a * (en - sw->radius);
     f.radial_N = (target - (r[0] * edd_t[0] + r[1] * edd_t[1]) - curv) / slope;
   }
-  if (sw && p.law == lub::ForceLaw::pinkus_sternlicht) {
-    lub::BearingState s0 = s;
-    s0.eps_dot = 0.0;
-    sw->f_out = law(s0).radial_N;
-    s0.eps_dot = -std::numeric_limits<double>::min();
-    sw->f_in = law(s0).radial_N;
-    sw->lambda = f.radial_N;
+  if (sw) {
+    sw->state = s;
+    sw->e_norm = en;
+    sw->radial_N = f.radial_N;
   }
   const double F[2] = {f.radial_N * r[0] + f.tangential_N * tdir[0], f.radial_N * r[1] + f.tangential_N * tdir[1]};
   if (film_out) film_out[0] = F[0], film_out[1] = F[1];
@@ -195,19 +203,19 @@ inline Mode next_mode(double t, const double* y, UserData& ud, const int* fired)
   const Params& p = *ud.p;
   const Mode from = ud.sw.mode;
   if (from == Mode::sliding) return fired[0] != 0 ? Mode::outward : Mode::inward;
-  double yd[4];
-  const double th = p.omega * t;
-  const double ex = p.a * std::cos(th) + p.l * std::cos(y[0]) - y[1], ey = p.a * std::sin(th) + p.l * std::sin(y[0]);
-  const double en = std::hypot(ex, ey);
   const Mode other = from == Mode::outward ? Mode::inward : Mode::outward;
-  if (en <= 1e-9 * p.geom.clearance_m()) return other;
+  double yd[4];
   Switching trial = ud.sw;
+  if (rhs(t, y, yd, p, nullptr, &trial) != 0) return other;  // |e| here
+  if (trial.e_norm <= 1e-9 * p.geom.clearance_m()) return other;
   trial.mode = Mode::sliding;
-  trial.radius = en;
-  if (rhs(t, y, yd, p, nullptr, &trial) != 0) return other;
-  ud.sw.radius = en;
-  if (from == Mode::outward) return trial.lambda <= trial.f_in ? Mode::sliding : Mode::inward;
-  return trial.lambda >= trial.f_out ? Mode::sliding : Mode::outward;
+  trial.radius = trial.e_norm;
+  if (rhs(t, y, yd, p, nullptr, &trial) != 0) return other;  // λ that holds it
+  const auto [f_out, f_in] = jump_limits(p, trial.state);
+  const bool slide = from == Mode::outward ? trial.radial_N <= f_in : trial.radial_N >= f_out;
+  if (!slide) return other;
+  ud.sw.radius = trial.radius;
+  return Mode::sliding;
 }
 }  // namespace detail
 
@@ -230,19 +238,14 @@ inline Result integrate(const Params& p, double cycles, double rtol, bool bdf, d
   };
   auto g = [](sunrealtype t, N_Vector yv, sunrealtype* gout, void* u) {
     auto* d = static_cast<detail::UserData*>(u);
-    const double* yy = N_VGetArrayPointer(yv);
     double yd[4];
-    if (rhs(t, yy, yd, *d->p, nullptr, &d->sw) != 0) return 1;
+    if (rhs(t, N_VGetArrayPointer(yv), yd, *d->p, nullptr, &d->sw) != 0) return 1;
     if (d->sw.mode == Mode::sliding) {
-      gout[0] = d->sw.lambda - d->sw.f_out;
-      gout[1] = d->sw.f_in - d->sw.lambda;
+      const auto [f_out, f_in] = jump_limits(*d->p, d->sw.state);
+      gout[0] = d->sw.radial_N - f_out;
+      gout[1] = f_in - d->sw.radial_N;
     } else {
-      const double th = d->p->omega * t;
-      const double e[2] = {d->p->a * std::cos(th) + d->p->l * std::cos(yy[0]) - yy[1],
-                           d->p->a * std::sin(th) + d->p->l * std::sin(yy[0])};
-      const double ed[2] = {-d->p->a * d->p->omega * std::sin(th) - d->p->l * yy[2] * std::sin(yy[0]) - yy[3],
-                            d->p->a * d->p->omega * std::cos(th) + d->p->l * yy[2] * std::cos(yy[0])};
-      gout[0] = (e[0] * ed[0] + e[1] * ed[1]) / std::max(std::hypot(e[0], e[1]), 1e-300);  // |e| ε̇ c
+      gout[0] = d->sw.state.eps_dot;
       gout[1] = 1.0;
     }
     return 0;
