@@ -23,12 +23,13 @@
 #include <vector>
 
 #include "lub/bearing/film_force.hpp"
+#include "lub/common/constants.hpp"
 #include "lub/bearing/reynolds.hpp"
 #include "lub/bearing/steady_bearing.hpp"
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using lub::kPi;
 
 const char* kUsage =
     "usage: lubbearing force  --model M --eps E --eps-dot ED --omega W --gamma-dot GD\n"

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "lub/bearing/film_force.hpp"
+#include "lub/common/constants.hpp"
 #include "lub/io/json_reader.hpp"
 #include "lub/io/output_path.hpp"
 #include "lub/bearing/reynolds.hpp"
@@ -32,7 +33,7 @@ namespace py = pybind11;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using lub::kPi;
 
 py::array_t<double> to_array(const std::vector<double>& v) {
   return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());

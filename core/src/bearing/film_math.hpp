@@ -17,10 +17,9 @@
 #include <algorithm>
 #include <cmath>
 
-namespace lub::detail {
+#include "lub/common/constants.hpp"
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kTwoPi = 6.28318530717958647692;
+namespace lub::detail {
 
 /// β = ε/(1 + s), accurate for all ε in [0, 1).
 inline double kepler_beta(double eps, double s) { return eps / (1.0 + s); }

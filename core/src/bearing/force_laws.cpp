@@ -15,9 +15,6 @@
 namespace lub {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
-using detail::kTwoPi;
 
 // Long-bearing antiderivatives in ψ (see force_laws.hpp, "Laws beyond the paper").
 struct LongCoefficients {

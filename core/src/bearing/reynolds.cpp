@@ -17,9 +17,6 @@
 
 namespace lub {
 
-using detail::kPi;
-using detail::kTwoPi;
-
 namespace {
 
 constexpr int kMaxActiveSetIterations = 50;  // at least; n_theta + n_z on large grids

@@ -12,7 +12,7 @@ namespace lub {
 double sommerfeld_number(const BearingGeometry& g, double viscosity_Pa_s, double load_N,
                          double speed_rad_s) {
   const double rc = g.journal_radius_m / g.clearance_m();
-  const double n_rev = std::fabs(speed_rad_s) / detail::kTwoPi;
+  const double n_rev = std::fabs(speed_rad_s) / kTwoPi;
   const double p = load_N / (2.0 * g.journal_radius_m * g.length_m);
   return rc * rc * viscosity_Pa_s * n_rev / p;
 }

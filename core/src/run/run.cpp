@@ -6,6 +6,7 @@
 #include <limits>
 #include <sstream>
 
+#include "lub/common/constants.hpp"
 #include "lub/integrators/integrator.hpp"
 #include "lub/mechanism/film_element.hpp"
 #include "lub/mechanism/builder.hpp"
@@ -19,7 +20,6 @@ namespace lub {
 
 namespace {
 
-constexpr double kTwoPi = 6.28318530717958647692;
 constexpr int kPhasePoints = 120;
 constexpr size_t kMaxBoundaries = 4096;  // cycle-boundary states a segment keeps  // orbit samples per cycle (every 3°) for the periodicity measure
 

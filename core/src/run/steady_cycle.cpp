@@ -15,6 +15,7 @@
 
 #include <sstream>
 
+#include "lub/common/constants.hpp"
 #include "lub/formulation/multibody_system.hpp"
 #include "lub/mechanism/builder.hpp"
 #include "lub/run/run.hpp"
@@ -35,9 +36,7 @@ using detail::SegmentOptions;
 using detail::SegmentResult;
 using detail::StartState;
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kTwoPi = 6.28318530717958647692;
 /// Cycles the contraction estimate and the drift fit look back on: a few turns of a
 /// complex dominant pair, few enough to follow a rate that changes as the orbit closes in.
 constexpr int kWindow = 10;

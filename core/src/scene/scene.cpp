@@ -8,13 +8,13 @@
 #include <sstream>
 #include <vector>
 
+#include "lub/common/constants.hpp"
+
 namespace lub {
 
 using nlohmann::json;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 int resolve_body(const Scene& scene, ObjectReader& r, const std::string& key, bool allow_ground) {
   const std::string name = r.string(key);

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "lub/bearing/force_laws.hpp"
+#include "lub/common/constants.hpp"
 
 namespace lub {
 
@@ -62,7 +63,7 @@ void report_steady_bearing(Out& out, const SteadyBearingInput& in, double speed_
     return;
   }
   out["eps"] = r.eps;
-  out["attitude_angle_deg"] = r.attitude_rad * 180.0 / 3.14159265358979323846;
+  out["attitude_angle_deg"] = r.attitude_rad * 180.0 / kPi;
   out["min_film_thickness_m"] = r.min_film_m;
   out["radial_N"] = r.force.radial_N;
   out["tangential_N"] = r.force.tangential_N;

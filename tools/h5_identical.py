@@ -1,0 +1,87 @@
+#!/usr/bin/python3
+"""Are two HDF5 files (run or study files) identical, wall-clock values aside?
+
+    /usr/bin/python3 tools/h5_identical.py A.h5 B.h5 [--ignore NAME ...]
+
+Walks both files: every group, dataset (shape, dtype, bytes) and attribute (value, bit
+for bit, NaN equal to NaN) must match. Names ignored by default: what a clock or the
+build stamps (wall_time_s, wall_s, revision, created, the study's wall columns, the
+scene text's absolute paths do not occur). Used to show a refactor changed no number:
+steps and counters included. Exit 0: identical; 1: the first differences listed; 2: bad input.
+"""
+import argparse
+import sys
+
+import h5py
+import numpy as np
+
+DEFAULT_IGNORE = {"wall_time_s", "wall_s", "case_wall_time_s", "revision", "created", "created_utc",
+                  "host", "hostname", "total_wall_time_s", "elapsed_s"}
+
+
+def same_value(a, b):
+    a, b = np.asarray(a), np.asarray(b)
+    if a.shape != b.shape or a.dtype != b.dtype:
+        return False
+    if a.dtype.kind == "f":
+        return bool(np.array_equal(a.view(np.uint8) if a.size else a, b.view(np.uint8) if b.size else b)
+                    or np.array_equal(a, b, equal_nan=True))
+    if a.dtype.kind in "SUO":
+        return a.tolist() == b.tolist()
+    return bool(np.array_equal(a, b))
+
+
+def compare(a, b, ignore, path, diffs):
+    for k in sorted(set(a.attrs) | set(b.attrs)):
+        if k in ignore:
+            continue
+        if k not in a.attrs or k not in b.attrs:
+            diffs.append(f"{path}@{k}: only in {'B' if k not in a.attrs else 'A'}")
+        elif not same_value(a.attrs[k], b.attrs[k]):
+            diffs.append(f"{path}@{k}: {a.attrs[k]!r} != {b.attrs[k]!r}")
+    if isinstance(a, h5py.Dataset) or isinstance(b, h5py.Dataset):
+        if not (isinstance(a, h5py.Dataset) and isinstance(b, h5py.Dataset)):
+            diffs.append(f"{path}: a dataset in one file only")
+        elif a.name.rsplit("/", 1)[-1] not in ignore:
+            x, y = a[()], b[()]
+            if a.dtype.names:  # compound: field by field, ignored fields skipped
+                for f in a.dtype.names:
+                    if f in ignore:
+                        continue
+                    if b.dtype.names is None or f not in b.dtype.names or not same_value(x[f], y[f]):
+                        diffs.append(f"{path}.{f}: differs")
+            elif not same_value(x, y):
+                diffs.append(f"{path}: differs (shape {np.shape(x)} / {np.shape(y)})")
+        return
+    for k in sorted(set(a) | set(b)):
+        if k in ignore:
+            continue
+        if k not in a or k not in b:
+            diffs.append(f"{path}/{k}: only in {'B' if k not in a else 'A'}")
+            continue
+        compare(a[k], b[k], ignore, f"{path}/{k}" if path != "/" else f"/{k}", diffs)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("a")
+    ap.add_argument("b")
+    ap.add_argument("--ignore", action="append", default=[], help="a group, dataset, attribute or field name")
+    args = ap.parse_args()
+    diffs = []
+    try:
+        with h5py.File(args.a, "r") as fa, h5py.File(args.b, "r") as fb:
+            compare(fa, fb, DEFAULT_IGNORE | set(args.ignore), "/", diffs)
+    except OSError as e:
+        print(f"h5_identical: {e}", file=sys.stderr)
+        return 2
+    for d in diffs[:40]:
+        print(d)
+    if len(diffs) > 40:
+        print(f"... and {len(diffs) - 40} more")
+    print("identical" if not diffs else f"{len(diffs)} differences")
+    return 0 if not diffs else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
