@@ -3,11 +3,11 @@
 
     /usr/bin/python3 tools/h5_identical.py A.h5 B.h5 [--ignore NAME ...]
 
-Walks both files: every group, dataset (shape, dtype, bytes) and attribute (value, bit
-for bit, NaN equal to NaN) must match. Names ignored by default: what a clock or the
-build stamps (wall_time_s, wall_s, revision, created, the study's wall columns, the
-scene text's absolute paths do not occur). Used to show a refactor changed no number:
-steps and counters included. Exit 0: identical; 1: the first differences listed; 2: bad input.
+Walks both files: every group, dataset (shape, dtype, bytes) and attribute must match,
+bit for bit (object references by the names they point to). Ignored by default: what a
+clock or the build stamps, and which MPI rank ran a case (rank, wall_time_s, revision:
+DEFAULT_IGNORE); --ignore adds names. Shows that a refactor changed no number, steps and
+counters included. Exit 0: identical; 1: the first differences listed; 2: bad input.
 """
 import argparse
 import sys
@@ -15,17 +15,30 @@ import sys
 import h5py
 import numpy as np
 
-DEFAULT_IGNORE = {"wall_time_s", "wall_s", "case_wall_time_s", "revision", "created", "created_utc",
+DEFAULT_IGNORE = {"rank", "wall_time_s", "wall_s", "case_wall_time_s", "revision", "created", "created_utc",
                   "host", "hostname", "total_wall_time_s", "elapsed_s"}
 
 
-def same_value(a, b):
+def resolve(v, f):
+    """Object references (dimension scales' DIMENSION_LIST, REFERENCE_LIST) as the names they point to."""
+    if isinstance(v, h5py.Reference):
+        return f[v].name if v else None
+    if isinstance(v, np.void) and v.dtype.names:
+        return tuple(resolve(v[n], f) for n in v.dtype.names)
+    if isinstance(v, np.ndarray) and v.dtype.kind in "OV":
+        return [resolve(x, f) for x in v]
+    return v
+
+
+def same_value(a, b, fa=None, fb=None):
+    if fa is not None and (np.asarray(a).dtype.kind in "OV"):
+        return resolve(np.asarray(a), fa) == resolve(np.asarray(b), fb)
     a, b = np.asarray(a), np.asarray(b)
     if a.shape != b.shape or a.dtype != b.dtype:
         return False
     if a.dtype.kind == "f":
-        return bool(np.array_equal(a.view(np.uint8) if a.size else a, b.view(np.uint8) if b.size else b)
-                    or np.array_equal(a, b, equal_nan=True))
+        # Bit for bit: −0.0 differs from 0.0; a NaN equals the same NaN.
+        return bool(np.array_equal(a.reshape(-1).view(np.uint8), b.reshape(-1).view(np.uint8)))
     if a.dtype.kind in "SUO":
         return a.tolist() == b.tolist()
     return bool(np.array_equal(a, b))
@@ -37,8 +50,8 @@ def compare(a, b, ignore, path, diffs):
             continue
         if k not in a.attrs or k not in b.attrs:
             diffs.append(f"{path}@{k}: only in {'B' if k not in a.attrs else 'A'}")
-        elif not same_value(a.attrs[k], b.attrs[k]):
-            diffs.append(f"{path}@{k}: {a.attrs[k]!r} != {b.attrs[k]!r}")
+        elif not same_value(a.attrs[k], b.attrs[k], a.file, b.file):
+            diffs.append(f"{path}@{k}: {str(a.attrs[k])[:200]} != {str(b.attrs[k])[:200]}")
     if isinstance(a, h5py.Dataset) or isinstance(b, h5py.Dataset):
         if not (isinstance(a, h5py.Dataset) and isinstance(b, h5py.Dataset)):
             diffs.append(f"{path}: a dataset in one file only")

@@ -56,6 +56,26 @@ Workspace::Workspace(const Model& m)
         if (b != kGround && (b == row_bodies[s][0] || b == row_bodies[s][1])) schur_pairs.push_back({r, s, b});
 }
 
+void Workspace::reset(const Model& m) {
+  check_workspace(m, *this);
+  for (Eigen::VectorXd* x : {&Phi, &Phi_dot, &gamma, &g, &rhs, &lambda, &qdd}) x->setZero();
+  Phi_q.setZero();
+  S.setZero();
+  std::fill(cos_phi.begin(), cos_phi.end(), 1.0);
+  std::fill(sin_phi.begin(), sin_phi.end(), 0.0);
+  std::fill(trig_phi.begin(), trig_phi.end(), std::numeric_limits<double>::quiet_NaN());
+  std::fill(films.begin(), films.end(), FilmKinematics{});
+  counters = EvalCounters{};
+  std::fill(slide_radius.begin(), slide_radius.end(), 0.0);
+  std::fill(slide_row.begin(), slide_row.end(), -1);
+  nc_active = m.nc;
+  std::fill(contact_N.begin(), contact_N.end(), 0.0);
+  for (size_t k = 0; k < m.films.size(); ++k) {
+    film_mode[k] = m.films[k].switching ? FilmMode::outward : FilmMode::natural;
+    if (m.films[k].law == ForceLaw::finite_reynolds) film_solvers[k].emplace(m.films[k].finite);
+  }
+}
+
 namespace {
 // Adds a body's share of a film element's generalised force (x, y, φ) to g.
 inline void add_body_load(Eigen::VectorXd& g, int b, const double* load) {

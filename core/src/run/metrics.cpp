@@ -5,6 +5,41 @@
 #include <cmath>
 #include <limits>
 
+#include "lub/common/constants.hpp"
+
+namespace lub {
+
+const std::array<SteadyMetric, 6>& steady_metrics() {
+  static const std::array<SteadyMetric, 6> table{{
+      {"min_film_thickness_m", "m", "minimum film thickness h = c (1 - eps) over the metric cycles",
+       "minimum film thickness in the cycle",
+       ": change at a 100x tighter rtol (+ the transient's remaining change)", &Metrics::min_film_thickness_m,
+       &Metrics::min_film_thickness_m_error, &CycleMetrics::min_film_m, false},
+      {"crank_angle_at_min_film_rad", "rad", "crank angle at the minimum film thickness, in [0, 2 pi)",
+       "crank angle at the minimum film thickness", "", &Metrics::angle_at_min_film_rad,
+       &Metrics::angle_at_min_film_rad_error, &CycleMetrics::angle_at_min_film_rad, true},
+      {"max_eps", "1", "largest eccentricity ratio |e|/c over the metric cycles",
+       "largest eccentricity ratio in the cycle", "", &Metrics::max_eps, &Metrics::max_eps_error,
+       &CycleMetrics::max_eps, false},
+      {"peak_reaction_N", "N", "peak force transmitted by the metric joint",
+       "peak force transmitted by the metric joint", "", &Metrics::peak_reaction_N, &Metrics::peak_reaction_N_error,
+       &CycleMetrics::peak_reaction_N, false},
+      {"crank_angle_at_peak_reaction_rad", "rad", "crank angle at the peak joint force, in [0, 2 pi)",
+       "crank angle at the peak joint force", "", &Metrics::angle_at_peak_reaction_rad,
+       &Metrics::angle_at_peak_reaction_rad_error, &CycleMetrics::angle_at_peak_reaction_rad, true},
+      {"peak_acceleration_m_s2", "m s-2", "peak acceleration magnitude of the metric body",
+       "peak acceleration of the metric body", "", &Metrics::peak_acceleration_m_s2,
+       &Metrics::peak_acceleration_m_s2_error, &CycleMetrics::peak_acceleration_m_s2, false},
+  }};
+  return table;
+}
+
+double metric_distance(const SteadyMetric& metric, double a, double b) {
+  return metric.angle ? std::abs(std::remainder(a - b, kTwoPi)) : std::abs(a - b);
+}
+
+}  // namespace lub
+
 namespace lub::detail {
 
 Metrics steady_cycle_metrics(const Scene& scene, const std::vector<CycleMetrics>& cycles, int cycles_done) {

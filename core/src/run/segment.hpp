@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "lub/mechanism/model.hpp"
+#include "lub/mechanism/builder.hpp"
 #include "lub/run/run.hpp"
 #include "lub/scene/scene.hpp"
 
@@ -31,6 +32,21 @@ struct SegmentOptions {
   std::function<bool(const std::vector<CycleMetrics>&)> stop_after_cycle;
 };
 
+/// What a run builds once and all its segments share (Pinocchio's Model/Data split): the
+/// immutable Model and a workspace for each of its users. Each segment resets the
+/// workspaces it uses, so it starts from the state a fresh build would give.
+struct RunModel {
+  explicit RunModel(const Scene& scene);
+  const Scene& scene;
+  Model model;
+  Workspace integrator_ws;  ///< the integrator's
+  /// The observers' own: what they evaluate (a finite-Reynolds solver's warm start, the
+  /// counters) must not reach the integrator's workspace, or how often a run samples
+  /// would change its trajectory. Film modes are copied in before each observation.
+  Workspace observer_ws;
+  Workspace chart_ws;       ///< shooting's chart of independent coordinates (period_map.cpp)
+};
+
 struct SegmentResult {
   RunResult res;                    ///< status, stats, cycles, series; metrics over the last cycles
   StartState end;                   ///< the state where the segment ended (a cycle boundary if ok)
@@ -38,18 +54,9 @@ struct SegmentResult {
   std::vector<StartState> boundaries;
 };
 
-SegmentResult run_segment(const Scene& scene, const SegmentOptions& opt);
+SegmentResult run_segment(RunModel& rm, const SegmentOptions& opt);
 
 /// Adds the counters and costs of `s` to `total` (drift: the larger).
 void accumulate(SolverStats& total, const SolverStats& s);
-
-/// Each state's unit (2 nq, (q, v)): lengths in the smallest clearance (1 mm without a
-/// film), angles in that over the body's size, rates in those times the driver's speed.
-/// The absolute tolerances are rtol times these; shooting measures residuals in them.
-Eigen::VectorXd state_units(const Scene& scene, const Model& m);
-
-/// The orbit distance between two cycles' phase points is measured in the clearance; below
-/// this it is noise (the contraction estimate's floor): max(10 rtol, 1e-3 steady_tolerance).
-double orbit_noise_floor(const Scene& scene, double rtol_factor = 1.0);
 
 }  // namespace lub::detail

@@ -1,4 +1,4 @@
-// A run's steady cycle (README "Steady cycles"): run_scene strings integration segments
+// A run's steady cycle (docs/theory/steady-cycles.md): run_scene strings integration segments
 // (segment.hpp) together by simulation.steady:
 //  - transient: cycle after cycle, stopped (stop_when_steady) once the contraction
 //    estimate says the orbit is within steady_tolerance of its limit, δ ρ/(1 − ρ);
@@ -12,16 +12,13 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-
 #include <sstream>
 
-#include "lub/common/constants.hpp"
-#include "lub/formulation/multibody_system.hpp"
-#include "lub/mechanism/builder.hpp"
 #include "lub/run/run.hpp"
 #include "lub/steady/contraction.hpp"
 #include "lub/steady/periodic_orbit.hpp"
 #include "run/metrics.hpp"
+#include "run/period_map.hpp"
 #include "run/segment.hpp"
 
 namespace lub {
@@ -32,6 +29,9 @@ std::string classification(const RunResult& r) {
 
 namespace {
 
+using detail::Chart;
+using detail::PeriodMap;
+using detail::RunModel;
 using detail::SegmentOptions;
 using detail::SegmentResult;
 using detail::StartState;
@@ -51,6 +51,17 @@ constexpr int kWindow = 10;
 constexpr double kDifferenceStep = 1e-2;
 /// Error bars re-integrate at rtol × this.
 constexpr double kTightFactor = 0.01;
+
+/// The orbit distance between two cycles' phase points is measured in the clearance; below
+/// this it is noise (the contraction estimate's floor). The phase points come from the
+/// dense output, accurate to about the local error tolerance, rtol × c in the clearance's
+/// unit; the cycle-to-cycle distance of a converged printed-law transient plateaus at
+/// 7e-7 c at rtol 1e-8 (the interpolant and the restarts at every ε̇ = 0 switch). Below
+/// 1e-3 of the steady tolerance a distance is noise for the question asked (1e-6 c a
+/// cycle is 1e-3 c in 1000 cycles).
+double orbit_noise_floor(const Scene& scene) {
+  return std::max(10.0 * scene.solver.rtol, 1e-3 * scene.simulation.steady_tolerance);
+}
 
 std::vector<double> cycle_distances(const std::vector<CycleMetrics>& cycles) {
   std::vector<double> d;
@@ -87,7 +98,7 @@ struct TransientEstimate {
 };
 TransientEstimate estimate_transient(const Scene& scene, const std::vector<CycleMetrics>& cs) {
   TransientEstimate e;
-  const double floor = detail::orbit_noise_floor(scene);
+  const double floor = orbit_noise_floor(scene);
   e.orbit = steady::estimate_contraction(cycle_distances(cs), kWindow, floor);
   const std::vector<double> dh = film_changes(cs);
   if (!dh.empty() && dh.back() >= 0.0) {
@@ -112,128 +123,22 @@ double transient_cycles_left(const Scene& scene, const std::vector<CycleMetrics>
   return has_film(cs) ? std::max(n, steady::cycles_to_converge(e.film, tol)) : n;
 }
 
-double wrapped_angle_difference(double a, double b) {
-  const double d = std::remainder(a - b, kTwoPi);
-  return std::abs(d);
-}
-
-/// |metric − tight metric| for every steady metric, plus `extra` (per metric) on top.
+/// Each steady metric's error bar: |metric − tight metric| (on the circle for an angle),
+/// plus `extra` (per metric: a transient's remaining change) on top.
 void set_errors(Metrics& m, const Metrics& tight, const Metrics* extra = nullptr) {
-  auto e = [&](double Metrics::*f) { return extra ? extra->*f : 0.0; };
-  m.min_film_thickness_m_error =
-      std::abs(m.min_film_thickness_m - tight.min_film_thickness_m) + e(&Metrics::min_film_thickness_m);
-  m.angle_at_min_film_rad_error = wrapped_angle_difference(m.angle_at_min_film_rad, tight.angle_at_min_film_rad) +
-                                  e(&Metrics::angle_at_min_film_rad);
-  m.max_eps_error = std::abs(m.max_eps - tight.max_eps) + e(&Metrics::max_eps);
-  m.peak_reaction_N_error = std::abs(m.peak_reaction_N - tight.peak_reaction_N) + e(&Metrics::peak_reaction_N);
-  m.angle_at_peak_reaction_rad_error =
-      wrapped_angle_difference(m.angle_at_peak_reaction_rad, tight.angle_at_peak_reaction_rad) +
-      e(&Metrics::angle_at_peak_reaction_rad);
-  m.peak_acceleration_m_s2_error =
-      std::abs(m.peak_acceleration_m_s2 - tight.peak_acceleration_m_s2) + e(&Metrics::peak_acceleration_m_s2);
-}
-
-/// The coordinates shooting works in: the partitioned formulation's independent
-/// coordinates and velocities, partitioned once at the state where shooting starts
-/// (whatever formulation integrates the periods), each in its own unit.
-struct Chart {
-  Model m;
-  Workspace ws;
-  MultibodySystem sys;
-  std::vector<double> units;
-  int n = 0;
-  Chart(const Scene& scene, const StartState& x)
-      : m(build_model(scene)), ws(m), sys(m, ws, scene.simulation.eps_limit, false, Formulation::partitioned) {
-    sys.partition(x.t, x.qv.data());
-    n = sys.size();
-    const Eigen::VectorXd full = detail::state_units(scene, m);
-    units.assign(static_cast<size_t>(n), 0.0);
-    sys.reduce(full.data(), units.data());
-  }
-  Eigen::VectorXd reduce(const std::vector<double>& qv) {
-    Eigen::VectorXd z(n);
-    sys.reduce(qv.data(), z.data());
-    return z;
-  }
-  /// The consistent state at time t with independent part z (the observer context: its
-  /// Newton starts from the partition's state every time, so the map is a function of z).
-  bool expand(double t, const double* z, std::vector<double>& qv) {
-    return sys.expand(t, z, qv.data(), MultibodySystem::Context::observer) == 0;
-  }
-};
-
-/// P: one crank period from a state at the start's time and film modes.
-class PeriodMap final : public steady::CycleMap {
- public:
-  PeriodMap(const Scene& scene, Chart& chart, const StartState& base, std::vector<double> winding,
-            double rtol_factor, SolverStats& stats, long long& periods)
-      : scene_(scene), chart_(chart), base_(base), winding_(std::move(winding)), factor_(rtol_factor),
-        stats_(stats), periods_(periods) {}
-
-  int dim() const override { return chart_.n; }
-
-  int apply(const double* z, double* Pz) override {
-    StartState s = base_;
-    if (!chart_.expand(base_.t, z, s.qv)) {
-      message_ = "the dependent coordinates cannot be recovered at the period's start";
-      return 1;
-    }
-    SegmentOptions o;
-    o.start = &s;
-    o.cycles = 1;
-    o.observe = false;
-    o.series = false;
-    o.rtol_factor = factor_;
-    o.max_steps = max_steps_;
-    const SegmentResult r = detail::run_segment(scene_, o);
-    detail::accumulate(stats_, r.res.stats);
-    ++periods_;
-    if (r.res.status != RunStatus::ok) {
-      message_ = r.res.message;
-      return 1;
-    }
-    std::vector<double> e = r.end.qv;
-    for (size_t i = 0; i < e.size(); ++i) e[i] -= winding_[i];
-    chart_.sys.reduce(e.data(), Pz);
-    return 0;
-  }
-  const std::string& last_failure() const { return message_; }
-  /// A period that takes far more steps than the transient's did has left the orbit's
-  /// neighbourhood (near the wall the printed law's corrector crawls at h ~ 1e-8 s for
-  /// minutes before it fails, D7): it fails instead.
-  void set_step_budget(long long n) { max_steps_ = n; }
-
- private:
-  const Scene& scene_;
-  Chart& chart_;
-  const StartState& base_;
-  std::vector<double> winding_;
-  double factor_;
-  SolverStats& stats_;
-  long long& periods_;
-  std::string message_;
-  long long max_steps_ = 0;
-};
-
-/// How much each coordinate advances over one period: 2π k for a body angle that turns
-/// (the crank), 0 otherwise; from the last two cycle boundaries.
-std::vector<double> winding_per_period(const Model& m, const StartState& a, const StartState& b) {
-  std::vector<double> w(b.qv.size(), 0.0);
-  for (int body = 0; body < m.nb; ++body) {
-    const size_t i = static_cast<size_t>(3 * body + 2);
-    w[i] = kTwoPi * std::round((b.qv[i] - a.qv[i]) / (kTwoPi));
-  }
-  return w;
+  for (const SteadyMetric& sm : steady_metrics())
+    m.*sm.error = metric_distance(sm, m.*sm.value, tight.*sm.value) + (extra ? extra->*sm.value : 0.0);
 }
 
 class SteadyRun {
  public:
-  explicit SteadyRun(const Scene& scene) : scene_(scene), sim_(scene.simulation) {}
+  explicit SteadyRun(const Scene& scene) : scene_(scene), sim_(scene.simulation), rm_(scene) {}
   RunResult run();
 
  private:
   const Scene& scene_;
   const SimulationSpec& sim_;
+  RunModel rm_;  ///< built once: every segment of the run (transient, periods, measurements) shares it
   RunResult res_;
   std::vector<StartState> boundaries_;  // the transient's cycle boundaries
   StartState end_;                      // where the transient ended
@@ -243,7 +148,7 @@ class SteadyRun {
   /// False if the run did not end ok.
   bool transient(int cycles, std::function<bool(const std::vector<CycleMetrics>&)> stop);
   steady::ContractionEstimate contraction() const {
-    return steady::estimate_contraction(cycle_distances(res_.cycles), kWindow, detail::orbit_noise_floor(scene_));
+    return steady::estimate_contraction(cycle_distances(res_.cycles), kWindow, orbit_noise_floor(scene_));
   }
   void finish_transient();
   /// Error bars of a transient's metrics: its metric cycles again at rtol/100 from the
@@ -251,6 +156,16 @@ class SteadyRun {
   void transient_error_bars();
   void shoot();
   void shoot_from_transient();
+  /// Shooting's options at the transient's end: difference and Newton steps within the gap.
+  steady::ShootingOptions shooting_options(const Chart& chart) const;
+  /// Shooting found no orbit: drifting or not converged, and why.
+  void shooting_failed(const steady::ShootingResult& found, const PeriodMap& period);
+  /// The metrics and channels of the orbit at chart coordinates z; false if it fails.
+  bool measure_orbit(Chart& chart, const StartState& base, const Eigen::VectorXd& z);
+  /// Error bars: the orbit re-found at rtol/100 by one Newton step with the monodromy M,
+  /// z_tight = z* − (M − I)⁻¹ (P_tight(z*) − z*), and measured there.
+  void orbit_error_bars(Chart& chart, const StartState& base, PeriodMap& tight_period, const Eigen::VectorXd& z,
+                        const Eigen::MatrixXd& monodromy);
   bool transient_drifts() const;
   /// The metric cycles (or `cycles`) from a state (rtol × factor): their metrics and channels.
   SegmentResult measure(const StartState& s, double factor, bool series, int cycles = 0);
@@ -276,7 +191,7 @@ bool SteadyRun::transient(int cycles, std::function<bool(const std::vector<Cycle
       all.insert(all.end(), cs.begin(), cs.end());
       return stop(all);
     };
-  SegmentResult seg = detail::run_segment(scene_, o);
+  SegmentResult seg = detail::run_segment(rm_, o);
   if (before > 0 && seg.res.status == RunStatus::budget_exceeded && o.max_steps > 0 &&
       seg.res.stats.steps >= o.max_steps) {
     detail::accumulate(res_.stats, seg.res.stats);
@@ -335,7 +250,7 @@ SegmentResult SteadyRun::measure(const StartState& s, double factor, bool series
   o.cycles = cycles > 0 ? cycles : sim_.metric_cycles;
   o.rtol_factor = factor;
   o.series = series;
-  SegmentResult seg = detail::run_segment(scene_, o);
+  SegmentResult seg = detail::run_segment(rm_, o);
   detail::accumulate(res_.stats, seg.res.stats);
   res_.steady.periods += o.cycles;
   return seg;
@@ -365,95 +280,105 @@ void SteadyRun::shoot() {
   }
 }
 
+steady::ShootingOptions SteadyRun::shooting_options(const Chart& chart) const {
+  steady::ShootingOptions options;
+  options.scales = chart.units();
+  options.tolerance = sim_.shooting_tolerance;
+  // Near the wall a step of 1 % of the clearance would put the perturbed journal through
+  // it: at most a tenth of the thinnest gap of the last cycle, 1 − ε_max (in clearances).
+  const double gap =
+      res_.cycles.empty() || !(res_.cycles.back().max_eps > 0.0) ? 1.0 : 1.0 - res_.cycles.back().max_eps;
+  options.step = std::min(kDifferenceStep, 0.1 * gap);
+  // Newton's steps no longer than the gap either (they are measured in the same units).
+  options.max_newton_step = std::min(options.max_newton_step, gap);
+  return options;
+}
+
+void SteadyRun::shooting_failed(const steady::ShootingResult& found, const PeriodMap& period) {
+  res_.steady.kind = found.outcome == steady::ShootingOutcome::left_domain || transient_drifts()
+                         ? SteadyClass::drifting
+                         : SteadyClass::not_converged;
+  std::ostringstream msg;
+  msg << "shooting did not converge (" << found.message << ", residual " << found.residual << " after "
+      << found.iterations << " Newton iterations)";
+  if (!period.last_failure().empty()) msg << "; a period failed: " << period.last_failure();
+  res_.message = msg.str();
+}
+
+bool SteadyRun::measure_orbit(Chart& chart, const StartState& base, const Eigen::VectorXd& z) {
+  StartState orbit = base;
+  if (!chart.expand(base.t, z.data(), orbit.qv)) {
+    res_.steady.kind = SteadyClass::not_converged;
+    return false;
+  }
+  SegmentResult measured = measure(orbit, 1.0, true);
+  if (measured.res.status != RunStatus::ok) {
+    res_.steady.kind = SteadyClass::not_converged;
+    res_.message = "the periodic orbit's measurement failed: " + measured.res.message;
+    return false;
+  }
+  res_.metrics = measured.res.metrics;
+  res_.orbit = std::move(measured.res.series);
+  return true;
+}
+
+void SteadyRun::orbit_error_bars(Chart& chart, const StartState& base, PeriodMap& tight_period,
+                                 const Eigen::VectorXd& z, const Eigen::MatrixXd& monodromy) {
+  Eigen::VectorXd tight_end(chart.size());
+  if (tight_period.apply(z.data(), tight_end.data()) != 0) return;
+  const Eigen::MatrixXd M_minus_I = monodromy - Eigen::MatrixXd::Identity(chart.size(), chart.size());
+  const Eigen::VectorXd z_tight = z - M_minus_I.fullPivLu().solve(tight_end - z);
+  StartState tight = base;
+  if (!chart.expand(base.t, z_tight.data(), tight.qv)) return;
+  const SegmentResult measured = measure(tight, kTightFactor, false);
+  if (measured.res.status == RunStatus::ok) set_errors(res_.metrics, measured.res.metrics);
+}
+
 void SteadyRun::shoot_from_transient() {
-  SteadyCycle& sc = res_.steady;
+  SteadyCycle& steady = res_.steady;
   if (boundaries_.size() < 2) return;  // the transient is shorter than two cycles
   const StartState base = end_;
-  Chart chart(scene_, base);
-  if (chart.n == 0) {
+  Chart chart(rm_, base);
+  if (chart.size() == 0) {
     // Nothing moves but what the drivers move: every state is a function of the crank
     // angle, periodic from the first cycle (the periodicity column shows what the
     // integration's drift makes of it).
-    sc.kind = SteadyClass::periodic;
+    steady.kind = SteadyClass::periodic;
     return;
   }
   const std::vector<double> winding =
-      winding_per_period(chart.m, boundaries_[boundaries_.size() - 2], boundaries_.back());
-  PeriodMap P(scene_, chart, base, winding, 1.0, res_.stats, sc.periods);
+      detail::winding_per_period(rm_.model, boundaries_[boundaries_.size() - 2], boundaries_.back());
+  PeriodMap period(rm_, chart, base, winding, 1.0, res_.stats, steady.periods);
   // 20 times the transient's steps per cycle (its first cycles, from rest, included).
   const long long budget =
       20 * res_.stats.steps / std::max<long long>(1, static_cast<long long>(res_.cycles.size())) + 1000;
-  P.set_step_budget(budget);
-  steady::ShootingOptions so;
-  so.scales = chart.units;
-  so.tolerance = sim_.shooting_tolerance;
-  // Near the wall a step of 1 % of the clearance would put the perturbed journal through
-  // it: at most a tenth of the thinnest gap of the last cycle, 1 − ε_max (in clearances).
-  const double gap = res_.cycles.empty() || !(res_.cycles.back().max_eps > 0.0) ? 1.0 : 1.0 - res_.cycles.back().max_eps;
-  so.step = std::min(kDifferenceStep, 0.1 * gap);
-  // Newton's steps no longer than the gap either (they are measured in the same units).
-  so.max_newton_step = std::min(so.max_newton_step, gap);
+  period.set_step_budget(budget);
+  steady::ShootingOptions options = shooting_options(chart);
   // Periods at rtol/100: the Newton Jacobians' and the monodromy's central differences
   // (the map's noise at rtol, ~1e-5 c at 1e-8, over a step of ~1e-2 c would be ~1e-3 in
   // them: Frêne long's |μ|max 0.9973 or 0.9990 with steps 1e-2 and 8.8e-3 at rtol 1e-8,
   // against 0.9966 from the transient's own decay), and the error bars.
-  PeriodMap Pt(scene_, chart, base, winding, kTightFactor, res_.stats, sc.periods);
-  Pt.set_step_budget(10 * budget);
-  so.jacobian_map = &Pt;
-  const steady::ShootingResult sh = steady::solve_periodic_orbit(P, chart.reduce(base.qv), so);
-  sc.newton_iterations += static_cast<int>(sh.iterations);
-  sc.orbit_residual = sh.residual;
-  if (sh.outcome != steady::ShootingOutcome::converged) {
-    sc.kind = sh.outcome == steady::ShootingOutcome::left_domain || transient_drifts() ? SteadyClass::drifting
-                                                                                        : SteadyClass::not_converged;
-    std::ostringstream msg;
-    msg << "shooting did not converge (" << sh.message << ", residual " << sh.residual << " after "
-        << sh.iterations << " Newton iterations)";
-    if (!P.last_failure().empty()) msg << "; a period failed: " << P.last_failure();
-    res_.message = msg.str();
-    return;
-  }
+  PeriodMap tight_period(rm_, chart, base, winding, kTightFactor, res_.stats, steady.periods);
+  tight_period.set_step_budget(10 * budget);
+  options.jacobian_map = &tight_period;
+  const steady::ShootingResult found = steady::solve_periodic_orbit(period, chart.reduce(base.qv), options);
+  steady.newton_iterations += static_cast<int>(found.iterations);
+  steady.orbit_residual = found.residual;
+  if (found.outcome != steady::ShootingOutcome::converged) return shooting_failed(found, period);
   // Floquet multipliers: central differences at the orbit (error O(h²)).
-  steady::MonodromyOptions mo{chart.units, so.step, true};
-  const steady::Monodromy mono = steady::monodromy_by_differences(Pt, sh.z, sh.Pz, mo);
-  if (mono.failed) {
-    sc.kind = SteadyClass::not_converged;
-    res_.message = "shooting converged, but a perturbed period failed: " + Pt.last_failure();
+  const steady::Monodromy monodromy = steady::monodromy_by_differences(
+      tight_period, found.z, found.Pz, steady::MonodromyOptions{chart.units(), options.step, true});
+  if (monodromy.failed) {
+    steady.kind = SteadyClass::not_converged;
+    res_.message = "shooting converged, but a perturbed period failed: " + tight_period.last_failure();
     return;
   }
-  sc.multipliers = steady::floquet_multipliers(mono.M);
-  const double dominant = sc.multipliers.empty() ? 0.0 : std::abs(sc.multipliers.front());
-  sc.kind = dominant < 1.0 ? SteadyClass::periodic : SteadyClass::periodic_unstable;
-  sc.method = "shooting";
-
-  // The metrics of the orbit itself, and its channels.
-  StartState orbit = base;
-  if (!chart.expand(base.t, sh.z.data(), orbit.qv)) {
-    sc.kind = SteadyClass::not_converged;
-    return;
-  }
-  SegmentResult seg = measure(orbit, 1.0, true);
-  if (seg.res.status != RunStatus::ok) {
-    sc.kind = SteadyClass::not_converged;
-    res_.message = "the periodic orbit's measurement failed: " + seg.res.message;
-    return;
-  }
-
-  res_.metrics = seg.res.metrics;
-  res_.orbit = std::move(seg.res.series);
-
-  if (!sim_.error_bars) return;
-  // Error bars: the orbit re-found at rtol/100 by one Newton step with the monodromy
-  // (z_t = z* − (M − I)⁻¹ (P_t(z*) − z*)) and measured there.
-  Eigen::VectorXd Ptz(chart.n);
-  if (Pt.apply(sh.z.data(), Ptz.data()) != 0) return;
-  const Eigen::MatrixXd A = mono.M - Eigen::MatrixXd::Identity(chart.n, chart.n);
-  const Eigen::VectorXd zt = sh.z - A.fullPivLu().solve(Ptz - sh.z);
-  StartState tight = base;
-  if (chart.expand(base.t, zt.data(), tight.qv)) {
-    const SegmentResult st = measure(tight, kTightFactor, false);
-    if (st.res.status == RunStatus::ok) set_errors(res_.metrics, st.res.metrics);
-  }
+  steady.multipliers = steady::floquet_multipliers(monodromy.M);
+  const double dominant = steady.multipliers.empty() ? 0.0 : std::abs(steady.multipliers.front());
+  steady.kind = dominant < 1.0 ? SteadyClass::periodic : SteadyClass::periodic_unstable;
+  steady.method = "shooting";
+  if (!measure_orbit(chart, base, found.z)) return;
+  if (sim_.error_bars) orbit_error_bars(chart, base, tight_period, found.z, monodromy.M);
 }
 
 void SteadyRun::transient_error_bars() {
@@ -465,32 +390,27 @@ void SteadyRun::transient_error_bars() {
     // boundaries_: the initial state, then each cycle's end.
     const int k = static_cast<int>(boundaries_.size());
     const int m = std::min(M, static_cast<int>(res_.cycles.size()));
-    SegmentResult st;
-    if (k - 1 - m >= 0) st = measure(boundaries_[static_cast<size_t>(k - 1 - m)], kTightFactor, false, m);
-    if (st.res.status == RunStatus::ok && res_.cycles.size() >= 2) {
+    SegmentResult tight;
+    if (k - 1 - m >= 0) tight = measure(boundaries_[static_cast<size_t>(k - 1 - m)], kTightFactor, false, m);
+    if (tight.res.status == RunStatus::ok && res_.cycles.size() >= 2) {
       const CycleMetrics& a = res_.cycles[res_.cycles.size() - 1];
       const CycleMetrics& b = res_.cycles[res_.cycles.size() - 2];
       const double r = est.known ? est.rate : kInf;
       const double f = r < 1.0 ? r / (1.0 - r) : kInf;
       auto tail = [&](double d) { return d == 0.0 ? 0.0 : d * f; };
       Metrics extra;
-      extra.min_film_thickness_m = tail(std::abs(a.min_film_m - b.min_film_m));
-      extra.angle_at_min_film_rad = tail(wrapped_angle_difference(a.angle_at_min_film_rad, b.angle_at_min_film_rad));
-      extra.max_eps = tail(std::abs(a.max_eps - b.max_eps));
-      extra.peak_reaction_N = tail(std::abs(a.peak_reaction_N - b.peak_reaction_N));
-      extra.angle_at_peak_reaction_rad =
-          tail(wrapped_angle_difference(a.angle_at_peak_reaction_rad, b.angle_at_peak_reaction_rad));
-      extra.peak_acceleration_m_s2 = tail(std::abs(a.peak_acceleration_m_s2 - b.peak_acceleration_m_s2));
-      set_errors(res_.metrics, st.res.metrics, &extra);
-    } else if (st.res.status == RunStatus::ok) {
-      set_errors(res_.metrics, st.res.metrics);
+      for (const SteadyMetric& sm : steady_metrics())
+        extra.*sm.value = tail(metric_distance(sm, a.*sm.per_cycle, b.*sm.per_cycle));
+      set_errors(res_.metrics, tight.res.metrics, &extra);
+    } else if (tight.res.status == RunStatus::ok) {
+      set_errors(res_.metrics, tight.res.metrics);
     }
   }
 }
 
 RunResult SteadyRun::run() {
   const auto wall0 = std::chrono::steady_clock::now();
-  SteadyCycle& sc = res_.steady;
+  SteadyCycle& steady = res_.steady;
   const double tol = sim_.steady_tolerance;
 
   if (sim_.steady == SteadyMethod::transient) {
@@ -501,7 +421,7 @@ RunResult SteadyRun::run() {
     finish_transient();
     if (ok) {
       const bool converged = transient_steady(scene_, res_.cycles, tol);
-      sc.kind = converged ? SteadyClass::periodic : transient_drifts() ? SteadyClass::drifting : SteadyClass::not_converged;
+      steady.kind = converged ? SteadyClass::periodic : transient_drifts() ? SteadyClass::drifting : SteadyClass::not_converged;
       if (sim_.error_bars) transient_error_bars();
     }
   } else {
@@ -530,30 +450,30 @@ RunResult SteadyRun::run() {
       // from where it ends. A transient that converged is periodic whatever shooting says;
       // one that drifts is drifting.
       const int left = sim_.max_cycles - static_cast<int>(res_.cycles.size());
-      if (sc.kind != SteadyClass::periodic && sc.kind != SteadyClass::periodic_unstable && left > 0 &&
+      if (steady.kind != SteadyClass::periodic && steady.kind != SteadyClass::periodic_unstable && left > 0 &&
           transient(left, [&](const std::vector<CycleMetrics>& cs) { return transient_steady(scene_, cs, tol); })) {
         finish_transient();
         const bool converged = transient_steady(scene_, res_.cycles, tol);
         shoot();
-        if (sc.kind != SteadyClass::periodic && sc.kind != SteadyClass::periodic_unstable) {
+        if (steady.kind != SteadyClass::periodic && steady.kind != SteadyClass::periodic_unstable) {
           if (converged) {
-            sc.kind = SteadyClass::periodic;
-            sc.method = "transient";
+            steady.kind = SteadyClass::periodic;
+            steady.method = "transient";
             res_.message = "periodic by the transient's contraction estimate; " + res_.message;
             if (sim_.error_bars) transient_error_bars();
           } else if (transient_drifts()) {
-            sc.kind = SteadyClass::drifting;
+            steady.kind = SteadyClass::drifting;
           }
         }
       }
-      if (res_.status == RunStatus::ok && sc.kind == SteadyClass::drifting && res_.message.empty())
+      if (res_.status == RunStatus::ok && steady.kind == SteadyClass::drifting && res_.message.empty())
         res_.message = "no periodic orbit inside the clearance";
     } else {
       finish_transient();
     }
   }
-  res_.metrics.steady = res_.status == RunStatus::ok && sc.kind == SteadyClass::periodic;
-  res_.metrics.cycles_to_steady = res_.metrics.steady ? static_cast<int>(sc.periods) : -1;
+  res_.metrics.steady = res_.status == RunStatus::ok && steady.kind == SteadyClass::periodic;
+  res_.metrics.cycles_to_steady = res_.metrics.steady ? static_cast<int>(steady.periods) : -1;
   res_.metrics.cycles_run = static_cast<int>(res_.cycles.size());
   res_.stats.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return std::move(res_);

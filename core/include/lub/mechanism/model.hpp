@@ -114,6 +114,11 @@ struct EvalCounters {
 /// Preallocated buffers; one per thread of work, reused for every case of the same model.
 struct Workspace {
   explicit Workspace(const Model& m);
+  /// Back to the state the constructor leaves, without allocating (a finite-Reynolds
+  /// film's solver aside: it is built anew, the one way to drop its warm start exactly):
+  /// what one evaluation leaves for the next (film modes, counters, warm starts) must not
+  /// reach the next run segment that reuses this workspace.
+  void reset(const Model& m);
   Eigen::MatrixXd Phi_q;   ///< nc × nq
   Eigen::VectorXd Phi, Phi_dot, gamma, g, rhs, lambda, qdd;
   Eigen::MatrixXd S;       ///< nc × nc; after evaluate() its Cholesky factor (lower triangle)

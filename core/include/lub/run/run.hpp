@@ -145,6 +145,28 @@ struct Metrics {
   double energy_residual_J = 0.0;    ///< W_driver − ΔE − D_film
 };
 
+/// One steady-cycle metric, written once: its name (the same in code, files and Python),
+/// unit and description, where its value, its error bar and its per-cycle counterpart
+/// live, and whether it is an angle (compared modulo 2π). steady_metrics() is the one list
+/// behind the run file's /metrics and /cycles, the study's columns, the error bars and
+/// the transient's tail estimate.
+struct SteadyMetric {
+  const char* name;             ///< e.g. "min_film_thickness_m"
+  const char* unit;             ///< CF-style SI unit
+  const char* long_name;        ///< over the metric cycles (netCDF `long_name`)
+  const char* cycle_long_name;  ///< in one cycle (the run file's /cycles)
+  /// Appended to "error bar of <name>" for the error bar's `long_name`.
+  const char* error_note;
+  double Metrics::*value;
+  double Metrics::*error;
+  double CycleMetrics::*per_cycle;
+  bool angle;
+};
+/// The six steady-cycle metrics, in column order.
+const std::array<SteadyMetric, 6>& steady_metrics();
+/// |a − b|, or for an angle the distance on the circle (in [0, π]).
+double metric_distance(const SteadyMetric& metric, double a, double b);
+
 struct Series {
   std::vector<std::string> names;  ///< "t" first
   std::vector<std::string> units;

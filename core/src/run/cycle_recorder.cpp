@@ -1,0 +1,119 @@
+#include "run/cycle_recorder.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "lub/common/constants.hpp"
+#include "lub/mechanism/film_element.hpp"
+#include "run/metrics.hpp"
+
+namespace lub::detail {
+
+namespace {
+size_t orbit_channels(const Model& m) { return std::max<size_t>(1, m.films.size()); }
+}  // namespace
+
+CycleRecorder::CycleRecorder(const Scene& scene, const Model& m, double t0, std::optional<double> period)
+    : scene_(scene), m_(m), t0_(t0), period_(period),
+      orbit_cur_(static_cast<size_t>(kPhasePoints) * orbit_channels(m) * 2, 0.0), orbit_prev_(orbit_cur_) {}
+
+double CycleRecorder::phase_angle(double t) const {
+  if (!period_) return 0.0;
+  const double x = (t - t0_) / *period_;
+  return kTwoPi * (x - std::floor(x));
+}
+
+void CycleRecorder::film_extreme(double eps, double angle) {
+  // In contact (ε >= 1) the film thickness is zero: the penetration is not a film.
+  const double c = scene_.joints[scene_.metrics.joint].bearing.clearance_m();
+  const double h = std::max(0.0, c * (1.0 - eps));
+  cur_.max_eps = std::max(cur_.max_eps, eps);
+  if (h < cur_.min_film_m) {
+    cur_.min_film_m = h;
+    cur_.angle_at_min_film_rad = angle;
+  }
+}
+
+void CycleRecorder::measure(double t, const Workspace& ws, const double* qdd) {
+  const double angle = phase_angle(t);
+  const int mj = scene_.metrics.joint;
+  if (empty_) {
+    cur_.min_film_m = std::numeric_limits<double>::infinity();
+    empty_ = false;
+  }
+  if (mj >= 0) {
+    const double R = joint_force(m_, ws, mj).norm();
+    if (R > cur_.peak_reaction_N) {
+      cur_.peak_reaction_N = R;
+      cur_.angle_at_peak_reaction_rad = angle;
+    }
+    if (scene_.joints[mj].type == JointType::lubricated_revolute) {
+      const int f = m_.joint_film[mj];
+      const double eps = f >= 0 ? ws.films[f].state.eps : 0.0;
+      const double eps_dot = f >= 0 ? ws.films[f].state.eps_dot : 0.0;
+      if (prev_film_.valid && t > prev_film_.t && prev_film_.eps_dot > 0.0 && eps_dot < 0.0) {
+        const InteriorMax mx = hermite_interior_max(prev_film_.t, prev_film_.eps, prev_film_.eps_dot, t, eps, eps_dot);
+        film_extreme(mx.value, phase_angle(mx.t));
+      }
+      film_extreme(eps, angle);
+      prev_film_ = {true, t, eps, eps_dot};
+    }
+  }
+  if (const int b = scene_.metrics.body; b >= 0) {
+    const double a = std::hypot(qdd[3 * b], qdd[3 * b + 1]);
+    cur_.peak_acceleration_m_s2 = std::max(cur_.peak_acceleration_m_s2, a);
+  }
+}
+
+void CycleRecorder::phase_point(const double* q, const double* v) {
+  double* out = orbit_cur_.data() + static_cast<size_t>(phase_index_) * 2 * orbit_channels(m_);
+  if (m_.films.empty()) {
+    // No film: the periodicity of the mechanism itself, from the first body's position.
+    out[0] = q[0];
+    out[1] = q[1];
+  } else {
+    for (size_t k = 0; k < m_.films.size(); ++k) {
+      const FilmKinematics fk = film_kinematics(m_, static_cast<int>(k), q, v);
+      out[2 * k] = fk.e.x() / m_.films[k].clearance;
+      out[2 * k + 1] = fk.e.y() / m_.films[k].clearance;
+    }
+  }
+  ++phase_index_;
+}
+
+void CycleRecorder::section(const double* qv) {
+  const int mj = scene_.metrics.joint;
+  const int f = mj >= 0 ? m_.joint_film[mj] : -1;
+  if (f < 0) return;
+  const FilmKinematics fk = film_kinematics(m_, f, qv, qv + m_.nq);
+  const double c = m_.films[f].clearance;
+  cur_.end_eccentricity_x = fk.e.x() / c;
+  cur_.end_eccentricity_y = fk.e.y() / c;
+  cur_.end_eccentricity_rate_x = fk.e_dot.x() / c;
+  cur_.end_eccentricity_rate_y = fk.e_dot.y() / c;
+}
+
+void CycleRecorder::close(double t_end, std::vector<CycleMetrics>& cycles) {
+  cur_.t_end_s = t_end;
+  if (empty_) cur_.min_film_m = 0.0;
+  if (!cycles.empty() && phase_index_ == kPhasePoints) {
+    double d = 0.0;
+    const size_t nf = orbit_channels(m_);
+    for (int i = 0; i < kPhasePoints; ++i)
+      for (size_t k = 0; k < nf; ++k) {
+        const size_t o = (static_cast<size_t>(i) * nf + k) * 2;
+        d = std::max(d, std::hypot(orbit_cur_[o] - orbit_prev_[o], orbit_cur_[o + 1] - orbit_prev_[o + 1]));
+      }
+    cur_.periodicity = d;
+  }
+  cycles.push_back(cur_);
+  std::swap(orbit_cur_, orbit_prev_);
+  phase_index_ = 0;
+  cur_ = CycleMetrics{};
+  cur_.t_start_s = t_end;
+  empty_ = true;
+  prev_film_ = {};
+}
+
+}  // namespace lub::detail

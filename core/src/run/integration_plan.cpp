@@ -1,0 +1,86 @@
+#include "run/integration_plan.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "lub/common/constants.hpp"
+
+namespace lub::detail {
+
+namespace {
+
+// The rate that scales the velocity tolerances [rad/s]: the fastest driver's speed, or
+// 2π over the cycle period or the duration when no driver gives one.
+double characteristic_rate(const Scene& scene) {
+  double w = 0.0;
+  for (const DriverSpec& d : scene.drivers) w = std::max(w, std::abs(d.speed_rad_s));
+  if (w > 0.0) return w;
+  if (const auto T = scene.cycle_period_s()) return kTwoPi / *T;
+  if (scene.simulation.duration_s) return kTwoPi / *scene.simulation.duration_s;
+  return 1.0;
+}
+
+}  // namespace
+
+Eigen::VectorXd state_units(const Scene& scene, const Model& m) {
+  return state_scales(m, scene.min_clearance_m().value_or(1e-3), characteristic_rate(scene));
+}
+
+Tolerances::Tolerances(const Scene& scene, const Model& m, double factor) {
+  const SolverSpec& sol = scene.solver;
+  const Eigen::VectorXd units = state_units(scene, m);
+  rtol_ = sol.rtol * factor;
+  reported_atol_ = (sol.atol ? *sol.atol : sol.rtol * scene.min_clearance_m().value_or(1e-3)) * factor;
+  atol_full_.assign(static_cast<size_t>(2 * m.nq), 0.0);
+  for (int i = 0; i < 2 * m.nq; ++i)
+    atol_full_[static_cast<size_t>(i)] = (sol.atol ? *sol.atol : sol.rtol * units(i)) * factor;
+}
+
+std::vector<double> Tolerances::integrated_atol(const MultibodySystem& sys) const {
+  std::vector<double> atol(static_cast<size_t>(sys.size()), 0.0);
+  sys.reduce(atol_full_.data(), atol.data());
+  return atol;
+}
+
+std::vector<double> Tolerances::difference_scales(const std::vector<double>& atol, double rtol) {
+  std::vector<double> scales(atol.size());
+  for (size_t i = 0; i < scales.size(); ++i) scales[i] = atol[i] / rtol;
+  return scales;
+}
+
+std::string IntegrationPlan::jacobian_name() const {
+  if (!newton) return "none";
+  return std::string(name_of(settings.user_jacobian ? JacobianKind::structured : JacobianKind::difference_quotients));
+}
+
+IntegrationPlan plan_integration(const Scene& scene, const Model& m, double factor) {
+  const SolverSpec& sol = scene.solver;
+  IntegrationPlan plan;
+  IntegratorSettings& is = plan.settings;
+  is.method = sol.method;
+  is.rtol = sol.rtol * factor;
+  is.max_step = sol.max_step_s;
+  is.initial_step = sol.initial_step_s;
+  is.max_order = sol.max_order;
+  is.projection = sol.projection;
+  plan.newton = is_newton(sol.method);
+  // A mechanism without a degree of freedom (every coordinate fixed by joints and drivers:
+  // the ideal slider-crank) leaves partitioning nothing to integrate: it runs on the
+  // baumgarte formulation, whose states are all the coordinates.
+  plan.formulation = sol.formulation == Formulation::partitioned && m.nq <= m.nc ? Formulation::baumgarte
+                                                                                 : sol.formulation;
+  is.user_jacobian = plan.newton && sol.jacobian == JacobianKind::structured;
+  // A fresh Jacobian every step where a reused one fails (docs/theory/formulations.md,
+  // "Jacobian reuse"): partitioned, whose squeeze-film mode lies almost along a degree of
+  // freedom and changes within a few degrees of crank, so a stale Jacobian lets an
+  // unconverged stiff component through the error test until CVODE gives up at the dead
+  // centres; and projection with event switching, likewise at the dead centres. Not with
+  // switching none: difference quotients across the printed law's jump make a fresh
+  // Jacobian worse than a reused one. Pinned by the full factorial (tools/nightly.sh) and
+  // the hard case law_pinkus_sternlicht_no_events (tests/test_stress_hard_cases.cpp).
+  is.jacobian_every_step = plan.formulation == Formulation::partitioned ||
+                           (sol.projection && sol.switching == Switching::events);
+  return plan;
+}
+
+}  // namespace lub::detail

@@ -1,0 +1,57 @@
+// How a scene is integrated (internal to the run stage): the integrator's settings, the
+// formulation actually integrated, and the tolerances, each state's absolute tolerance
+// derived from its unit where the integrator is set up (docs/theory/tolerances.md).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "lub/formulation/multibody_system.hpp"
+#include "lub/integrators/integrator.hpp"
+#include "lub/mechanism/model.hpp"
+#include "lub/scene/scene.hpp"
+
+namespace lub::detail {
+
+/// Each state's unit (2 nq, (q, v)): lengths in the smallest clearance (1 mm without a
+/// film), angles in that over the body's size, rates in those times the driver's speed.
+/// The absolute tolerances are rtol times these; shooting measures residuals in them.
+Eigen::VectorXd state_units(const Scene& scene, const Model& m);
+
+/// The tolerances of one segment, in the full state (q, v): rtol, and each component's
+/// unit s_i; atol_i = rtol_scene s_i × factor (or solver.atol × factor where the scene
+/// gives one number for all).
+class Tolerances {
+ public:
+  Tolerances(const Scene& scene, const Model& m, double factor);
+  double rtol() const { return rtol_; }
+  /// The scalar reported in the run's statistics (rtol × the smallest clearance, or solver.atol).
+  double reported_atol() const { return reported_atol_; }
+  /// Absolute tolerances of the integrated state y (the formulation's own coordinates).
+  std::vector<double> integrated_atol(const MultibodySystem& sys) const;
+  /// The difference quotients' scale of each integrated component: atol_i / rtol, the
+  /// magnitude below which the error test is absolute rather than relative (the scale
+  /// CVODE's own difference-quotient Jacobian takes from the error weights).
+  static std::vector<double> difference_scales(const std::vector<double>& atol, double rtol);
+
+ private:
+  double rtol_ = 0.0;
+  double reported_atol_ = 0.0;
+  std::vector<double> atol_full_;  ///< per component of (q, v)
+};
+
+struct IntegrationPlan {
+  IntegratorSettings settings;  ///< t_stop and atol aside (the run loop sets them)
+  Formulation formulation = Formulation::baumgarte;
+  bool newton = false;          ///< the method iterates with Newton (uses a Jacobian)
+  /// "structured", "difference_quotients", or "none" (no Newton)
+  std::string jacobian_name() const;
+};
+
+/// The plan for `scene` on `m` at rtol × `factor`.
+IntegrationPlan plan_integration(const Scene& scene, const Model& m, double factor);
+
+}  // namespace lub::detail
