@@ -120,12 +120,12 @@ int main(int argc, char** argv) {
       std::printf("metrics  (last %d of %d cycles)\n", std::min<int>(scene.simulation.metric_cycles, r.metrics.cycles_run),
                   r.metrics.cycles_run);
     for (const auto& f : lub::metric_fields())
-      std::printf("  %-34s %.6g %s\n", f.name, f.get(r), f.unit);
+      std::printf("  %-34s %.6g %s\n", f.name.c_str(), f.get(r), f.unit.c_str());
     std::printf("solver   %s (%s) rtol %.3g atol %.3g m (per state, README \"Integration\") jacobian %s\n",
                 r.stats.method.c_str(), r.stats.formulation.c_str(), r.stats.rtol, r.stats.atol,
                 r.stats.jacobian.c_str());
     for (const auto& f : lub::solver_fields())
-      std::printf("  %-34s %.6g %s\n", f.name, f.get(r), f.unit);
+      std::printf("  %-34s %.6g %s\n", f.name.c_str(), f.get(r), f.unit.c_str());
     std::printf("wrote    %s\n", out_path.c_str());
   }
   return r.status == lub::RunStatus::ok ? 0 : 3;

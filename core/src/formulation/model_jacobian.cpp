@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "common/central_difference.hpp"
+#include "lub/formulation/model_jacobian.hpp"
 #include "lub/mechanism/film_element.hpp"
 #include "lub/mechanism/model.hpp"
 

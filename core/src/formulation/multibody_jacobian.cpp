@@ -43,6 +43,7 @@
 
 #include "common/central_difference.hpp"
 #include "common/small_dense.hpp"
+#include "lub/formulation/model_jacobian.hpp"
 #include "lub/formulation/multibody_system.hpp"
 
 namespace lub {

@@ -27,78 +27,65 @@ double multiplier(const RunResult& r, size_t k, bool angle) {
 }  // namespace
 
 const std::vector<ResultField>& metric_fields() {
-  static const std::vector<ResultField> f = {
-      {"min_film_thickness_m", "m", false, [](const RunResult& r) { return r.metrics.min_film_thickness_m; },
-       "minimum film thickness h = c (1 - eps) over the metric cycles", true},
-      {"crank_angle_at_min_film_rad", "rad", false, [](const RunResult& r) { return r.metrics.angle_at_min_film_rad; },
-       "crank angle at the minimum film thickness, in [0, 2 pi)", true},
-      {"max_eps", "1", false, [](const RunResult& r) { return r.metrics.max_eps; },
-       "largest eccentricity ratio |e|/c over the metric cycles", true},
-      {"peak_reaction_N", "N", false, [](const RunResult& r) { return r.metrics.peak_reaction_N; },
-       "peak force transmitted by the metric joint", true},
-      {"crank_angle_at_peak_reaction_rad", "rad", false, [](const RunResult& r) { return r.metrics.angle_at_peak_reaction_rad; },
-       "crank angle at the peak joint force, in [0, 2 pi)", true},
-      {"peak_acceleration_m_s2", "m s-2", false, [](const RunResult& r) { return r.metrics.peak_acceleration_m_s2; },
-       "peak acceleration magnitude of the metric body", true},
-      {"periodicity", "1", false, [](const RunResult& r) { return r.metrics.periodicity; },
-       "largest cycle-to-cycle journal orbit distance over the metric cycles / clearance (-1: unknown)"},
-      // Error bars (README "Steady cycles"): NaN without simulation.error_bars.
-      {"min_film_thickness_m_error", "m", false, [](const RunResult& r) { return r.metrics.min_film_thickness_m_error; },
-       "error bar of min_film_thickness_m: change at a 100x tighter rtol (+ the transient's remaining change)", true},
-      {"crank_angle_at_min_film_rad_error", "rad", false, [](const RunResult& r) { return r.metrics.angle_at_min_film_rad_error; },
-       "error bar of crank_angle_at_min_film_rad", true},
-      {"max_eps_error", "1", false, [](const RunResult& r) { return r.metrics.max_eps_error; },
-       "error bar of max_eps", true},
-      {"peak_reaction_N_error", "N", false, [](const RunResult& r) { return r.metrics.peak_reaction_N_error; },
-       "error bar of peak_reaction_N", true},
-      {"crank_angle_at_peak_reaction_rad_error", "rad", false,
-       [](const RunResult& r) { return r.metrics.angle_at_peak_reaction_rad_error; },
-       "error bar of crank_angle_at_peak_reaction_rad", true},
-      {"peak_acceleration_m_s2_error", "m s-2", false, [](const RunResult& r) { return r.metrics.peak_acceleration_m_s2_error; },
-       "error bar of peak_acceleration_m_s2", true},
-      {"steady", "1", true, [](const RunResult& r) { return r.metrics.steady ? 1.0 : 0.0; },
-       "1 if the classification is periodic"},
-      {"cycles_to_steady", "1", true, [](const RunResult& r) { return double(r.metrics.cycles_to_steady); },
-       "periods integrated until the steady cycle was known (-1: never)"},
-      {"cycles_run", "1", true, [](const RunResult& r) { return double(r.metrics.cycles_run); },
-       "transient crank cycles run"},
-      {"contraction_rate", "1", false, [](const RunResult& r) { return r.steady.contraction_rate; },
-       "rho: cycle-to-cycle orbit distances shrink by this per cycle (transient, least squares; NaN: unknown)"},
-      {"remaining_distance", "1", false, [](const RunResult& r) { return r.steady.remaining_distance; },
-       "the transient's distance still to go to its steady cycle, delta rho / (1 - rho), in clearances"},
-      {"orbit_residual", "1", false, [](const RunResult& r) { return r.steady.orbit_residual; },
-       "shooting: max |P(z) - z| over the states, each in its own unit (lengths in clearances)"},
-      {"newton_iterations", "1", true, [](const RunResult& r) { return double(r.steady.newton_iterations); },
-       "Newton iterations of shooting"},
-      {"transient_cycles", "1", true, [](const RunResult& r) { return double(r.steady.transient_cycles); },
-       "transient cycles integrated (before shooting)"},
-      {"periods_integrated", "1", true, [](const RunResult& r) { return double(r.steady.periods); },
-       "crank periods integrated in all: transient, shooting's maps and differences, measurement, error bars"},
-      {"min_film_drift_m_per_cycle", "m", false, [](const RunResult& r) { return r.steady.min_film_drift_m; },
-       "change of the per-cycle minimum film thickness per crank cycle over the transient's last 10 cycles"},
-      {"last_cycle_min_film_m", "m", false, [](const RunResult& r) { return r.steady.last_min_film_m; },
-       "the last transient cycle's minimum film thickness (a transient value, not a steady metric)"},
-      {"multiplier_1_modulus", "1", false, [](const RunResult& r) { return multiplier(r, 0, false); },
-       "largest Floquet multiplier's modulus (NaN: not computed)"},
-      {"multiplier_1_angle_rad", "rad", false, [](const RunResult& r) { return multiplier(r, 0, true); },
-       "largest Floquet multiplier's angle"},
-      {"multiplier_2_modulus", "1", false, [](const RunResult& r) { return multiplier(r, 1, false); },
-       "second Floquet multiplier's modulus"},
-      {"multiplier_2_angle_rad", "rad", false, [](const RunResult& r) { return multiplier(r, 1, true); },
-       "second Floquet multiplier's angle"},
-      {"multiplier_3_modulus", "1", false, [](const RunResult& r) { return multiplier(r, 2, false); },
-       "third Floquet multiplier's modulus"},
-      {"multiplier_3_angle_rad", "rad", false, [](const RunResult& r) { return multiplier(r, 2, true); },
-       "third Floquet multiplier's angle"},
-      {"multiplier_4_modulus", "1", false, [](const RunResult& r) { return multiplier(r, 3, false); },
-       "fourth Floquet multiplier's modulus"},
-      {"multiplier_4_angle_rad", "rad", false, [](const RunResult& r) { return multiplier(r, 3, true); },
-       "fourth Floquet multiplier's angle"},
-      {"safe_film_thickness_m", "m", false, [](const RunResult& r) { return r.metrics.safe_film_m; },
-       "safe minimum film thickness, 0.00015 mm per mm of bearing diameter (ESDU 84031)"},
-      {"below_safe_film", "1", true, [](const RunResult& r) { return r.metrics.below_safe_film ? 1.0 : 0.0; },
-       "1 if the minimum film thickness is below the safe film thickness"},
-  };
+  static const std::vector<ResultField> f = [] {
+    std::vector<ResultField> fields;
+    for (const SteadyMetric& sm : steady_metrics())
+      fields.push_back({sm.name, sm.unit, false, [v = sm.value](const RunResult& r) { return r.metrics.*v; },
+                        sm.long_name, true});
+    fields.push_back({"periodicity", "1", false, [](const RunResult& r) { return r.metrics.periodicity; },
+                      "largest cycle-to-cycle journal orbit distance over the metric cycles / clearance (-1: unknown)"});
+    // Error bars (docs/theory/steady-cycles.md): NaN without simulation.error_bars.
+    for (const SteadyMetric& sm : steady_metrics())
+      fields.push_back({std::string(sm.name) + "_error", sm.unit, false,
+                        [e = sm.error](const RunResult& r) { return r.metrics.*e; },
+                        std::string("error bar of ") + sm.name + sm.error_note, true});
+    std::vector<ResultField> rest = {
+        {"steady", "1", true, [](const RunResult& r) { return r.metrics.steady ? 1.0 : 0.0; },
+         "1 if the classification is periodic"},
+        {"cycles_to_steady", "1", true, [](const RunResult& r) { return double(r.metrics.cycles_to_steady); },
+         "periods integrated until the steady cycle was known (-1: never)"},
+        {"cycles_run", "1", true, [](const RunResult& r) { return double(r.metrics.cycles_run); },
+         "transient crank cycles run"},
+        {"contraction_rate", "1", false, [](const RunResult& r) { return r.steady.contraction_rate; },
+         "rho: cycle-to-cycle orbit distances shrink by this per cycle (transient, least squares; NaN: unknown)"},
+        {"remaining_distance", "1", false, [](const RunResult& r) { return r.steady.remaining_distance; },
+         "the transient's distance still to go to its steady cycle, delta rho / (1 - rho), in clearances"},
+        {"orbit_residual", "1", false, [](const RunResult& r) { return r.steady.orbit_residual; },
+         "shooting: max |P(z) - z| over the states, each in its own unit (lengths in clearances)"},
+        {"newton_iterations", "1", true, [](const RunResult& r) { return double(r.steady.newton_iterations); },
+         "Newton iterations of shooting"},
+        {"transient_cycles", "1", true, [](const RunResult& r) { return double(r.steady.transient_cycles); },
+         "transient cycles integrated (before shooting)"},
+        {"periods_integrated", "1", true, [](const RunResult& r) { return double(r.steady.periods); },
+         "crank periods integrated in all: transient, shooting's maps and differences, measurement, error bars"},
+        {"min_film_drift_m_per_cycle", "m", false, [](const RunResult& r) { return r.steady.min_film_drift_m; },
+         "change of the per-cycle minimum film thickness per crank cycle over the transient's last 10 cycles"},
+        {"last_cycle_min_film_m", "m", false, [](const RunResult& r) { return r.steady.last_min_film_m; },
+         "the last transient cycle's minimum film thickness (a transient value, not a steady metric)"},
+        {"multiplier_1_modulus", "1", false, [](const RunResult& r) { return multiplier(r, 0, false); },
+         "largest Floquet multiplier's modulus (NaN: not computed)"},
+        {"multiplier_1_angle_rad", "rad", false, [](const RunResult& r) { return multiplier(r, 0, true); },
+         "largest Floquet multiplier's angle"},
+        {"multiplier_2_modulus", "1", false, [](const RunResult& r) { return multiplier(r, 1, false); },
+         "second Floquet multiplier's modulus"},
+        {"multiplier_2_angle_rad", "rad", false, [](const RunResult& r) { return multiplier(r, 1, true); },
+         "second Floquet multiplier's angle"},
+        {"multiplier_3_modulus", "1", false, [](const RunResult& r) { return multiplier(r, 2, false); },
+         "third Floquet multiplier's modulus"},
+        {"multiplier_3_angle_rad", "rad", false, [](const RunResult& r) { return multiplier(r, 2, true); },
+         "third Floquet multiplier's angle"},
+        {"multiplier_4_modulus", "1", false, [](const RunResult& r) { return multiplier(r, 3, false); },
+         "fourth Floquet multiplier's modulus"},
+        {"multiplier_4_angle_rad", "rad", false, [](const RunResult& r) { return multiplier(r, 3, true); },
+         "fourth Floquet multiplier's angle"},
+        {"safe_film_thickness_m", "m", false, [](const RunResult& r) { return r.metrics.safe_film_m; },
+         "safe minimum film thickness, 0.00015 mm per mm of bearing diameter (ESDU 84031)"},
+        {"below_safe_film", "1", true, [](const RunResult& r) { return r.metrics.below_safe_film ? 1.0 : 0.0; },
+         "1 if the minimum film thickness is below the safe film thickness"},
+    };
+    fields.insert(fields.end(), rest.begin(), rest.end());
+    return fields;
+  }();
   return f;
 }
 
@@ -203,31 +190,28 @@ void write_series(h5::Group& g, const Series& s, const std::vector<std::string>&
 }
 
 const std::vector<CycleField>& cycle_fields() {
-  static const std::vector<CycleField> f = {
-      {"t_start_s", "s", "start of the cycle", [](const CycleMetrics& c) { return c.t_start_s; }},
-      {"t_end_s", "s", "end of the cycle", [](const CycleMetrics& c) { return c.t_end_s; }},
-      {"min_film_thickness_m", "m", "minimum film thickness in the cycle",
-       [](const CycleMetrics& c) { return c.min_film_m; }},
-      {"crank_angle_at_min_film_rad", "rad", "crank angle at the minimum film thickness",
-       [](const CycleMetrics& c) { return c.angle_at_min_film_rad; }},
-      {"max_eps", "1", "largest eccentricity ratio in the cycle", [](const CycleMetrics& c) { return c.max_eps; }},
-      {"peak_reaction_N", "N", "peak force transmitted by the metric joint",
-       [](const CycleMetrics& c) { return c.peak_reaction_N; }},
-      {"crank_angle_at_peak_reaction_rad", "rad", "crank angle at the peak joint force",
-       [](const CycleMetrics& c) { return c.angle_at_peak_reaction_rad; }},
-      {"peak_acceleration_m_s2", "m s-2", "peak acceleration of the metric body",
-       [](const CycleMetrics& c) { return c.peak_acceleration_m_s2; }},
-      {"periodicity", "1", "largest orbit distance to the previous cycle / clearance (-1: first cycle)",
-       [](const CycleMetrics& c) { return c.periodicity; }},
-      {"end_eccentricity_x", "1", "metric joint's e_x / c at the cycle's end (crank angle 0: Poincare section)",
-       [](const CycleMetrics& c) { return c.end_eccentricity_x; }},
-      {"end_eccentricity_y", "1", "metric joint's e_y / c at the cycle's end",
-       [](const CycleMetrics& c) { return c.end_eccentricity_y; }},
-      {"end_eccentricity_rate_x", "s-1", "metric joint's de_x/dt / c at the cycle's end",
-       [](const CycleMetrics& c) { return c.end_eccentricity_rate_x; }},
-      {"end_eccentricity_rate_y", "s-1", "metric joint's de_y/dt / c at the cycle's end",
-       [](const CycleMetrics& c) { return c.end_eccentricity_rate_y; }},
-  };
+  static const std::vector<CycleField> f = [] {
+    std::vector<CycleField> fields = {
+        {"t_start_s", "s", "start of the cycle", [](const CycleMetrics& c) { return c.t_start_s; }},
+        {"t_end_s", "s", "end of the cycle", [](const CycleMetrics& c) { return c.t_end_s; }},
+    };
+    for (const SteadyMetric& sm : steady_metrics())
+      fields.push_back({sm.name, sm.unit, sm.cycle_long_name, [p = sm.per_cycle](const CycleMetrics& c) { return c.*p; }});
+    std::vector<CycleField> rest = {
+        {"periodicity", "1", "largest orbit distance to the previous cycle / clearance (-1: first cycle)",
+         [](const CycleMetrics& c) { return c.periodicity; }},
+        {"end_eccentricity_x", "1", "metric joint's e_x / c at the cycle's end (crank angle 0: Poincare section)",
+         [](const CycleMetrics& c) { return c.end_eccentricity_x; }},
+        {"end_eccentricity_y", "1", "metric joint's e_y / c at the cycle's end",
+         [](const CycleMetrics& c) { return c.end_eccentricity_y; }},
+        {"end_eccentricity_rate_x", "s-1", "metric joint's de_x/dt / c at the cycle's end",
+         [](const CycleMetrics& c) { return c.end_eccentricity_rate_x; }},
+        {"end_eccentricity_rate_y", "s-1", "metric joint's de_y/dt / c at the cycle's end",
+         [](const CycleMetrics& c) { return c.end_eccentricity_rate_y; }},
+    };
+    fields.insert(fields.end(), rest.begin(), rest.end());
+    return fields;
+  }();
   return f;
 }
 

@@ -2,6 +2,7 @@
 // /solver, lubsim's summary and the sweep's /cases columns, so they cannot disagree.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -12,18 +13,19 @@ namespace lub {
 
 /// One scalar a run reports.
 struct ResultField {
-  const char* name;  ///< column / attribute name, unit in the name where it has one
-  const char* unit;  ///< SI unit, CF style ("m", "m s-2", "rad"); "1" for ratios, counts, flags
+  std::string name;  ///< column / attribute name, unit in the name where it has one
+  std::string unit;  ///< SI unit, CF style ("m", "m s-2", "rad"); "1" for ratios, counts, flags
   bool integer;      ///< counts and flags
-  double (*get)(const RunResult&);
-  const char* long_name = "";  ///< a description (netCDF `long_name`)
+  std::function<double(const RunResult&)> get;
+  std::string long_name;  ///< a description (netCDF `long_name`)
   /// A steady-cycle metric or its error bar: a study reports it only for a case whose
   /// classification is periodic or periodic_unstable (NaN otherwise: a transient's value
   /// is not a result).
   bool steady_metric = false;
 };
 
-/// Steady-cycle metrics, in column order.
+/// Steady-cycle metrics, in column order: the six of steady_metrics(), periodicity, their
+/// error bars, the classification's numbers, the Floquet multipliers, the safe film.
 const std::vector<ResultField>& metric_fields();
 /// Solver statistics and cost, in column order.
 const std::vector<ResultField>& solver_fields();
@@ -31,10 +33,10 @@ const std::vector<ResultField>& solver_fields();
 /// One column of the run file's /cycles (after `cycle`, the cycle number): the one list
 /// behind the file and the Python module's `cycle_*` variables.
 struct CycleField {
-  const char* name;       ///< column name, unit in the name where it has one
-  const char* unit;       ///< CF-style SI unit
-  const char* long_name;  ///< a description (netCDF `long_name`)
-  double (*get)(const CycleMetrics&);
+  std::string name;       ///< column name, unit in the name where it has one
+  std::string unit;       ///< CF-style SI unit
+  std::string long_name;  ///< a description (netCDF `long_name`)
+  std::function<double(const CycleMetrics&)> get;
 };
 const std::vector<CycleField>& cycle_fields();
 
