@@ -58,7 +58,7 @@ struct NearWall {
     v.segment<2>(3 * b) -= ed;
     y.resize(2 * model.nq);
     y << q, v;
-    sys = std::make_unique<lub::MultibodySystem>(model, *ws, 0.999, false, form);
+    sys = std::make_unique<lub::MultibodySystem>(model, *ws, lub::stabilisation(scene), 0.999, false, form);
     if (c.sliding) {
       ws->film_mode[0] = lub::FilmMode::sliding;
       ws->slide_radius[0] = 0.95 * c_m;

@@ -204,7 +204,7 @@ TEST(ContactScene, AbsentMeansNoContactCode) {
   const double q[6] = {0, 0, 0, 0.0006, 0, 0};  // e = 0.6 mm > c = 0.5 mm
   const double v[6] = {0, 0, 0, 0, 0, 0};
   double a[6];
-  EXPECT_EQ(lub::evaluate(m, ws, 0.0, q, v, a), 1);
+  EXPECT_EQ(lub::evaluate(m, ws, lub::Stabilisation{}, 0.0, q, v, a), lub::EvalStatus::outside_domain);
 }
 
 TEST(ContactScene, NamedContactActsThroughTheWallWithoutTheFilm) {
@@ -221,17 +221,17 @@ TEST(ContactScene, NamedContactActsThroughTheWallWithoutTheFilm) {
   // ε = 1.2: contact alone, pushing the journal back towards the centre (−x), film not called.
   const double q[6] = {0, 0, 0, 0.0006, 0, 0};
   const long long film_before = ws.counters.film;
-  ASSERT_EQ(lub::evaluate(m, ws, 0.0, q, v, a), 0);
+  ASSERT_EQ(lub::evaluate(m, ws, lub::Stabilisation{}, 0.0, q, v, a), lub::EvalStatus::ok);
   EXPECT_EQ(ws.counters.film, film_before);
   EXPECT_LT(ws.films[0].F.x(), 0.0);
   EXPECT_NEAR(ws.films[0].F.x(), -ws.contact_N[0], 1e-9 * ws.contact_N[0]);
   // ε = 0.5: the film alone, same force as without the effect.
   const double q2[6] = {0, 0, 0, 0.00025, 0, 0};
   const double v2[6] = {0, 0, 0, 0.001, 0.002, 50.0};
-  ASSERT_EQ(lub::evaluate(m, ws, 0.0, q2, v2, a), 0);
+  ASSERT_EQ(lub::evaluate(m, ws, lub::Stabilisation{}, 0.0, q2, v2, a), lub::EvalStatus::ok);
   const lub::Model m0 = lub::build_model(lub::parse_scene(bearing_scene("gumbel_short")));
   lub::Workspace ws0(m0);
-  ASSERT_EQ(lub::evaluate(m0, ws0, 0.0, q2, v2, a), 0);
+  ASSERT_EQ(lub::evaluate(m0, ws0, lub::Stabilisation{}, 0.0, q2, v2, a), lub::EvalStatus::ok);
   EXPECT_EQ(ws.films[0].F.x(), ws0.films[0].F.x());
   EXPECT_EQ(ws.films[0].F.y(), ws0.films[0].F.y());
   EXPECT_EQ(ws.contact_N[0], 0.0);
@@ -317,7 +317,7 @@ TEST(FiniteBearingScene, OptionsAreParsedAndValidated) {
   const double q[6] = {0, 0, 0, 0.0002, 0.0001, 0};
   const double v[6] = {0, 0, 0, 0.001, 0.0, 100.0};
   double a[6];
-  ASSERT_EQ(lub::evaluate(m, ws, 0.0, q, v, a), 0);
+  ASSERT_EQ(lub::evaluate(m, ws, lub::Stabilisation{}, 0.0, q, v, a), lub::EvalStatus::ok);
   EXPECT_TRUE(std::isfinite(ws.films[0].F.x()) && ws.films[0].F.norm() > 0.0);
   // Errors name the path, value and rule.
   doc["joints"][1]["cavitation"] = "elrod";

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "lub/formulation/model_jacobian.hpp"
 #include "lub/integrators/integrator.hpp"
 #include "lub/run/run.hpp"
 #include "near_wall_state.hpp"

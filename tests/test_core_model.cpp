@@ -50,7 +50,7 @@ Vector2d film_force(const lub::Model& m, const BodyPose& housing, const BodyPose
   const double q[6] = {housing.r.x(), housing.r.y(), housing.phi, shaft.r.x(), shaft.r.y(), shaft.phi};
   const double v[6] = {housing.rd.x(), housing.rd.y(), housing.phid, shaft.rd.x(), shaft.rd.y(), shaft.phid};
   double a[6];
-  EXPECT_EQ(lub::evaluate(m, ws, 0.0, q, v, a), 0);
+  EXPECT_EQ(lub::evaluate(m, ws, lub::Stabilisation{}, 0.0, q, v, a), lub::EvalStatus::ok);
   return ws.films[0].F;
 }
 
@@ -176,16 +176,16 @@ TEST(ModelWorkspace, AWorkspaceOfAnotherModelIsAnInternalError) {
   lub::Workspace ws(other);
   std::vector<double> q(static_cast<size_t>(m.nq), 0.0), v(q), a(q);
   q[3] = 1e-5;  // journal off centre
-  EXPECT_THROW(lub::evaluate(m, ws, 0.0, q.data(), v.data(), a.data()), lub::InternalError);
+  EXPECT_THROW(lub::evaluate(m, ws, lub::Stabilisation{}, 0.0, q.data(), v.data(), a.data()), lub::InternalError);
   try {
-    lub::evaluate(m, ws, 0.0, q.data(), v.data(), a.data());
+    lub::evaluate(m, ws, lub::Stabilisation{}, 0.0, q.data(), v.data(), a.data());
   } catch (const lub::InputError&) {
     ADD_FAILURE() << "a broken invariant must not read as bad input";
   } catch (const lub::InternalError& e) {
     EXPECT_NE(std::string(e.what()).find("workspace built for a model"), std::string::npos) << e.what();
   }
   lub::Workspace own(m);
-  EXPECT_EQ(lub::evaluate(m, own, 0.0, q.data(), v.data(), a.data()), 0);
+  EXPECT_EQ(lub::evaluate(m, own, lub::Stabilisation{}, 0.0, q.data(), v.data(), a.data()), lub::EvalStatus::ok);
 }
 
 // body_trig keeps a body's sin/cos while its angle is unchanged (Workspace::trig_phi): an
@@ -202,8 +202,8 @@ TEST(ModelWorkspace, KeptTrigonometryChangesNoResult) {
   auto q = q0;
   auto check = [&](const char* what) {
     lub::Workspace fresh(m);
-    ASSERT_EQ(lub::evaluate(m, kept, 0.0, q.data(), v0.data(), a.data()), 0) << what;
-    ASSERT_EQ(lub::evaluate(m, fresh, 0.0, q.data(), v0.data(), b.data()), 0) << what;
+    ASSERT_EQ(lub::evaluate(m, kept, lub::Stabilisation{}, 0.0, q.data(), v0.data(), a.data()), lub::EvalStatus::ok) << what;
+    ASSERT_EQ(lub::evaluate(m, fresh, lub::Stabilisation{}, 0.0, q.data(), v0.data(), b.data()), lub::EvalStatus::ok) << what;
     for (int i = 0; i < m.nq; ++i) EXPECT_EQ(a[i], b[i]) << what << ", coordinate " << i;
     EXPECT_EQ(kept.cos_phi, fresh.cos_phi) << what;
     EXPECT_EQ(kept.sin_phi, fresh.sin_phi) << what;

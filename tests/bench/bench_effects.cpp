@@ -52,7 +52,7 @@ void BM_Rhs(benchmark::State& state) {
   Eigen::VectorXd a(m.nq);
   lub::Workspace ws(m);
   for (auto _ : state) {
-    benchmark::DoNotOptimize(lub::evaluate(m, ws, 1e-3, q.data(), v.data(), a.data()));
+    benchmark::DoNotOptimize(lub::evaluate(m, ws, lub::stabilisation(s), 1e-3, q.data(), v.data(), a.data()));
     benchmark::ClobberMemory();
   }
   const double n = static_cast<double>(ws.counters.rhs);

@@ -32,7 +32,7 @@ void BM_Evaluate(benchmark::State& state, const std::string& law) {
   Fixture f(law);
   lub::Workspace ws(f.model);
   for (auto _ : state) {
-    benchmark::DoNotOptimize(lub::evaluate(f.model, ws, 1e-3, f.q.data(), f.v.data(), f.a.data()));
+    benchmark::DoNotOptimize(lub::evaluate(f.model, ws, lub::stabilisation(f.scene), 1e-3, f.q.data(), f.v.data(), f.a.data()));
     benchmark::ClobberMemory();
   }
 }

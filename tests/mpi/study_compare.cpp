@@ -37,7 +37,7 @@ int compare(const std::string& pa, const std::string& pb) {
     for (std::size_t i = 0; i < x.size(); ++i)
       if (!same(x[i], y[i])) {
         char buf[256];
-        std::snprintf(buf, sizeof buf, "%s %s: %.17g vs %.17g", names[i].c_str(), f.name, x[i], y[i]);
+        std::snprintf(buf, sizeof buf, "%s %s: %.17g vs %.17g", names[i].c_str(), f.name.c_str(), x[i], y[i]);
         report(buf);
       }
   }

@@ -63,8 +63,8 @@ double film_velocity_step(const FilmKinematics& fk, double c, double shaft_rates
 
 // Φ̈ + 2α Φ̇ + β² Φ of the sliding row of film k at (q, v, q̈ = a): Φ = |e| − e_s,
 // Φ̇ = r·ė, Φ̈ = r·ë + |ė⊥|²/|e|.
-double sliding_row_residual(const Model& m, const Workspace& ws, int k, const double* q, const double* v,
-                            const double* a) {
+double sliding_row_residual(const Model& m, const Workspace& ws, const Stabilisation& stab, int k, const double* q,
+                            const double* v, const double* a) {
   const FilmElement& f = m.films[k];
   Vector2d e(0, 0), ed(0, 0), edd(0, 0);
   const int bodies[2] = {f.bearing, f.journal};
@@ -83,13 +83,13 @@ double sliding_row_residual(const Model& m, const Workspace& ws, int k, const do
   const Vector2d r = e / en;
   const double erd = r.dot(ed);
   const double Phidd = r.dot(edd) + (ed.squaredNorm() - erd * erd) / en;
-  return Phidd + 2.0 * m.alpha * erd + m.beta * m.beta * (en - ws.slide_radius[k]);
+  return Phidd + 2.0 * stab.alpha * erd + stab.beta * stab.beta * (en - ws.slide_radius[k]);
 }
 
 }  // namespace
 
-void sliding_rows_position_jacobian(const Model& m, const Workspace& ws, double* q, const double* v,
-                                    const double* a, Eigen::Ref<Eigen::MatrixXd> D) {
+void sliding_rows_position_jacobian(const Model& m, const Workspace& ws, const Stabilisation& stab, double* q,
+                                    const double* v, const double* a, Eigen::Ref<Eigen::MatrixXd> D) {
   const double delta = std::cbrt(DBL_EPSILON);
   for (int k = 0; k < static_cast<int>(m.films.size()); ++k) {
     if (ws.film_mode[k] != FilmMode::sliding) continue;
@@ -107,7 +107,7 @@ void sliding_rows_position_jacobian(const Model& m, const Workspace& ws, double*
         const double h = dof == 2 ? h_pos / arms[side] : h_pos;
         double fp = 0.0, fm = 0.0;
         const double span = detail::central_difference(q, col, h, [&](int sign) {
-          (sign > 0 ? fp : fm) = sliding_row_residual(m, ws, k, q, v, a);
+          (sign > 0 ? fp : fm) = sliding_row_residual(m, ws, stab, k, q, v, a);
           return true;
         });
         D(row, col) = (fp - fm) / span;

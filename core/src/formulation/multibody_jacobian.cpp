@@ -86,7 +86,7 @@ int MultibodySystem::jacobian(double t, const double* y, const double* fy, doubl
   // sliding row's curvature) from one evaluation, only while some film slides.
   bool sliding = false;
   for (size_t k = 0; k < m_.films.size(); ++k) sliding = sliding || ws_.film_mode[k] == FilmMode::sliding;
-  if (sliding && evaluate(m_, ws_, t, s.q.data(), s.v.data(), s.a.data()) != 0) return 1;
+  if (sliding && evaluate(m_, ws_, stab_, t, s.q.data(), s.v.data(), s.a.data()) != EvalStatus::ok) return 1;
   if (add_film_force_jacobian(m_, ws_, s.q.data(), s.v.data(), s.Gq, s.Gv) != 0) return 1;
 
   // Φ_q at this state, with the sliding rows of the films sliding now.
@@ -102,14 +102,14 @@ int MultibodySystem::jacobian(double t, const double* y, const double* fy, doubl
     Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(S);  // in place: no allocation
     if (llt.info() != Eigen::Success) return 1;
     auto R = s.R.topRows(nc);
-    const double beta2 = m_.beta * m_.beta, two_alpha = 2.0 * m_.alpha;
+    const double beta2 = stab_.beta * stab_.beta, two_alpha = 2.0 * stab_.alpha;
     // J_q M = ∂g/∂q − Φ_qᵀ S⁻¹ (Φ_q M⁻¹ ∂g/∂q + β² Φ_q)
     R.noalias() = B.lazyProduct(s.Gq);
     R += beta2 * Phq;
     // Sliding rows: their full ∂(Φ̈ + 2αΦ̇ + β²Φ)/∂q (curvature radius |e| ~ c).
     if (sliding) {
       auto D = s.Gamma_v.topRows(nc);  // free until ∂γ/∂v below
-      sliding_rows_position_jacobian(m_, ws_, s.q.data(), s.v.data(), s.a.data(), D);
+      sliding_rows_position_jacobian(m_, ws_, stab_, s.q.data(), s.v.data(), s.a.data(), D);
       for (size_t k = 0; k < m_.films.size(); ++k)
         if (ws_.film_mode[k] == FilmMode::sliding) R.row(ws_.slide_row[k]) += D.row(ws_.slide_row[k]) - beta2 * Phq.row(ws_.slide_row[k]);
     }

@@ -12,8 +12,9 @@
 
 namespace lub {
 
-MultibodySystem::MultibodySystem(const Model& m, Workspace& ws, double eps_limit, bool energy, Formulation f)
-    : m_(m), ws_(ws), eps_limit_(eps_limit), energy_(energy), form_(f),
+MultibodySystem::MultibodySystem(const Model& m, Workspace& ws, const Stabilisation& stab, double eps_limit,
+                                 bool energy, Formulation f)
+    : m_(m), ws_(ws), stab_(stab), eps_limit_(eps_limit), energy_(energy), form_(f),
       nz_(f == Formulation::partitioned ? m.nq - m.nc : m.nq) {
   check_workspace(m, ws);
   acc_.assign(m.nq, 0.0);
@@ -182,14 +183,14 @@ int MultibodySystem::rhs(double t, const double* y, double* ydot) {
   const int nq = m_.nq;
   if (form_ != Formulation::partitioned) {
     std::copy(y + nq, y + 2 * nq, ydot);
-    const int rc = evaluate(m_, ws_, t, y, y + nq, ydot + nq);
-    if (rc < 0) throw std::runtime_error("the constraint matrix Phi_q M^-1 Phi_q^T is singular");
-    return rc;
+    const EvalStatus s = evaluate(m_, ws_, stab_, t, y, y + nq, ydot + nq);
+    if (s == EvalStatus::singular) throw std::runtime_error("the constraint matrix Phi_q M^-1 Phi_q^T is singular");
+    return ode_flag(s);
   }
   if (expand(t, y, scratch_.data()) != 0) return 1;
-  const int rc = evaluate(m_, ws_, t, scratch_.data(), scratch_.data() + nq, acc_.data());
-  if (rc < 0) throw std::runtime_error("the constraint matrix Phi_q M^-1 Phi_q^T is singular");
-  if (rc != 0) return rc;
+  const EvalStatus s = evaluate(m_, ws_, stab_, t, scratch_.data(), scratch_.data() + nq, acc_.data());
+  if (s == EvalStatus::singular) throw std::runtime_error("the constraint matrix Phi_q M^-1 Phi_q^T is singular");
+  if (s != EvalStatus::ok) return ode_flag(s);
   const int nd = static_cast<int>(ind_.size());
   for (int i = 0; i < nd; ++i) {
     ydot[i] = y[nd + i];
@@ -201,8 +202,9 @@ int MultibodySystem::rhs(double t, const double* y, double* ydot) {
 int MultibodySystem::quadrature_rhs(double t, const double* y, double* qdot) {
   const int nq = m_.nq;
   if (expand(t, y, scratch_.data()) != 0) return 1;
-  const int rc = evaluate(m_, ws_, t, scratch_.data(), scratch_.data() + nq, acc_.data());
-  if (rc != 0) return rc;
+  if (const EvalStatus s = evaluate(m_, ws_, stab_, t, scratch_.data(), scratch_.data() + nq, acc_.data());
+      s != EvalStatus::ok)
+    return ode_flag(s);
   qdot[0] = driver_power(m_, ws_, scratch_.data() + nq);
   qdot[1] = film_power(ws_);
   return 0;
@@ -226,7 +228,7 @@ int MultibodySystem::residual(double t, const double* Y, const double* Yp, doubl
   const double* lam = Y + 2 * nq;
   const double* mu = lam + na;
   // g, Φ, Φ_q and Φ̇ at (q, v), with the sliding rows of sliding films: no solve.
-  if (const int rc = evaluate_forces(m_, ws_, t, q, v); rc != 0) return rc;
+  if (const EvalStatus s = evaluate_forces(m_, ws_, t, q, v); s != EvalStatus::ok) return ode_flag(s);
   for (int i = 0; i < nq; ++i) {
     F[i] = Yp[i] - v[i];
     F[nq + i] = m_.mass_diag(i) * Yp[nq + i] - ws_.g(i);
@@ -254,9 +256,9 @@ int MultibodySystem::residual(double t, const double* Y, const double* Yp, doubl
 int MultibodySystem::consistent_state(double t, const double* y, double* Y, double* Yp) {
   const int nq = m_.nq, na = m_.nc + m_.n_switching;
   std::copy(y, y + 2 * nq, Y);
-  const int rc = evaluate(m_, ws_, t, y, y + nq, acc_.data());
-  if (rc < 0) throw std::runtime_error("the constraint matrix Phi_q M^-1 Phi_q^T is singular");
-  if (rc != 0) return rc;
+  const EvalStatus s = evaluate(m_, ws_, stab_, t, y, y + nq, acc_.data());
+  if (s == EvalStatus::singular) throw std::runtime_error("the constraint matrix Phi_q M^-1 Phi_q^T is singular");
+  if (s != EvalStatus::ok) return ode_flag(s);
   // On the constraint manifold the index-1 multipliers are the DAE's; μ = 0.
   std::fill(Y + 2 * nq, Y + 2 * nq + 2 * na, 0.0);
   for (int row = 0; row < m_.nc; ++row) Y[2 * nq + row] = ws_.lambda(row);

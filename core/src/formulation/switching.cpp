@@ -31,7 +31,7 @@ int MultibodySystem::roots(double t, const double* y, double* g) {
       g[j + 1] = 1.0;
     } else {
       if (!evaluated) {
-        if (evaluate(m_, ws_, t, q, v, acc_.data()) != 0) return 1;
+        if (evaluate(m_, ws_, stab_, t, q, v, acc_.data()) != EvalStatus::ok) return 1;
         evaluated = true;
       }
       std::tie(g[j], g[j + 1]) = sliding_exit_functions(k);
@@ -91,7 +91,7 @@ int MultibodySystem::switch_modes(const std::vector<int>& flags, double t, const
       if (can_slide) {
         ws_.film_mode[k] = FilmMode::sliding;
         ws_.slide_radius[k] = fk.e.norm();
-        if (evaluate(m_, ws_, t, y, y + m_.nq, switch_acc_.data()) != 0) {
+        if (evaluate(m_, ws_, stab_, t, y, y + m_.nq, switch_acc_.data()) != EvalStatus::ok) {
           ws_.film_mode[k] = from;
           continue;
         }
@@ -126,7 +126,7 @@ int MultibodySystem::resync_modes(double t, const double* y) {
       // ever came). Leave by the side the force points to. Margin: 1e-9 of the jump, far
       // above the multiplier's round-off and far below any force the motion responds to.
       if (!evaluated) {
-        if (evaluate(m_, ws_, t, y, y + m_.nq, switch_acc_.data()) != 0) continue;
+        if (evaluate(m_, ws_, stab_, t, y, y + m_.nq, switch_acc_.data()) != EvalStatus::ok) continue;
         evaluated = true;
       }
       const auto [out_side, in_side] = sliding_exit_functions(static_cast<int>(k));

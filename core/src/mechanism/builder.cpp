@@ -18,6 +18,10 @@ using detail::fill_constraints;
 using detail::fill_phi_t;
 using detail::revolute_block;
 
+Stabilisation stabilisation(const Scene& scene) {
+  return {scene.solver.baumgarte_alpha, scene.solver.baumgarte_beta};
+}
+
 Model build_model(const Scene& scene) {
   Model m;
   m.nb = static_cast<int>(scene.bodies.size());
@@ -29,8 +33,6 @@ Model build_model(const Scene& scene) {
   }
   m.inv_mass_diag = m.mass_diag.cwiseInverse();
   m.gravity = scene.gravity_m_s2;
-  m.alpha = scene.solver.baumgarte_alpha;
-  m.beta = scene.solver.baumgarte_beta;
   m.joint_constraint.assign(scene.joints.size(), -1);
   m.joint_film.assign(scene.joints.size(), -1);
 

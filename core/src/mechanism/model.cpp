@@ -198,7 +198,7 @@ void check_workspace(const Model& m, const Workspace& ws) {
              "workspace built for a model with other film elements");
 }
 
-int evaluate_forces(const Model& m, Workspace& ws, double t, const double* q, const double* v) {
+EvalStatus evaluate_forces(const Model& m, Workspace& ws, double t, const double* q, const double* v) {
   check_workspace(m, ws);
   ++ws.counters.rhs;
   const double* cphi = ws.cos_phi.data();
@@ -220,7 +220,7 @@ int evaluate_forces(const Model& m, Workspace& ws, double t, const double* q, co
     double load[6];
     if (!film_element_load(m, ws, static_cast<int>(k), body_state(f.bearing, q, v, cphi, sphi),
                            body_state(f.journal, q, v, cphi, sphi), 0.0, &ws.counters.film, fk, load))
-      return 1;
+      return EvalStatus::outside_domain;
     fk.sliding = ws.film_mode[k] == FilmMode::sliding;
     if (fk.sliding) {
       ws.slide_row[k] = m.nc + n_sliding++;
@@ -230,27 +230,27 @@ int evaluate_forces(const Model& m, Workspace& ws, double t, const double* q, co
     add_body_load(ws.g, f.bearing, load);
   }
   ws.nc_active = m.nc + n_sliding;
-  if (ws.nc_active == 0) return 0;
+  if (ws.nc_active == 0) return EvalStatus::ok;
   fill_constraints(m.constraints, t, q, v, cphi, sphi, ws.Phi_q, ws.Phi, ws.Phi_dot, &ws.gamma);
   if (n_sliding > 0) fill_sliding_rows(m, ws, q, v);
-  return 0;
+  return EvalStatus::ok;
 }
 
-int evaluate(const Model& m, Workspace& ws, double t, const double* q, const double* v,
-             double* qdd) {
-  if (const int rc = evaluate_forces(m, ws, t, q, v); rc != 0) return rc;
+EvalStatus evaluate(const Model& m, Workspace& ws, const Stabilisation& stab, double t, const double* q,
+                    const double* v, double* qdd) {
+  if (const EvalStatus s = evaluate_forces(m, ws, t, q, v); s != EvalStatus::ok) return s;
   const double* w = m.inv_mass_diag.data();
   const int nc = ws.nc_active;
   if (nc == 0) {
     for (int i = 0; i < m.nq; ++i) qdd[i] = w[i] * ws.g(i);
-    return 0;
+    return EvalStatus::ok;
   }
   const bool any_sliding = nc > m.nc;
   // (Φ_q M⁻¹ Φ_qᵀ) λ = Φ_q M⁻¹ g − γ̂,  γ̂ = γ − 2α Φ̇ − β² Φ  (qdd holds M⁻¹ g meanwhile)
   for (int i = 0; i < m.nq; ++i) qdd[i] = w[i] * ws.g(i);
   for (int r = 0; r < nc; ++r)
-    ws.rhs(r) = row_dot(ws, r, qdd) - (ws.gamma(r) - 2.0 * m.alpha * ws.Phi_dot(r) - (m.beta * m.beta) * ws.Phi(r));
-  if (!factor_schur(m, ws, nc)) return -1;
+    ws.rhs(r) = row_dot(ws, r, qdd) - (ws.gamma(r) - 2.0 * stab.alpha * ws.Phi_dot(r) - (stab.beta * stab.beta) * ws.Phi(r));
+  if (!factor_schur(m, ws, nc)) return EvalStatus::singular;
   ws.lambda.head(nc) = ws.rhs.head(nc);
   dense::cholesky_solve(ws.S.data(), static_cast<int>(ws.S.rows()), nc, ws.lambda.data());
   // q̈ = M⁻¹ (g − Φ_qᵀ λ)
@@ -266,7 +266,7 @@ int evaluate(const Model& m, Workspace& ws, double t, const double* q, const dou
       fk.F = fk.force.radial_N * fk.r + fk.force.tangential_N * perp(fk.r);
     }
   }
-  return 0;
+  return EvalStatus::ok;
 }
 
 void constraint_residual(const Model& m, Workspace& ws, double t, const double* q, const double* v) {

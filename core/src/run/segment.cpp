@@ -150,7 +150,8 @@ bool Runner::start_integrator() {
   res_.stats.formulation = name_of(plan_.formulation);
   res_.stats.jacobian = plan_.jacobian_name();
   const bool energy = scene_.output.energy_balance;
-  sys_ = std::make_unique<MultibodySystem>(m_, ws_, scene_.simulation.eps_limit, energy, plan_.formulation);
+  sys_ = std::make_unique<MultibodySystem>(m_, ws_, stabilisation(scene_), scene_.simulation.eps_limit, energy,
+                                           plan_.formulation);
   sys_->set_projection_tolerance(0.01 * tol_.reported_atol());  // Newton on Φ = 0 well inside the error test
   try {
     sys_->partition(t0_, qv0_.data());
@@ -176,7 +177,7 @@ void Runner::observe(double t, const double* y, bool record, bool measure) {
   const double* v = y + m_.nq;
   std::copy(ws_.film_mode.begin(), ws_.film_mode.end(), obs_ws_.film_mode.begin());
   std::copy(ws_.slide_radius.begin(), ws_.slide_radius.end(), obs_ws_.slide_radius.begin());
-  if (evaluate(m_, obs_ws_, t, q, v, qdd_.data()) != 0) return;
+  if (evaluate(m_, obs_ws_, stabilisation(scene_), t, q, v, qdd_.data()) != EvalStatus::ok) return;
   ++res_.stats.observer_evals;
   if (record) series_.record(Probe{t, q, v, qdd_.data()}, obs_ws_);
   if (!measure) return;

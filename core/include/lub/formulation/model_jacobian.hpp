@@ -49,8 +49,8 @@ int add_film_force_directional(const Model& m, Workspace& ws, double* q, double*
 /// into the sliding rows of D (ws.slide_row; other rows untouched): the curvature of a
 /// sliding row has the clearance as its length scale, so unlike that of the ideal joints it
 /// is not negligible in a Newton matrix. Central differences; q is perturbed and restored.
-void sliding_rows_position_jacobian(const Model& m, const Workspace& ws, double* q, const double* v,
-                                    const double* a, Eigen::Ref<Eigen::MatrixXd> D);
+void sliding_rows_position_jacobian(const Model& m, const Workspace& ws, const Stabilisation& stab, double* q,
+                                    const double* v, const double* a, Eigen::Ref<Eigen::MatrixXd> D);
 
 /// ∂γ/∂v (ws.nc_active × nq) of the constraint rows at (q, v), the sliding rows of sliding
 /// films included (their row numbers from ws.slide_row: call constraint_residual() at the

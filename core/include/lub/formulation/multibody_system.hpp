@@ -47,7 +47,8 @@ struct JacobianScratch {
 
 class MultibodySystem final : public OdeSystem {
  public:
-  MultibodySystem(const Model& m, Workspace& ws, double eps_limit, bool energy, Formulation f);
+  MultibodySystem(const Model& m, Workspace& ws, const Stabilisation& stab, double eps_limit, bool energy,
+                  Formulation f);
 
   int size() const override { return 2 * nz_; }
   int rhs(double t, const double* y, double* ydot) override;
@@ -114,6 +115,7 @@ class MultibodySystem final : public OdeSystem {
  private:
   const Model& m_;
   Workspace& ws_;
+  Stabilisation stab_;
   double eps_limit_;
   bool energy_;
   Formulation form_;

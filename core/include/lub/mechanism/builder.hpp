@@ -14,6 +14,9 @@ namespace lub {
 /// constraints are detected later, at assembly).
 Model build_model(const Scene& scene);
 
+/// The constraint stabilisation the scene's solver asks for (solver.baumgarte_alpha, _beta).
+Stabilisation stabilisation(const Scene& scene);
+
 /// Kinematic analysis with all joints ideal (lubricated joints closed at their initial
 /// eccentricity): Newton–Raphson on positions from the scene's poses, then velocities.
 /// Throws InputError ("assembly: ...") if it cannot close.

@@ -6,7 +6,7 @@
 // q = (x, y, φ) per moving body (the ground is not in q). With the diagonal mass matrix M,
 // the constraint Jacobian Φ_q, generalised forces g (gravity, film forces and their
 // moments about the centres of mass) and γ = −(Φ_q q̇)_q q̇ − 2Φ_qt q̇ − Φ_tt,
-//     M q̈ + Φ_qᵀ λ = g,    Φ_q q̈ = γ − 2α Φ̇ − β² Φ      (Baumgarte, α, β from the scene).
+//     M q̈ + Φ_qᵀ λ = g,    Φ_q q̈ = γ − 2α Φ̇ − β² Φ      (Baumgarte's α, β: a Stabilisation).
 // Because M is diagonal the multipliers come from the small SPD system
 //     (Φ_q M⁻¹ Φ_qᵀ) λ = Φ_q M⁻¹ g − γ̂,    q̈ = M⁻¹ (g − Φ_qᵀ λ).
 // A lubricated revolute joint is a force element: no constraint rows, the film force F on
@@ -83,11 +83,29 @@ struct Model {
   std::vector<FilmElement> films;
   int n_switching = 0;  ///< films with switching (each may add one sliding row)
   std::optional<Eigen::Vector2d> gravity;
-  double alpha = 5.0, beta = 5.0;
   /// constraint block of each scene joint (ideal joints, and lubricated ones with law
   /// "ideal"), or -1; film element of each scene joint, or -1
   std::vector<int> joint_constraint, joint_film;
 };
+
+/// Baumgarte's stabilisation of the constraints, Φ̈ + 2α Φ̇ + β² Φ = 0 (α, β [1/s]): the
+/// formulation's choice (solver.baumgarte_alpha, solver.baumgarte_beta), not part of the
+/// mechanism, so the Model does not hold it; evaluate() is told.
+struct Stabilisation {
+  double alpha = 5.0;
+  double beta = 5.0;
+};
+
+/// What an evaluation of the model found.
+enum class EvalStatus {
+  ok,              ///< accelerations (and forces) evaluated
+  outside_domain,  ///< ε >= 1 without contact: a recoverable failure for an integrator
+  singular,        ///< the constraint system is singular: fatal
+};
+/// The integrators' convention (OdeSystem, as SUNDIALS'): 0 ok, 1 recoverable, −1 fatal.
+constexpr int ode_flag(EvalStatus s) {
+  return s == EvalStatus::ok ? 0 : s == EvalStatus::outside_domain ? 1 : -1;
+}
 
 /// Bearing kinematics of one film element at one state.
 struct FilmKinematics {
@@ -152,15 +170,14 @@ void check_workspace(const Model& m, const Workspace& ws);
 /// The first half of evaluate(): generalised forces ws.g (gravity and film elements; a
 /// sliding film's radial force left out: it is its row's multiplier), film kinematics
 /// and forces, and — when there are constraint rows — Φ, Φ_q, Φ̇, γ of the ws.nc_active
-/// rows, without solving for λ and q̈ (the GGL residual needs no more). Returns 0, or 1
-/// outside the model's domain.
-int evaluate_forces(const Model& m, Workspace& ws, double t, const double* q, const double* v);
+/// rows, without solving for λ and q̈ (the GGL residual needs no more): ok, or
+/// outside_domain.
+EvalStatus evaluate_forces(const Model& m, Workspace& ws, double t, const double* q, const double* v);
 
-/// Evaluates accelerations q̈ (and λ, film kinematics and forces in `ws`) at (t, q, v).
-/// Returns 0, or 1 if the state is outside the model's domain (ε >= 1: a recoverable
-/// failure for the integrator), or -1 if the constraint system is singular.
-int evaluate(const Model& m, Workspace& ws, double t, const double* q, const double* v,
-             double* qdd);
+/// Evaluates accelerations q̈ (and λ, film kinematics and forces in `ws`) at (t, q, v), the
+/// constraints stabilised by `stab`: ok, outside_domain (ε >= 1 without contact) or singular.
+EvalStatus evaluate(const Model& m, Workspace& ws, const Stabilisation& stab, double t, const double* q,
+                    const double* v, double* qdd);
 
 /// Constraint violation Φ and Φ̇ at (t, q, v) into ws.Phi, ws.Phi_dot (and ws.Phi_q).
 /// Also the sliding rows of sliding films (ws.nc_active rows in all).
