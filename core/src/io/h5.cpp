@@ -64,6 +64,15 @@ std::string name_of(hid_t id, ssize_t (*get_name)(hid_t, char*, std::size_t)) {
 std::string file_name_of(hid_t id) { return name_of(id, H5Fget_name); }
 std::string object_path_of(hid_t id) { return name_of(id, H5Iget_name); }
 
+/// `get(id)` for an open id ("" for a closed one), leaving no HDF5 error behind.
+std::string name_or_empty(hid_t id, std::string (*get)(hid_t)) {
+  if (id < 0) return "";
+  quiet();
+  std::string name = get(id);
+  H5Eclear2(H5E_DEFAULT);
+  return name;
+}
+
 std::string join_path(const std::string& base, const std::string& name) {
   if (name.empty()) return base;
   if (name.front() == '/') return name;
@@ -457,21 +466,9 @@ void Object::close_handle() noexcept {
   id_ = -1;
 }
 
-std::string Object::path() const {
-  if (id_ < 0) return "";
-  quiet();
-  std::string p = object_path_of(id_);
-  H5Eclear2(H5E_DEFAULT);
-  return p;
-}
+std::string Object::path() const { return name_or_empty(id_, object_path_of); }
 
-std::string Object::file_name() const {
-  if (id_ < 0) return "";
-  quiet();
-  std::string p = file_name_of(id_);
-  H5Eclear2(H5E_DEFAULT);
-  return p;
-}
+std::string Object::file_name() const { return name_or_empty(id_, file_name_of); }
 
 bool Object::has_attribute(const std::string& name) const {
   quiet();
