@@ -11,7 +11,7 @@
 #include "lub/bearing/contact.hpp"
 #include "lub/mechanism/builder.hpp"
 #include "lub/mechanism/model.hpp"
-#include "bearing_fixture.hpp"
+#include "fixtures/bearing_fixture.hpp"
 
 namespace {
 

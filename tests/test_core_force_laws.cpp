@@ -8,8 +8,8 @@
 //
 // Tolerances are relative to a force scale and each carries its reason.
 
-#include "film_quadrature.hpp"
-#include "bearing_fixture.hpp"
+#include "fixtures/film_quadrature.hpp"
+#include "fixtures/bearing_fixture.hpp"
 #include "lub/bearing/film_force.hpp"
 
 #include <gtest/gtest.h>
@@ -30,7 +30,7 @@ using lub::ForceLaw;
 
 constexpr double kPi = 3.14159265358979323846;
 
-// The paper's slider-crank joint (tests/bearing_fixture.hpp).
+// The paper's slider-crank joint (tests/fixtures/bearing_fixture.hpp).
 using bearing_fixture::kMu;
 using bearing_fixture::long_coef;
 using bearing_fixture::short_coef;
@@ -64,7 +64,7 @@ double ref_pressure_long(const BearingGeometry& g, const BearingState& s, double
 
 // --- Quadrature --------------------------------------------------------------------
 
-// Quadrature (shared with the other force-law tests): tests/film_quadrature.hpp.
+// Quadrature (shared with the other force-law tests): tests/fixtures/film_quadrature.hpp.
 using filmquad::Force2;
 using filmquad::gauss_force;
 using filmquad::positive_part_force;

@@ -13,8 +13,8 @@
 #include <cstdio>
 #include <vector>
 
-#include "film_quadrature.hpp"
-#include "bearing_fixture.hpp"
+#include "fixtures/film_quadrature.hpp"
+#include "fixtures/bearing_fixture.hpp"
 #include "lub/bearing/film_force.hpp"
 
 namespace {
@@ -26,7 +26,7 @@ using lub::BearingState;
 using lub::FilmForce;
 using lub::ForceLaw;
 
-// The paper's slider-crank joint (tests/bearing_fixture.hpp).
+// The paper's slider-crank joint (tests/fixtures/bearing_fixture.hpp).
 using bearing_fixture::kMu;
 using bearing_fixture::long_coef;
 using bearing_fixture::short_coef;

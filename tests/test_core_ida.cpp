@@ -12,7 +12,7 @@
 
 #include "lub/integrators/integrator.hpp"
 #include "lub/run/run.hpp"
-#include "near_wall_state.hpp"
+#include "fixtures/near_wall_state.hpp"
 
 namespace {
 

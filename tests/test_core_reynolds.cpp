@@ -13,10 +13,10 @@
 #include <cstdio>
 #include <vector>
 
-#include "film_quadrature.hpp"
+#include "fixtures/film_quadrature.hpp"
 #include "lub/bearing/film_force.hpp"
 #include "lub/bearing/reynolds.hpp"
-#include "bearing_fixture.hpp"
+#include "fixtures/bearing_fixture.hpp"
 
 namespace {
 
