@@ -74,7 +74,8 @@ TEST(FilmElement, JournalOrBearingRotatingGiveTheSameForce) {
     const Vector2d Fa = film_force(m, h, shaft_for(h, {0, 0}, {0, 0}, 0.0, omega, e, edot));
     h.phid = omega;
     const Vector2d Fb = film_force(m, h, shaft_for(h, {0, 0}, {0, 0}, 0.0, 0.0, e, edot));
-    ASSERT_GT(Fa.norm(), 1.0) << law;
+    EXPECT_GT(Fa.norm(), 1.0) << law;
+    if (!(Fa.norm() > 1.0)) continue;
     // Same formula, evaluated from different body states: a few ulps of the force.
     EXPECT_LT((Fa - Fb).norm(), 1e-12 * Fa.norm()) << law;
   }
