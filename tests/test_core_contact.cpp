@@ -11,7 +11,8 @@
 #include "lub/bearing/contact.hpp"
 #include "lub/mechanism/builder.hpp"
 #include "lub/mechanism/model.hpp"
-#include "bearing_fixture.hpp"
+#include "fixtures/bearing_fixture.hpp"
+#include "fixtures/bearing_scene.hpp"
 
 namespace {
 
@@ -164,22 +165,8 @@ TEST(Contact, RestitutionOfAFreeImpactAtTheReferenceSpeed) {
 // --- Scene and model wiring ---------------------------------------------------------------
 
 json bearing_scene(const std::string& law) {
-  return json{
-      {"bodies",
-       {{{"name", "housing"}, {"mass_kg", 1.0}, {"inertia_kg_m2", 0.01}},
-        {{"name", "shaft"}, {"mass_kg", 0.5}, {"inertia_kg_m2", 0.002}}}},
-      {"joints",
-       {{{"name", "fix"}, {"type", "ground"}, {"body", "housing"}},
-        {{"name", "bearing"},
-         {"type", "lubricated_revolute"},
-         {"bearing_body", "housing"},
-         {"journal_body", "shaft"},
-         {"bearing_radius_m", 0.010},
-         {"journal_radius_m", 0.0095},
-         {"length_m", 0.04},
-         {"viscosity_Pa_s", 0.4},
-         {"force_law", law}}}},
-      {"simulation", {{"duration_s", 1.0}}}};
+  json ground{{"name", "fix"}, {"type", "ground"}, {"body", "housing"}};
+  return scene_fixture::housing_and_shaft(json::array({ground, scene_fixture::paper_joint(law)}));
 }
 
 json contact_block() {

@@ -13,8 +13,9 @@
 #include <cstdio>
 #include <vector>
 
-#include "film_quadrature.hpp"
-#include "bearing_fixture.hpp"
+#include "fixtures/film_quadrature.hpp"
+#include "fixtures/bearing_fixture.hpp"
+#include "fixtures/force_law_check.hpp"
 #include "lub/bearing/film_force.hpp"
 
 namespace {
@@ -26,12 +27,15 @@ using lub::BearingState;
 using lub::FilmForce;
 using lub::ForceLaw;
 
-// The paper's slider-crank joint (tests/bearing_fixture.hpp).
+// The paper's slider-crank joint and the quadrature check (tests/fixtures/).
+using bearing_fixture::force_scale;
 using bearing_fixture::kMu;
 using bearing_fixture::long_coef;
+using bearing_fixture::rel_err;
 using bearing_fixture::short_coef;
 using bearing_fixture::state;
 using bearing_fixture::test_geometry;
+using bearing_fixture::worst_error_against_quadrature;
 
 FilmForce law(ForceLaw l, double eps, double ed, double w) {
   return lub::film_force(l, test_geometry(), kMu, state(eps, ed, w));
@@ -82,30 +86,15 @@ const double kMotion[][2] = {{5.0, 0.0},   {-5.0, 0.0},    {0.0, 300.0},  {0.0, 
 // wrong factor, exponent or misplaced zero (observed residuals are printed, ~1e-14).
 constexpr double kQuadTol = 1e-12;
 
-double scale_of(const FilmForce& f, double coef, double ed, double w) {
-  // The larger of the force and coef·(|ε̇| + |w|): nonzero even where the force vanishes.
-  return std::max(std::hypot(f.radial_N, f.tangential_N), coef * (std::fabs(ed) + std::fabs(w)));
-}
-
 // --- gumbel_long ----------------------------------------------------------------------
 
 TEST(GumbelLong, EqualsPositivePartOfEq5ByQuadrature) {
   const auto g = test_geometry();
-  const double C = long_coef(g);
-  double worst = 0.0;
-  for (double eps : kEpsGrid) {
-    for (const auto& m : kMotion) {
-      const auto s = state(eps, m[0], m[1]);
-      const FilmForce f = law(ForceLaw::gumbel_long, eps, m[0], m[1]);
-      const Force2 q = filmquad::positive_part_force(
-          [&](double th) { return p_long(g, s, th) * g.length_m; }, g.journal_radius_m);
-      const double err = std::max(std::fabs(f.radial_N - q.r), std::fabs(f.tangential_N - q.t)) /
-                         scale_of(f, C, m[0], m[1]);
-      worst = std::max(worst, err);
-      EXPECT_LT(err, kQuadTol) << "eps=" << eps << " ed=" << m[0] << " w=" << m[1] << " Fr=" << f.radial_N
-                               << " vs " << q.r << " Ft=" << f.tangential_N << " vs " << q.t;
-    }
-  }
+  const double worst = worst_error_against_quadrature(
+      ForceLaw::gumbel_long, long_coef(g), kEpsGrid, kMotion, kQuadTol, [&](const BearingState& s) {
+        return filmquad::positive_part_force([&](double th) { return p_long(g, s, th) * g.length_m; },
+                                             g.journal_radius_m);
+      });
   std::printf("[ measured ] gumbel_long vs quadrature of the positive part of Eq. (5): max rel err %.3g\n",
               worst);
 }
@@ -143,22 +132,12 @@ TEST(GumbelLong, ZeroEccentricityLimit) {
 
 TEST(GumbelShort, EqualsPositivePartOfEq3ByQuadrature) {
   const auto g = test_geometry();
-  const double Cs = short_coef(g);
-  double worst = 0.0;
-  for (double eps : kEpsGrid) {
-    for (const auto& m : kMotion) {
-      const auto s = state(eps, m[0], m[1]);
-      const FilmForce f = law(ForceLaw::gumbel_short, eps, m[0], m[1]);
-      // The sign of Eq. (3) does not depend on z, so the positive part commutes with ∫dz.
-      const Force2 q = filmquad::positive_part_force([&](double th) { return p_short_integrated(g, s, th); },
-                                                     g.journal_radius_m);
-      const double err = std::max(std::fabs(f.radial_N - q.r), std::fabs(f.tangential_N - q.t)) /
-                         scale_of(f, Cs, m[0], m[1]);
-      worst = std::max(worst, err);
-      EXPECT_LT(err, kQuadTol) << "eps=" << eps << " ed=" << m[0] << " w=" << m[1] << " Fr=" << f.radial_N
-                               << " vs " << q.r << " Ft=" << f.tangential_N << " vs " << q.t;
-    }
-  }
+  // The sign of Eq. (3) does not depend on z, so the positive part commutes with ∫dz.
+  const double worst = worst_error_against_quadrature(
+      ForceLaw::gumbel_short, short_coef(g), kEpsGrid, kMotion, kQuadTol, [&](const BearingState& s) {
+        return filmquad::positive_part_force([&](double th) { return p_short_integrated(g, s, th); },
+                                             g.journal_radius_m);
+      });
   std::printf("[ measured ] gumbel_short vs quadrature of the positive part of Eq. (3): max rel err %.3g\n",
               worst);
 }
@@ -224,8 +203,7 @@ TEST(PiFilm, EqualsQuadratureOfItsPressureField) {
       const double t1 = pi_start(s);
       const Force2 q = filmquad::gauss_force([&](double th) { return p_pi(g, s, th) * g.length_m; }, t1,
                                              t1 + kPi, g.journal_radius_m);
-      const double err = std::max(std::fabs(f.radial_N - q.r), std::fabs(f.tangential_N - q.t)) /
-                         scale_of(f, C, m[0], m[1]);
+      const double err = rel_err(f, q, force_scale(f, C, m[0], m[1]));
       worst = std::max(worst, err);
       EXPECT_LT(err, kQuadTol) << "eps=" << eps << " ed=" << m[0] << " w=" << m[1] << " Fr=" << f.radial_N
                                << " vs " << q.r << " Ft=" << f.tangential_N << " vs " << q.t;
@@ -234,7 +212,7 @@ TEST(PiFilm, EqualsQuadratureOfItsPressureField) {
       const Force2 ql = filmquad::gauss_force(
           [&](double th) { return lub::pressure_pi_film(g, kMu, s, th) * g.length_m; }, t1, t1 + kPi,
           g.journal_radius_m);
-      EXPECT_LT(std::hypot(ql.r - q.r, ql.t - q.t) / scale_of(f, C, m[0], m[1]), 1e-12);
+      EXPECT_LT(std::hypot(ql.r - q.r, ql.t - q.t) / force_scale(f, C, m[0], m[1]), 1e-12);
     }
   }
   // ε = 0 (no transcription needed): F_r = −6πCε̇ for either sign, F_t = 0.
@@ -374,7 +352,7 @@ TEST(NewLaws, PositivelyHomogeneousAndMirrorSymmetric) {
         const FilmForce f = law(l, eps, m[0], m[1]);
         const FilmForce f3 = law(l, eps, 3.0 * m[0], 3.0 * m[1]);
         const FilmForce fm = law(l, eps, m[0], -m[1]);
-        const double sc = scale_of(f, coef, m[0], m[1]);
+        const double sc = force_scale(f, coef, m[0], m[1]);
         EXPECT_NEAR(f3.radial_N, 3.0 * f.radial_N, 3e-13 * sc) << lub::name_of(l);
         EXPECT_NEAR(f3.tangential_N, 3.0 * f.tangential_N, 3e-13 * sc) << lub::name_of(l);
         EXPECT_NEAR(fm.radial_N, f.radial_N, 1e-13 * sc) << lub::name_of(l);

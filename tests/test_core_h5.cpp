@@ -2,6 +2,7 @@
 // (append, reopen, resume, survival of a killed writer) and dimension scales.
 #include "lub/io/h5.hpp"
 #include "lub/run/run_io.hpp"
+#include "fixtures/temp_dir_test.hpp"
 
 #include <gtest/gtest.h>
 
@@ -22,22 +23,9 @@ using namespace lub::h5;
 namespace {
 
 /// A fresh directory per test, removed afterwards.
-class H5Test : public ::testing::Test {
+class H5Test : public lub_test::TempDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::path(::testing::TempDir()) /
-           ("lub_h5_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  std::string file(const std::string& name) const { return (dir_ / name).string(); }
-
-  fs::path dir_;
+  H5Test() : TempDirTest("lub_h5_") {}
 };
 
 /// Message of the runtime_error thrown by f ("" if none).

@@ -13,7 +13,7 @@
 #include <Eigen/LU>
 
 #include "lub/mechanism/film_element.hpp"
-#include "near_wall_state.hpp"
+#include "fixtures/near_wall_state.hpp"
 
 // Counts the heap allocations of this process while g_count is set (glibc: the real
 // allocator is __libc_malloc; lubcore is linked statically, so its calls land here).

@@ -1,13 +1,13 @@
 // Independent route: the engine (absolute coordinates, constraints; partitioned, Baumgarte
 // or Baumgarte with projection) against a
 // hand-written two-degree-of-freedom Lagrangian model of the same lubricated
-// slider-crank (tests/floor_slider_crank.hpp). Both start from the paper's initial
+// slider-crank (tests/fixtures/floor_slider_crank.hpp). Both start from the paper's initial
 // state; the journal orbits must agree to the integration tolerance.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "floor_slider_crank.hpp"
+#include "fixtures/floor_slider_crank.hpp"
 #include "lub/run/run.hpp"
 
 namespace {

@@ -11,6 +11,7 @@
 #include "lub/io/json_reader.hpp"
 #include "lub/mechanism/builder.hpp"
 #include "lub/mechanism/model.hpp"
+#include "fixtures/bearing_scene.hpp"
 
 namespace {
 
@@ -20,23 +21,10 @@ using nlohmann::json;
 // Two free bodies joined only by a lubricated joint; offsets of the bearing and journal
 // centres from the centres of mass are parameters.
 json two_body_scene(const std::string& law, Vector2d s_bearing, Vector2d s_journal) {
-  return json{
-      {"bodies",
-       {{{"name", "housing"}, {"mass_kg", 1.0}, {"inertia_kg_m2", 0.01}},
-        {{"name", "shaft"}, {"mass_kg", 0.5}, {"inertia_kg_m2", 0.002}}}},
-      {"joints",
-       {{{"name", "bearing"},
-         {"type", "lubricated_revolute"},
-         {"bearing_body", "housing"},
-         {"journal_body", "shaft"},
-         {"bearing_point_m", {s_bearing.x(), s_bearing.y()}},
-         {"journal_point_m", {s_journal.x(), s_journal.y()}},
-         {"bearing_radius_m", 0.010},
-         {"journal_radius_m", 0.0095},
-         {"length_m", 0.04},
-         {"viscosity_Pa_s", 0.4},
-         {"force_law", law}}}},
-      {"simulation", {{"duration_s", 1.0}}}};
+  json joint = scene_fixture::paper_joint(law);
+  joint["bearing_point_m"] = {s_bearing.x(), s_bearing.y()};
+  joint["journal_point_m"] = {s_journal.x(), s_journal.y()};
+  return scene_fixture::housing_and_shaft(json::array({joint}));
 }
 
 struct BodyPose {
@@ -86,7 +74,8 @@ TEST(FilmElement, JournalOrBearingRotatingGiveTheSameForce) {
     const Vector2d Fa = film_force(m, h, shaft_for(h, {0, 0}, {0, 0}, 0.0, omega, e, edot));
     h.phid = omega;
     const Vector2d Fb = film_force(m, h, shaft_for(h, {0, 0}, {0, 0}, 0.0, 0.0, e, edot));
-    ASSERT_GT(Fa.norm(), 1.0) << law;
+    EXPECT_GT(Fa.norm(), 1.0) << law;
+    if (!(Fa.norm() > 1.0)) continue;
     // Same formula, evaluated from different body states: a few ulps of the force.
     EXPECT_LT((Fa - Fb).norm(), 1e-12 * Fa.norm()) << law;
   }

@@ -13,10 +13,10 @@
 #include <cstdio>
 #include <vector>
 
-#include "film_quadrature.hpp"
+#include "fixtures/film_quadrature.hpp"
 #include "lub/bearing/film_force.hpp"
 #include "lub/bearing/reynolds.hpp"
-#include "bearing_fixture.hpp"
+#include "fixtures/bearing_fixture.hpp"
 
 namespace {
 
@@ -277,8 +277,10 @@ TEST(FiniteBearing, ReynoldsPressureIsNonNegativeAndCarriesMoreThanGumbel) {
   FiniteBearingSolver solver(o);
   for (double eps : {0.2, 0.6, 0.9}) {
     const FilmForce f = solver.solve(g, kMu, state(eps, 0.0, 300.0));
+    int below_zero = 0;  // cells with p < 0 (or NaN)
     for (int i = 0; i < o.n_theta; ++i)
-      for (int j = 0; j < o.n_z; ++j) ASSERT_GE(solver.pressure_Pa(i, j), 0.0);
+      for (int j = 0; j < o.n_z; ++j) below_zero += !(solver.pressure_Pa(i, j) >= 0.0);
+    EXPECT_EQ(below_zero, 0) << "eps " << eps;
     EXPECT_GT(solver.stats().cavitated_cells, 0);
     const FilmForce fg = finite(g, state(eps, 0.0, 300.0), Cavitation::gumbel, 64, 8);
     EXPECT_GT(std::hypot(f.radial_N, f.tangential_N), std::hypot(fg.radial_N, fg.tangential_N));

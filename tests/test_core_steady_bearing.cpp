@@ -115,8 +115,10 @@ TEST(SteadyBearing, PrintedPinkusSternlichtCarriesTheLoadAtASmallerEccentricity)
   // smaller ε with a larger attitude angle: tan φ = π/(2ε(1−ε²)^(1/2)) at its own ε.
   const auto g = geometry(0.150);
   for (double e : {0.5, 0.8}) {
+    SCOPED_TRACE(e);
     const SteadyBearingResult r = solve(ForceLaw::pinkus_sternlicht, g, half_sommerfeld(g, e).load_N);
-    ASSERT_TRUE(r.converged);
+    EXPECT_TRUE(r.converged);
+    if (!r.converged) continue;
     EXPECT_LT(r.eps, e);
     EXPECT_NEAR(std::tan(r.attitude_rad), kPi / (2.0 * r.eps * std::sqrt(1.0 - r.eps * r.eps)), 1e-9);
   }
@@ -144,7 +146,8 @@ TEST(SteadyBearing, FiniteBearingAgainstRaimondiBoydThroughTheSolver) {
     in.load_N = P * 2.0 * g.journal_radius_m * g.length_m;
     in.speed_rad_s = kOmega;
     const SteadyBearingResult r = lub::solve_steady_bearing(in);
-    ASSERT_TRUE(r.converged) << r.message;
+    EXPECT_TRUE(r.converged) << row.eps << ": " << r.message;
+    if (!r.converged) continue;
     EXPECT_NEAR(r.eps, row.eps, 0.01) << row.eps;
     EXPECT_NEAR(r.attitude_rad * 180.0 / kPi, row.phi_deg, 0.6) << row.eps;
     EXPECT_NEAR(r.sommerfeld, row.S, 1e-12 * row.S);

@@ -322,14 +322,33 @@ std::string library_message(const Case& c, const std::string& text) {
   return "";
 }
 
-TEST(Validation, EveryMalformedSceneIsRefusedWithPathValueAndRule) {
-  for (const Case& c : cases()) {
-    const std::string msg = library_message(c, case_text(c));
-    ASSERT_FALSE(msg.empty()) << c.what << ": accepted";
-    if (std::getenv("LUB_PRINT_MESSAGES")) std::printf("%-48s %s\n", c.what, msg.c_str());
-    for (const auto& part : c.expect) EXPECT_NE(msg.find(part), std::string::npos) << c.what << "\n  " << msg;
-  }
+// One test per malformed scene (the index of cases()), named after its description.
+class MalformedScene : public testing::TestWithParam<size_t> {};
+
+TEST_P(MalformedScene, IsRefusedWithPathValueAndRule) {
+  const Case& c = cases()[GetParam()];
+  const std::string msg = library_message(c, case_text(c));
+  ASSERT_FALSE(msg.empty()) << c.what << ": accepted";
+  if (std::getenv("LUB_PRINT_MESSAGES")) std::printf("%-48s %s\n", c.what, msg.c_str());
+  for (const auto& part : c.expect) EXPECT_NE(msg.find(part), std::string::npos) << c.what << "\n  " << msg;
 }
+
+/// A case's description as a test name: letters and digits, other runs as one '_'.
+std::string test_name(const testing::TestParamInfo<size_t>& info) {
+  std::string name;
+  for (const char ch : std::string(cases()[info.param].what)) {
+    const bool alnum = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9');
+    if (alnum) {
+      name += ch;
+    } else if (!name.empty() && name.back() != '_') {
+      name += '_';
+    }
+  }
+  while (!name.empty() && name.back() == '_') name.pop_back();
+  return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Validation, MalformedScene, testing::Range<size_t>(0, cases().size()), test_name);
 
 TEST(Validation, TheUnmodifiedBasesAreAccepted) {
   for (const std::string base : {"four_bar.json", "slider_crank.json", "slider_crank_two_lubricated.json"})

@@ -112,11 +112,11 @@ void expect_all_finite(const RunResult& r, const std::string& what) {
 void expect_eps_below_one(const RunResult& r, const std::string& what) {
   EXPECT_LT(r.metrics.max_eps, 1.0) << what;
   for (const auto& c : r.cycles) EXPECT_LT(c.max_eps, 1.0) << what << ": cycle from t = " << c.t_start_s;
-  if (const int i = channel_index(r, "eps"); i >= 0)
-    for (double e : r.series.data[static_cast<size_t>(i)]) {
-      ASSERT_LT(e, 1.0) << what;
-      ASSERT_GE(e, 0.0) << what;
-    }
+  if (const int i = channel_index(r, "eps"); i >= 0) {
+    const auto& eps = r.series.data[static_cast<size_t>(i)];
+    const auto outside = std::find_if(eps.begin(), eps.end(), [](double e) { return !(e < 1.0 && e >= 0.0); });
+    EXPECT_TRUE(outside == eps.end()) << what << ": eps[" << (outside - eps.begin()) << "] = " << *outside;
+  }
 }
 
 /// Largest kinetic energy sampled [J], from the channels <body>_vx, <body>_vy, <body>_omega
@@ -190,7 +190,11 @@ void expect_bit_identical(const RunResult& a, const RunResult& b, const std::str
   ASSERT_EQ(a.series.names, b.series.names) << what;
   ASSERT_EQ(a.series.data.size(), b.series.data.size()) << what;
   for (size_t c = 0; c < a.series.data.size(); ++c) {
-    ASSERT_EQ(a.series.data[c].size(), b.series.data[c].size()) << what << " " << a.series.names[c];
+    if (a.series.data[c].size() != b.series.data[c].size()) {
+      ADD_FAILURE() << what << " " << a.series.names[c] << ": " << a.series.data[c].size() << " != "
+                    << b.series.data[c].size() << " samples";
+      continue;
+    }
     for (size_t i = 0; i < a.series.data[c].size(); ++i)
       if (!(a.series.data[c][i] == b.series.data[c][i])) {
         ADD_FAILURE() << what << ": series " << a.series.names[c] << "[" << i << "] " << a.series.data[c][i]
@@ -206,22 +210,23 @@ void expect_bit_identical(const RunResult& a, const RunResult& b, const std::str
     EXPECT_TRUE(na[i].second == nb[i].second || (std::isnan(na[i].second) && std::isnan(nb[i].second)))
         << what << ": " << na[i].first << " " << na[i].second << " != " << nb[i].second;
   }
-  const auto& ma = a.metrics;
-  const auto& mb = b.metrics;
-  EXPECT_EQ(ma.steady, mb.steady) << what;
-  EXPECT_EQ(ma.cycles_to_steady, mb.cycles_to_steady) << what;
-  EXPECT_EQ(ma.cycles_run, mb.cycles_run) << what;
-  EXPECT_EQ(ma.below_safe_film, mb.below_safe_film) << what;
-  const auto& sa = a.stats;
-  const auto& sb = b.stats;
-  EXPECT_EQ(sa.steps, sb.steps) << what;
-  EXPECT_EQ(sa.rhs_evals, sb.rhs_evals) << what;
-  EXPECT_EQ(sa.jac_evals, sb.jac_evals) << what;
-  EXPECT_EQ(sa.err_test_fails, sb.err_test_fails) << what;
-  EXPECT_EQ(sa.nonlin_conv_fails, sb.nonlin_conv_fails) << what;
-  EXPECT_EQ(sa.root_evals, sb.root_evals) << what;
-  EXPECT_EQ(sa.mode_switches, sb.mode_switches) << what;
-  EXPECT_EQ(sa.model_evals, sb.model_evals) << what;
+  EXPECT_EQ(a.metrics.steady, b.metrics.steady) << what;
+  EXPECT_EQ(a.metrics.cycles_to_steady, b.metrics.cycles_to_steady) << what;
+  EXPECT_EQ(a.metrics.cycles_run, b.metrics.cycles_run) << what;
+  EXPECT_EQ(a.metrics.below_safe_film, b.metrics.below_safe_film) << what;
+  using Counter = long long lub::SolverStats::*;
+  const std::pair<const char*, Counter> counters[] = {
+      {"steps", &lub::SolverStats::steps},
+      {"rhs_evals", &lub::SolverStats::rhs_evals},
+      {"jac_evals", &lub::SolverStats::jac_evals},
+      {"err_test_fails", &lub::SolverStats::err_test_fails},
+      {"nonlin_conv_fails", &lub::SolverStats::nonlin_conv_fails},
+      {"root_evals", &lub::SolverStats::root_evals},
+      {"mode_switches", &lub::SolverStats::mode_switches},
+      {"model_evals", &lub::SolverStats::model_evals}};
+  for (const auto& [name, counter] : counters) {
+    EXPECT_EQ(a.stats.*counter, b.stats.*counter) << what << ": stats." << name;
+  }
 }
 
 
@@ -474,10 +479,12 @@ TEST(HardFilmCollapse, CollapseTimesAsDocumented) {
       {"viscosity_40cP", 7.233e-3}, {"viscosity_10cP", 0.4207e-3}, {"viscosity_1cP", 0.2281e-3},
       {"clearance_2mm", 0.6374e-3}};
   for (const auto& [scene, t] : expected) {
+    SCOPED_TRACE(scene);
     json doc = load_hard(scene);
-    ASSERT_EQ(doc["simulation"]["eps_limit"], 0.999) << scene;
+    EXPECT_EQ(doc["simulation"]["eps_limit"], 0.999) << scene;
     const RunResult r = run(doc);
-    ASSERT_EQ(r.status, RunStatus::film_collapse) << scene;
+    EXPECT_EQ(r.status, RunStatus::film_collapse) << scene;
+    if (r.status != RunStatus::film_collapse) continue;
     EXPECT_NEAR(r.stats.final_time_s / t, 1.0, 1e-3) << scene << ": " << r.stats.final_time_s;
   }
 }
@@ -507,8 +514,10 @@ TEST(HardLaws, PeriodicityAsDocumented) {
   // Periodic (the steady-cycle criterion, periodicity < simulation.steady_tolerance = 1e-3,
   // holds over the last two of six cycles): the printed law from any start, at any speed.
   for (const std::string scene : {"centred_start", "speed_10000rpm", "reversing_driver"}) {
+    SCOPED_TRACE(scene);
     const RunResult r = run(load_hard(scene));
-    ASSERT_EQ(r.status, RunStatus::ok) << scene;
+    EXPECT_EQ(r.status, RunStatus::ok) << scene;
+    if (r.status != RunStatus::ok) continue;
     EXPECT_LT(r.metrics.periodicity, 1e-3) << scene;
   }
   // Not periodic: the Frêne laws' orbits still change from cycle to cycle (measured 0.55 and
@@ -516,8 +525,10 @@ TEST(HardLaws, PeriodicityAsDocumented) {
   // integration error), and the 50 rpm journal sinks by squeeze cycle after cycle (0.038).
   for (const auto& [scene, floor] : std::vector<std::pair<std::string, double>>{
            {"law_frene_long", 0.1}, {"law_frene_short", 0.01}, {"speed_50rpm", 0.01}}) {
+    SCOPED_TRACE(scene);
     const RunResult r = run(load_hard(scene));
-    ASSERT_EQ(r.status, RunStatus::ok) << scene;
+    EXPECT_EQ(r.status, RunStatus::ok) << scene;
+    if (r.status != RunStatus::ok) continue;
     EXPECT_GT(r.metrics.periodicity, floor) << scene;
   }
 }
@@ -569,11 +580,14 @@ TEST(HardGravity, SettlesBySqueezeOnly) {
   // turns and the wedge speed is exactly 0 (pure squeeze), ε grows monotonically.
   const RunResult r = run(load_hard("gravity_settling"));
   ASSERT_EQ(r.status, RunStatus::ok) << r.message;
-  for (double w : channel(r, "wedge")) ASSERT_EQ(w, 0.0);
-  for (double x : channel(r, "e_x")) ASSERT_EQ(x, 0.0);
-  for (double f : channel(r, "film_tangential")) ASSERT_EQ(f, 0.0);
+  for (const char* name : {"wedge", "e_x", "film_tangential"}) {
+    const auto& x = channel(r, name);
+    const auto nonzero = std::find_if(x.begin(), x.end(), [](double v) { return !(v == 0.0); });
+    EXPECT_TRUE(nonzero == x.end()) << name << "[" << (nonzero - x.begin()) << "] = " << *nonzero;
+  }
   const auto& eps = channel(r, "eps");
-  for (size_t i = 1; i < eps.size(); ++i) ASSERT_GE(eps[i], eps[i - 1]) << i;
+  const auto falls = std::adjacent_find(eps.begin(), eps.end(), [](double a, double b) { return !(b >= a); });
+  EXPECT_TRUE(falls == eps.end()) << "eps falls after sample " << (falls - eps.begin());
   EXPECT_GT(eps.back(), 0.8);  // well settled after 2 s, but the film never collapses
   // The film dissipates exactly the potential energy released (minus the small kinetic
   // energy left): W = 0 without a driver.

@@ -18,6 +18,7 @@
 #include "lub/io/json_reader.hpp"
 #include "lub/sweep/case_result.hpp"
 #include "lub/io/output_path.hpp"
+#include "fixtures/temp_dir_test.hpp"
 #include "lub/sweep/grid.hpp"
 #include "lub/sweep/hash.hpp"
 #include "lub/sweep/output_lock.hpp"
@@ -63,20 +64,9 @@ CaseResult fake(const Grid& g, int id, const std::string& status = "ok") {
   return r;
 }
 
-class StudyFile : public ::testing::Test {
+class StudyFile : public lub_test::TempDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::path(::testing::TempDir()) / ("lub_sweep_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  std::string file(const std::string& name) const { return (dir_ / name).string(); }
-  fs::path dir_;
+  StudyFile() : TempDirTest("lub_sweep_") {}
 };
 
 }  // namespace

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "../floor_slider_crank.hpp"
+#include "../fixtures/floor_slider_crank.hpp"
 #include "lub/run/run.hpp"
 
 namespace {

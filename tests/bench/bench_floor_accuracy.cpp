@@ -24,7 +24,7 @@
 #include <string>
 #include <vector>
 
-#include "../floor_slider_crank.hpp"
+#include "../fixtures/floor_slider_crank.hpp"
 #include "lub/io/json_reader.hpp"
 #include "lub/run/run.hpp"
 #include "lub/scene/scene.hpp"

@@ -15,7 +15,7 @@
 
 #include "lub/bearing/film_force.hpp"
 #include "lub/bearing/reynolds.hpp"
-#include "../bearing_fixture.hpp"
+#include "../fixtures/bearing_fixture.hpp"
 
 namespace {
 

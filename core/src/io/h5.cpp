@@ -1,23 +1,22 @@
-// RAII layer over the HDF5 C API: see lub/io/h5.hpp.
+// The RAII layer over the HDF5 C API (files, groups, datasets, attributes): see
+// lub/io/h5.hpp. Tables and dimension scales are in h5_table.cpp.
 #include "lub/io/h5.hpp"
 
 #include <hdf5.h>
-#include <hdf5_hl.h>
 
 #include <algorithm>
 #include <cstring>
 #include <numeric>
 #include <utility>
 
-static_assert(std::is_same_v<hid_t, lub::h5::Id>, "lub::h5::Id must be hid_t (HDF5 >= 1.10)");
+#include "io/h5_detail.hpp"
 
 namespace lub::h5 {
-namespace {
+namespace detail {
 
 // ---------------------------------------------------------------------------------
 // Errors
 
-/// Switch off HDF5's automatic error printing (per thread in thread-safe builds).
 void quiet() {
   thread_local bool done = false;
   if (!done) {
@@ -25,6 +24,8 @@ void quiet() {
     done = true;
   }
 }
+
+namespace {
 
 herr_t collect_error(unsigned /*n*/, const H5E_error2_t* err, void* data) {
   auto* out = static_cast<std::string*>(data);
@@ -50,22 +51,26 @@ std::string take_error_stack() {
   return out;
 }
 
-std::string file_name_of(hid_t id) {
-  const ssize_t n = H5Fget_name(id, nullptr, 0);
+/// A name HDF5 returns through the two-call protocol of H5Fget_name / H5Iget_name.
+std::string name_of(hid_t id, ssize_t (*get_name)(hid_t, char*, std::size_t)) {
+  const ssize_t n = get_name(id, nullptr, 0);
   if (n <= 0) return "?";
   std::string s(static_cast<std::size_t>(n) + 1, '\0');
-  H5Fget_name(id, s.data(), s.size());
+  get_name(id, s.data(), s.size());
   s.resize(static_cast<std::size_t>(n));
   return s;
 }
 
-std::string object_path_of(hid_t id) {
-  const ssize_t n = H5Iget_name(id, nullptr, 0);
-  if (n <= 0) return "?";
-  std::string s(static_cast<std::size_t>(n) + 1, '\0');
-  H5Iget_name(id, s.data(), s.size());
-  s.resize(static_cast<std::size_t>(n));
-  return s;
+std::string file_name_of(hid_t id) { return name_of(id, H5Fget_name); }
+std::string object_path_of(hid_t id) { return name_of(id, H5Iget_name); }
+
+/// `get(id)` for an open id ("" for a closed one), leaving no HDF5 error behind.
+std::string name_or_empty(hid_t id, std::string (*get)(hid_t)) {
+  if (id < 0) return "";
+  quiet();
+  std::string name = get(id);
+  H5Eclear2(H5E_DEFAULT);
+  return name;
 }
 
 std::string join_path(const std::string& base, const std::string& name) {
@@ -90,14 +95,14 @@ std::string describe(hid_t id, const std::string& child = "") {
   throw std::runtime_error(msg);
 }
 
-/// Throw for a failure at object `loc` (optionally naming a child `name`).
-[[noreturn]] void fail(hid_t loc, const std::string& what, const std::string& name = "") {
+}  // namespace
+
+void fail(hid_t loc, const std::string& what, const std::string& name) {
   const std::string stack = take_error_stack();  // before any other HDF5 call
   fail_stack(describe(loc, name), what, stack);
 }
 
-/// Throw for a failure on a file path (no open id).
-[[noreturn]] void fail_file(const std::string& path, const std::string& what) {
+void fail_file(const std::string& path, const std::string& what) {
   const std::string stack = take_error_stack();
   fail_stack("'" + path + "'", what, stack);
 }
@@ -117,28 +122,19 @@ void close_id(hid_t id) noexcept {
   H5Eclear2(H5E_DEFAULT);
 }
 
-/// Owner of a temporary id inside this file.
-class Hid {
- public:
-  explicit Hid(hid_t id = -1) : id_(id) {}
-  Hid(const Hid&) = delete;
-  Hid& operator=(const Hid&) = delete;
-  Hid(Hid&& o) noexcept : id_(std::exchange(o.id_, -1)) {}
-  Hid& operator=(Hid&& o) noexcept {
-    if (this != &o) {
-      close_id(id_);
-      id_ = std::exchange(o.id_, -1);
-    }
-    return *this;
-  }
-  ~Hid() { close_id(id_); }
-  hid_t get() const { return id_; }
-  hid_t release() { return std::exchange(id_, -1); }
-  bool ok() const { return id_ >= 0; }
+// ---------------------------------------------------------------------------------
+// Types and row transfers
 
- private:
-  hid_t id_;
-};
+namespace {
+
+/// Variable-length string type of character set `cset`.
+Hid vlen_string_type(hid_t err_loc, H5T_cset_t cset) {
+  Hid t(H5Tcopy(H5T_C_S1));
+  if (!t.ok() || H5Tset_size(t.get(), H5T_VARIABLE) < 0 || H5Tset_cset(t.get(), cset) < 0) {
+    fail(err_loc, "cannot build the string type");
+  }
+  return t;
+}
 
 void reclaim_vlen(hid_t mem_type, hid_t space, void* buf) {
 #if H5_VERSION_GE(1, 12, 0)
@@ -148,18 +144,90 @@ void reclaim_vlen(hid_t mem_type, hid_t space, void* buf) {
 #endif
 }
 
-// ---------------------------------------------------------------------------------
-// Types and property lists
-
-/// Variable-length UTF-8 string type.
-Hid vlen_string_type(hid_t err_loc) {
-  Hid t(H5Tcopy(H5T_C_S1));
-  if (!t.ok() || H5Tset_size(t.get(), H5T_VARIABLE) < 0 ||
-      H5Tset_cset(t.get(), H5T_CSET_UTF8) < 0) {
-    fail(err_loc, "cannot build the string type");
-  }
-  return t;
+std::size_t npoints(hid_t space) {
+  const hssize_t n = H5Sget_simple_extent_npoints(space);
+  return n < 0 ? 0 : static_cast<std::size_t>(n);
 }
+
+/// `n` fixed-length strings of `size` bytes each, NUL-terminated or padded (trailing
+/// spaces dropped too if `space_padded`).
+std::vector<std::string> split_fixed_strings(const char* buf, std::size_t n, std::size_t size,
+                                             bool space_padded) {
+  std::vector<std::string> out;
+  out.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const char* p = buf + i * size;
+    std::size_t len = 0;
+    while (len < size && p[len] != '\0') ++len;
+    if (space_padded) {
+      while (len > 0 && p[len - 1] == ' ') --len;
+    }
+    out.emplace_back(p, len);
+  }
+  return out;
+}
+
+/// Reads `count` elements: the first `count` of a 1-D dataset, or all of an N-D one.
+void read_rows_or_all(hid_t ds, hid_t mem_type, std::size_t count, void* buf) {
+  Hid space(H5Dget_space(ds));
+  if (H5Sget_simple_extent_ndims(space.get()) == 1) {
+    read_rows(ds, mem_type, count, buf);
+  } else if (H5Dread(ds, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0) {
+    fail(ds, "cannot read the dataset");
+  }
+}
+
+}  // namespace
+
+Hid vlen_string_type(hid_t err_loc) { return vlen_string_type(err_loc, H5T_CSET_UTF8); }
+
+bool select_rows(hid_t ds, hsize_t start, hsize_t count, Hid& file_space, Hid& mem_space) {
+  file_space = Hid(H5Dget_space(ds));
+  const hsize_t offset[1] = {start};
+  const hsize_t n[1] = {count};
+  mem_space = Hid(H5Screate_simple(1, n, nullptr));
+  return file_space.ok() && mem_space.ok() &&
+         H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, offset, nullptr, n, nullptr) >= 0;
+}
+
+void read_rows(hid_t ds, hid_t mem_type, hsize_t count, void* buf) {
+  if (count == 0) return;
+  Hid fspace, mspace;
+  if (!select_rows(ds, 0, count, fspace, mspace) ||
+      H5Dread(ds, mem_type, mspace.get(), fspace.get(), H5P_DEFAULT, buf) < 0) {
+    fail(ds, "cannot read " + std::to_string(count) + " rows");
+  }
+}
+
+std::vector<std::string> read_dataset_strings(hid_t ds, std::size_t limit) {
+  Hid type(H5Dget_type(ds));
+  if (!type.ok() || H5Tget_class(type.get()) != H5T_STRING) fail(ds, "not a string dataset");
+  Hid space(H5Dget_space(ds));
+  const std::size_t n = std::min(npoints(space.get()), limit);
+  std::vector<std::string> out;
+  if (n == 0) return out;
+  if (H5Tis_variable_str(type.get()) > 0) {
+    out.reserve(n);
+    Hid mem = vlen_string_type(ds);
+    std::vector<char*> buf(n, nullptr);
+    read_rows_or_all(ds, mem.get(), n, buf.data());
+    for (char* p : buf) out.emplace_back(p != nullptr ? p : "");
+    const hsize_t dims[1] = {n};
+    Hid mspace(H5Screate_simple(1, dims, nullptr));
+    reclaim_vlen(mem.get(), mspace.get(), buf.data());
+    return out;
+  }
+  const std::size_t size = H5Tget_size(type.get());
+  Hid mem(H5Tcopy(type.get()));
+  std::vector<char> buf(n * size + 1, '\0');
+  read_rows_or_all(ds, mem.get(), n, buf.data());
+  return split_fixed_strings(buf.data(), n, size, false);
+}
+
+namespace {
+
+// ---------------------------------------------------------------------------------
+// Property lists and dataspaces
 
 /// Link creation list that creates missing intermediate groups.
 Hid intermediate_lcpl(hid_t err_loc) {
@@ -181,9 +249,17 @@ Hid file_access_list(const std::string& path) {
   return p;
 }
 
-std::size_t npoints(hid_t space) {
-  const hssize_t n = H5Sget_simple_extent_npoints(space);
-  return n < 0 ? 0 : static_cast<std::size_t>(n);
+Hid simple_space(hid_t err_loc, std::size_t n) {
+  const hsize_t dims[1] = {static_cast<hsize_t>(n)};
+  Hid s(H5Screate_simple(1, dims, nullptr));
+  if (!s.ok()) fail(err_loc, "cannot create a dataspace");
+  return s;
+}
+
+Hid scalar_space(hid_t err_loc) {
+  Hid s(H5Screate(H5S_SCALAR));
+  if (!s.ok()) fail(err_loc, "cannot create a dataspace");
+  return s;
 }
 
 // ---------------------------------------------------------------------------------
@@ -221,13 +297,6 @@ void write_attribute(hid_t obj, const std::string& name, hid_t file_type, hid_t 
   if (H5Awrite(a.get(), mem_type, buf) < 0) fail(obj, "cannot write attribute '" + name + "'");
 }
 
-Hid simple_space(hid_t err_loc, std::size_t n) {
-  const hsize_t dims[1] = {static_cast<hsize_t>(n)};
-  Hid s(H5Screate_simple(1, dims, nullptr));
-  if (!s.ok()) fail(err_loc, "cannot create a dataspace");
-  return s;
-}
-
 /// Read all strings of an attribute (variable- or fixed-length).
 std::vector<std::string> read_attribute_strings(hid_t obj, const std::string& name) {
   OpenAttr a = open_attribute(obj, name);
@@ -236,42 +305,29 @@ std::vector<std::string> read_attribute_strings(hid_t obj, const std::string& na
   }
   const std::size_t n = npoints(a.space.get());
   std::vector<std::string> out;
-  out.reserve(n);
   if (n == 0) return out;
   const htri_t is_vlen = H5Tis_variable_str(a.type.get());
   if (is_vlen < 0) fail(obj, "cannot inspect attribute '" + name + "'");
   if (is_vlen > 0) {
-    Hid mem(H5Tcopy(H5T_C_S1));
-    if (!mem.ok() || H5Tset_size(mem.get(), H5T_VARIABLE) < 0 ||
-        H5Tset_cset(mem.get(), H5Tget_cset(a.type.get())) < 0) {
-      fail(obj, "cannot build the string type");
-    }
+    out.reserve(n);
+    Hid mem = vlen_string_type(obj, H5Tget_cset(a.type.get()));
     std::vector<char*> buf(n, nullptr);
     if (H5Aread(a.attr.get(), mem.get(), buf.data()) < 0) {
       fail(obj, "cannot read attribute '" + name + "'");
     }
     for (char* p : buf) out.emplace_back(p != nullptr ? p : "");
     reclaim_vlen(mem.get(), a.space.get(), buf.data());
-  } else {
-    const std::size_t size = H5Tget_size(a.type.get());
-    Hid mem(H5Tcopy(a.type.get()));
-    if (!mem.ok()) fail(obj, "cannot copy the string type");
-    std::vector<char> buf(n * size + 1, '\0');
-    if (H5Aread(a.attr.get(), mem.get(), buf.data()) < 0) {
-      fail(obj, "cannot read attribute '" + name + "'");
-    }
-    const bool space_pad = H5Tget_strpad(a.type.get()) == H5T_STR_SPACEPAD;
-    for (std::size_t i = 0; i < n; ++i) {
-      const char* p = buf.data() + i * size;
-      std::size_t len = 0;
-      while (len < size && p[len] != '\0') ++len;
-      if (space_pad) {
-        while (len > 0 && p[len - 1] == ' ') --len;
-      }
-      out.emplace_back(p, len);
-    }
+    return out;
   }
-  return out;
+  const std::size_t size = H5Tget_size(a.type.get());
+  Hid mem(H5Tcopy(a.type.get()));
+  if (!mem.ok()) fail(obj, "cannot copy the string type");
+  std::vector<char> buf(n * size + 1, '\0');
+  if (H5Aread(a.attr.get(), mem.get(), buf.data()) < 0) {
+    fail(obj, "cannot read attribute '" + name + "'");
+  }
+  const bool space_padded = H5Tget_strpad(a.type.get()) == H5T_STR_SPACEPAD;
+  return split_fixed_strings(buf.data(), n, size, space_padded);
 }
 
 template <class T>
@@ -290,119 +346,105 @@ std::vector<T> read_attribute_numbers(hid_t obj, const std::string& name, hid_t 
   return out;
 }
 
+/// The one element of attribute `name`'s `values` (`things`: "values", "strings").
+template <class T>
+T only_element(hid_t obj, const std::string& name, std::vector<T> values, const char* things) {
+  if (values.size() != 1) {
+    fail(obj, "attribute '" + name + "' holds " + std::to_string(values.size()) + " " + things +
+                  ", expected one");
+  }
+  return std::move(values.front());
+}
+
 // ---------------------------------------------------------------------------------
-// Tables
+// Datasets
 
-const char* type_name(ColumnType t) {
-  switch (t) {
-    case ColumnType::Float64: return "float64";
-    case ColumnType::Int64: return "int64";
-    case ColumnType::String: return "string";
-  }
-  return "?";
-}
-
-void validate_columns(hid_t err_loc, const std::string& name, const std::vector<Column>& cols) {
-  if (cols.empty()) fail(err_loc, "a table needs at least one column", name);
-  for (std::size_t i = 0; i < cols.size(); ++i) {
-    if (cols[i].name.empty()) fail(err_loc, "column " + std::to_string(i) + " has no name", name);
-    if (cols[i].name.find('/') != std::string::npos) {
-      fail(err_loc, "column '" + cols[i].name + "': a name without '/'", name);
-    }
-    for (std::size_t j = 0; j < i; ++j) {
-      if (cols[j].name == cols[i].name) {
-        fail(err_loc, "duplicate column '" + cols[i].name + "'", name);
-      }
-    }
-  }
-}
-
-/// File type of a column (a new id the caller owns).
-Hid column_file_type(hid_t err_loc, ColumnType t) {
-  if (t == ColumnType::String) return vlen_string_type(err_loc);
-  return Hid(H5Tcopy(t == ColumnType::Float64 ? H5T_IEEE_F64LE : H5T_STD_I64LE));
-}
-
-/// Memory type for a column of type t read/written as `t`.
-Hid column_mem_type(hid_t err_loc, ColumnType t) {
-  if (t == ColumnType::String) return vlen_string_type(err_loc);
-  return Hid(H5Tcopy(t == ColumnType::Float64 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT64));
-}
-
-/// Writes `count` elements of `buf` (as `mem_type`) to a 1-D extendible dataset at
-/// [start, start + count), extending it to exactly start + count.
-void write_rows(hid_t ds, hid_t mem_type, hsize_t start, hsize_t count, const void* buf) {
-  const hsize_t new_dims[1] = {start + count};
-  if (H5Dset_extent(ds, new_dims) < 0) fail(ds, "cannot extend the column");
-  if (count == 0) return;
-  Hid fspace(H5Dget_space(ds));
-  const hsize_t offset[1] = {start};
-  const hsize_t n[1] = {count};
-  Hid mspace(H5Screate_simple(1, n, nullptr));
-  if (!fspace.ok() || !mspace.ok() ||
-      H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, offset, nullptr, n, nullptr) < 0 ||
-      H5Dwrite(ds, mem_type, mspace.get(), fspace.get(), H5P_DEFAULT, buf) < 0) {
-    fail(ds, "cannot write " + std::to_string(count) + " rows");
-  }
-}
-
-/// Reads the first `count` elements of a 1-D dataset into `buf` as `mem_type`.
-void read_rows(hid_t ds, hid_t mem_type, hsize_t count, void* buf) {
-  if (count == 0) return;
-  Hid fspace(H5Dget_space(ds));
-  const hsize_t offset[1] = {0};
-  const hsize_t n[1] = {count};
-  Hid mspace(H5Screate_simple(1, n, nullptr));
-  if (!fspace.ok() || !mspace.ok() ||
-      H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, offset, nullptr, n, nullptr) < 0 ||
-      H5Dread(ds, mem_type, mspace.get(), fspace.get(), H5P_DEFAULT, buf) < 0) {
-    fail(ds, "cannot read " + std::to_string(count) + " rows");
-  }
-}
-
-/// Reads `count` elements: the first `count` of a 1-D dataset, or all of an N-D one.
-void read_rows_or_all(hid_t ds, hid_t mem_type, std::size_t count, void* buf) {
-  Hid space(H5Dget_space(ds));
-  if (H5Sget_simple_extent_ndims(space.get()) == 1) {
-    read_rows(ds, mem_type, count, buf);
-  } else if (H5Dread(ds, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0) {
+/// All elements of dataset `ds`, `count` of them, read as `mem_type`.
+template <class T>
+std::vector<T> read_all(hid_t ds, std::size_t count, hid_t mem_type) {
+  std::vector<T> out(count);
+  if (!out.empty() && H5Dread(ds, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0) {
     fail(ds, "cannot read the dataset");
-  }
-}
-
-/// Reads every element of a string dataset (variable- or fixed-length).
-std::vector<std::string> read_dataset_strings(hid_t ds, std::size_t limit) {
-  Hid type(H5Dget_type(ds));
-  if (!type.ok() || H5Tget_class(type.get()) != H5T_STRING) fail(ds, "not a string dataset");
-  Hid space(H5Dget_space(ds));
-  const std::size_t n = std::min(npoints(space.get()), limit);
-  std::vector<std::string> out;
-  if (n == 0) return out;
-  out.reserve(n);
-  if (H5Tis_variable_str(type.get()) > 0) {
-    Hid mem = vlen_string_type(ds);
-    std::vector<char*> buf(n, nullptr);
-    read_rows_or_all(ds, mem.get(), n, buf.data());
-    for (char* p : buf) out.emplace_back(p != nullptr ? p : "");
-    const hsize_t dims[1] = {n};
-    Hid mspace(H5Screate_simple(1, dims, nullptr));
-    reclaim_vlen(mem.get(), mspace.get(), buf.data());
-  } else {
-    const std::size_t size = H5Tget_size(type.get());
-    Hid mem(H5Tcopy(type.get()));
-    std::vector<char> buf(n * size + 1, '\0');
-    read_rows_or_all(ds, mem.get(), n, buf.data());
-    for (std::size_t i = 0; i < n; ++i) {
-      const char* p = buf.data() + i * size;
-      std::size_t len = 0;
-      while (len < size && p[len] != '\0') ++len;
-      out.emplace_back(p, len);
-    }
   }
   return out;
 }
 
+/// The number of values `shape` holds; throws if the data holds `count` values instead.
+std::size_t checked_total(hid_t loc, const std::string& name, const std::vector<std::size_t>& shape,
+                          std::size_t count) {
+  const std::size_t total =
+      std::accumulate(shape.begin(), shape.end(), std::size_t{1}, std::multiplies<>());
+  if (total != count) {
+    fail(loc, "shape holds " + std::to_string(total) + " values, data has " +
+                  std::to_string(count), name);
+  }
+  return total;
+}
+
+/// A dataspace of `shape` for dataset `name`.
+Hid shaped_space(hid_t loc, const std::string& name, const std::vector<std::size_t>& shape) {
+  const std::vector<hsize_t> dims(shape.begin(), shape.end());
+  Hid space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr));
+  if (!space.ok()) fail(loc, "cannot create a dataspace", name);
+  return space;
+}
+
+/// Whether `count` values are written compressed (shuffle + gzip, chunked).
+bool compresses(const WriteOptions& options, std::size_t count) {
+  return options.gzip_level > 0 && count > options.compress_min_size &&
+         H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0;
+}
+
+/// Chunks of a compressed N-D dataset: the largest dimension halved until a chunk holds at
+/// most chunk_size values.
+std::vector<hsize_t> halved_chunk(const std::vector<hsize_t>& dims, std::size_t chunk_size) {
+  std::vector<hsize_t> chunk = dims;
+  const hsize_t target = std::max<std::size_t>(chunk_size, 1);
+  auto product = [&] {
+    return std::accumulate(chunk.begin(), chunk.end(), hsize_t{1}, std::multiplies<>());
+  };
+  while (product() > target) {
+    auto it = std::max_element(chunk.begin(), chunk.end());
+    *it = (*it + 1) / 2;
+  }
+  return chunk;
+}
+
+/// Creates dataset `name` of `file_type` under `loc` (and missing groups on the way), then
+/// writes `buf` as `mem_type` unless `count` is 0.
+Hid create_written(hid_t loc, const std::string& name, hid_t file_type, hid_t space, hid_t dcpl,
+                   hid_t mem_type, const void* buf, std::size_t count) {
+  Hid lcpl = intermediate_lcpl(loc);
+  Hid ds(H5Dcreate2(loc, name.c_str(), file_type, space, lcpl.get(), dcpl, H5P_DEFAULT));
+  if (!ds.ok()) fail(loc, "cannot create dataset", name);
+  if (count > 0 && H5Dwrite(ds.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0) {
+    fail(loc, "cannot write dataset", name);
+  }
+  return ds;
+}
+
+/// Writes a double dataset of `dims` (`count` values); `chunk` non-empty: chunked as
+/// `chunk`, shuffled and gzipped at `gzip_level`.
+Hid write_double_dataset(hid_t loc, const std::string& name, const double* values, std::size_t count,
+                         const std::vector<hsize_t>& dims, const std::vector<hsize_t>& chunk,
+                         int gzip_level) {
+  const int rank = static_cast<int>(dims.size());
+  Hid space(H5Screate_simple(rank, dims.data(), nullptr));
+  Hid dcpl(H5Pcreate(H5P_DATASET_CREATE));
+  if (!space.ok() || !dcpl.ok()) fail(loc, "cannot prepare dataset", name);
+  if (!chunk.empty() &&
+      (H5Pset_chunk(dcpl.get(), rank, chunk.data()) < 0 || H5Pset_shuffle(dcpl.get()) < 0 ||
+       H5Pset_deflate(dcpl.get(), static_cast<unsigned>(std::min(gzip_level, 9))) < 0)) {
+    fail(loc, "cannot set compression", name);
+  }
+  return create_written(loc, name, H5T_IEEE_F64LE, space.get(), dcpl.get(), H5T_NATIVE_DOUBLE,
+                        values, count);
+}
+
 }  // namespace
+}  // namespace detail
+
+using namespace detail;
 
 // =================================================================================
 // Object
@@ -424,21 +466,9 @@ void Object::close_handle() noexcept {
   id_ = -1;
 }
 
-std::string Object::path() const {
-  if (id_ < 0) return "";
-  quiet();
-  std::string p = object_path_of(id_);
-  H5Eclear2(H5E_DEFAULT);
-  return p;
-}
+std::string Object::path() const { return name_or_empty(id_, object_path_of); }
 
-std::string Object::file_name() const {
-  if (id_ < 0) return "";
-  quiet();
-  std::string p = file_name_of(id_);
-  H5Eclear2(H5E_DEFAULT);
-  return p;
-}
+std::string Object::file_name() const { return name_or_empty(id_, file_name_of); }
 
 bool Object::has_attribute(const std::string& name) const {
   quiet();
@@ -450,8 +480,7 @@ bool Object::has_attribute(const std::string& name) const {
 void Object::set_attribute(const std::string& name, const std::string& value) {
   quiet();
   Hid type = vlen_string_type(id_);
-  Hid space(H5Screate(H5S_SCALAR));
-  if (!space.ok()) fail(id_, "cannot create a dataspace");
+  Hid space = scalar_space(id_);
   const char* p = value.c_str();
   write_attribute(id_, name, type.get(), type.get(), space.get(), &p);
 }
@@ -462,15 +491,13 @@ void Object::set_attribute(const std::string& name, const char* value) {
 
 void Object::set_attribute(const std::string& name, double value) {
   quiet();
-  Hid space(H5Screate(H5S_SCALAR));
-  if (!space.ok()) fail(id_, "cannot create a dataspace");
+  Hid space = scalar_space(id_);
   write_attribute(id_, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, space.get(), &value);
 }
 
 void Object::set_attribute_int64(const std::string& name, std::int64_t value) {
   quiet();
-  Hid space(H5Screate(H5S_SCALAR));
-  if (!space.ok()) fail(id_, "cannot create a dataspace");
+  Hid space = scalar_space(id_);
   write_attribute(id_, name, H5T_STD_I64LE, H5T_NATIVE_INT64, space.get(), &value);
 }
 
@@ -499,12 +526,7 @@ void Object::remove_attribute(const std::string& name) {
 }
 
 std::string Object::attribute_string(const std::string& name) const {
-  std::vector<std::string> v = read_attribute_strings(id_, name);
-  if (v.size() != 1) {
-    fail(id_, "attribute '" + name + "' holds " + std::to_string(v.size()) +
-                  " strings, expected one");
-  }
-  return std::move(v.front());
+  return only_element(id_, name, read_attribute_strings(id_, name), "strings");
 }
 
 std::vector<std::string> Object::attribute_strings(const std::string& name) const {
@@ -512,12 +534,7 @@ std::vector<std::string> Object::attribute_strings(const std::string& name) cons
 }
 
 double Object::attribute_double(const std::string& name) const {
-  const std::vector<double> v = read_attribute_numbers<double>(id_, name, H5T_NATIVE_DOUBLE, false);
-  if (v.size() != 1) {
-    fail(id_, "attribute '" + name + "' holds " + std::to_string(v.size()) +
-                  " values, expected one");
-  }
-  return v.front();
+  return only_element(id_, name, attribute_doubles(name), "values");
 }
 
 std::vector<double> Object::attribute_doubles(const std::string& name) const {
@@ -525,13 +542,9 @@ std::vector<double> Object::attribute_doubles(const std::string& name) const {
 }
 
 std::int64_t Object::attribute_int64(const std::string& name) const {
-  const std::vector<std::int64_t> v =
-      read_attribute_numbers<std::int64_t>(id_, name, H5T_NATIVE_INT64, true);
-  if (v.size() != 1) {
-    fail(id_, "attribute '" + name + "' holds " + std::to_string(v.size()) +
-                  " values, expected one");
-  }
-  return v.front();
+  return only_element(id_, name,
+                      read_attribute_numbers<std::int64_t>(id_, name, H5T_NATIVE_INT64, true),
+                      "values");
 }
 
 std::vector<std::string> Object::attribute_names() const {
@@ -549,7 +562,7 @@ std::vector<std::string> Object::attribute_names() const {
 }
 
 // =================================================================================
-// Dataset
+// Dataset (dimension scales: h5_table.cpp)
 
 std::vector<std::size_t> Dataset::shape() const {
   quiet();
@@ -576,24 +589,14 @@ std::vector<double> Dataset::read_doubles() const {
   Hid type(H5Dget_type(id_));
   const H5T_class_t cls = H5Tget_class(type.get());
   if (cls != H5T_FLOAT && cls != H5T_INTEGER) fail(id_, "not a numeric dataset");
-  std::vector<double> out(size());
-  if (!out.empty() &&
-      H5Dread(id_, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0) {
-    fail(id_, "cannot read the dataset");
-  }
-  return out;
+  return read_all<double>(id_, size(), H5T_NATIVE_DOUBLE);
 }
 
 std::vector<std::int64_t> Dataset::read_int64s() const {
   quiet();
   Hid type(H5Dget_type(id_));
   if (H5Tget_class(type.get()) != H5T_INTEGER) fail(id_, "not an integer dataset");
-  std::vector<std::int64_t> out(size());
-  if (!out.empty() &&
-      H5Dread(id_, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0) {
-    fail(id_, "cannot read the dataset");
-  }
-  return out;
+  return read_all<std::int64_t>(id_, size(), H5T_NATIVE_INT64);
 }
 
 std::vector<std::string> Dataset::read_strings() const {
@@ -605,160 +608,8 @@ std::string Dataset::units() const {
   return has_attribute("units") ? attribute_string("units") : std::string();
 }
 
-void Dataset::make_scale(const std::string& name) {
-  quiet();
-  if (H5DSset_scale(id_, name.empty() ? nullptr : name.c_str()) < 0) {
-    fail(id_, "cannot make a dimension scale");
-  }
-}
-
-bool Dataset::is_scale() const {
-  quiet();
-  const htri_t s = H5DSis_scale(id_);
-  if (s < 0) fail(id_, "cannot query dimension-scale status");
-  return s > 0;
-}
-
-void Dataset::attach_scale(Dataset& scale, unsigned dim, const std::string& label) {
-  quiet();
-  const std::size_t rank = shape().size();
-  if (dim >= rank) {
-    fail(id_, "dimension " + std::to_string(dim) + " out of range (rank " +
-                  std::to_string(rank) + ")");
-  }
-  if (scale.shape().size() != 1) fail(scale.id(), "a dimension scale must be 1-D");
-  if (!scale.is_scale()) scale.make_scale();
-  if (H5DSattach_scale(id_, scale.id(), dim) < 0) {
-    fail(id_, "cannot attach dimension scale " + scale.path() + " to dimension " +
-                  std::to_string(dim));
-  }
-  if (!label.empty() && H5DSset_label(id_, dim, label.c_str()) < 0) {
-    fail(id_, "cannot label dimension " + std::to_string(dim));
-  }
-}
-
 // =================================================================================
-// Table
-
-std::size_t Table::column_index(const std::string& name) const {
-  for (std::size_t i = 0; i < columns_.size(); ++i) {
-    if (columns_[i].name == name) return i;
-  }
-  quiet();
-  fail(id_, "no column '" + name + "'");
-}
-
-bool Table::has_column(const std::string& name) const {
-  return std::any_of(columns_.begin(), columns_.end(),
-                     [&](const Column& c) { return c.name == name; });
-}
-
-Dataset Table::column(const std::string& name) const {
-  column_index(name);
-  return open_dataset(name);
-}
-
-std::size_t Table::rows() const {
-  if (columns_.empty()) return 0;
-  return open_dataset(columns_.front().name).size();
-}
-
-void Table::append(const std::vector<Row>& rows) {
-  quiet();
-  const std::size_t ncol = columns_.size();
-  const std::size_t k = rows.size();
-  if (k > 0) {
-    // Validate every row first, so a bad row appends nothing.
-    for (std::size_t r = 0; r < k; ++r) {
-      const Row& row = rows[r];
-      if (row.size() != ncol) {
-        fail(id_, "row " + std::to_string(r) + " has " + std::to_string(row.size()) +
-                      " cells, the table has " + std::to_string(ncol) + " columns");
-      }
-      for (std::size_t c = 0; c < ncol; ++c) {
-        const Cell& cell = row[c];
-        const ColumnType t = columns_[c].type;
-        const bool fits = (t == ColumnType::Float64 && !std::holds_alternative<std::string>(cell)) ||
-                          (t == ColumnType::Int64 && std::holds_alternative<std::int64_t>(cell)) ||
-                          (t == ColumnType::String && std::holds_alternative<std::string>(cell));
-        if (!fits) {
-          static const char* const cell_names[] = {"double", "int64", "string"};
-          fail(id_, "row " + std::to_string(r) + ", column '" + columns_[c].name + "' (" +
-                        type_name(t) + "): got a " + cell_names[cell.index()] + " cell");
-        }
-      }
-    }
-    const hsize_t old_rows = static_cast<hsize_t>(this->rows());
-    // The dimension column (0) last: it defines the table's length.
-    for (std::size_t step = 1; step <= ncol; ++step) {
-      const std::size_t c = step % ncol;
-      const Column& col = columns_[c];
-      Hid ds(H5Dopen2(id_, col.name.c_str(), H5P_DEFAULT));
-      if (!ds.ok()) fail(id_, "cannot open column", col.name);
-      Hid mem = column_mem_type(id_, col.type);
-      if (col.type == ColumnType::Float64) {
-        std::vector<double> v(k);
-        for (std::size_t r = 0; r < k; ++r) {
-          const Cell& cell = rows[r][c];
-          v[r] = std::holds_alternative<double>(cell)
-                     ? std::get<double>(cell)
-                     : static_cast<double>(std::get<std::int64_t>(cell));
-        }
-        write_rows(ds.get(), mem.get(), old_rows, k, v.data());
-      } else if (col.type == ColumnType::Int64) {
-        std::vector<std::int64_t> v(k);
-        for (std::size_t r = 0; r < k; ++r) v[r] = std::get<std::int64_t>(rows[r][c]);
-        write_rows(ds.get(), mem.get(), old_rows, k, v.data());
-      } else {
-        std::vector<const char*> v(k);
-        for (std::size_t r = 0; r < k; ++r) v[r] = std::get<std::string>(rows[r][c]).c_str();
-        write_rows(ds.get(), mem.get(), old_rows, k, v.data());
-      }
-    }
-  }
-  if (H5Fflush(id_, H5F_SCOPE_LOCAL) < 0) fail(id_, "cannot flush the file");
-}
-
-std::vector<double> Table::read_doubles(const std::string& column) const {
-  quiet();
-  const std::size_t c = column_index(column);
-  if (columns_[c].type == ColumnType::String) {
-    fail(id_, "column '" + column + "' holds strings, not numbers");
-  }
-  std::vector<double> out(rows());
-  Hid ds(H5Dopen2(id_, column.c_str(), H5P_DEFAULT));
-  if (!ds.ok()) fail(id_, "cannot open column", column);
-  read_rows(ds.get(), H5T_NATIVE_DOUBLE, out.size(), out.data());
-  return out;
-}
-
-std::vector<std::int64_t> Table::read_int64s(const std::string& column) const {
-  quiet();
-  const std::size_t c = column_index(column);
-  if (columns_[c].type != ColumnType::Int64) {
-    fail(id_, "column '" + column + "' is " + type_name(columns_[c].type) + ", not int64");
-  }
-  std::vector<std::int64_t> out(rows());
-  Hid ds(H5Dopen2(id_, column.c_str(), H5P_DEFAULT));
-  if (!ds.ok()) fail(id_, "cannot open column", column);
-  read_rows(ds.get(), H5T_NATIVE_INT64, out.size(), out.data());
-  return out;
-}
-
-std::vector<std::string> Table::read_strings(const std::string& column) const {
-  quiet();
-  const std::size_t c = column_index(column);
-  if (columns_[c].type != ColumnType::String) {
-    fail(id_, "column '" + column + "' is " + type_name(columns_[c].type) + ", not string");
-  }
-  const std::size_t n = rows();
-  Hid ds(H5Dopen2(id_, column.c_str(), H5P_DEFAULT));
-  if (!ds.ok()) fail(id_, "cannot open column", column);
-  return read_dataset_strings(ds.get(), n);
-}
-
-// =================================================================================
-// Group
+// Group (tables: h5_table.cpp)
 
 bool Group::exists(const std::string& path) const {
   quiet();
@@ -824,29 +675,13 @@ Dataset Group::write_dataset(const std::string& name, const double* values, std:
   quiet();
   if (count > 0 && values == nullptr) fail(id_, "null data", name);
   if (exists(name)) fail(id_, "already exists", name);
-
-  const hsize_t dims[1] = {static_cast<hsize_t>(count)};
-  Hid space(H5Screate_simple(1, dims, nullptr));
-  Hid dcpl(H5Pcreate(H5P_DATASET_CREATE));
-  if (!space.ok() || !dcpl.ok()) fail(id_, "cannot prepare dataset", name);
-  if (options.gzip_level > 0 && count > options.compress_min_size &&
-      H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) {
-    const hsize_t chunk[1] = {
-        static_cast<hsize_t>(std::min(count, std::max<std::size_t>(options.chunk_size, 1)))};
-    if (H5Pset_chunk(dcpl.get(), 1, chunk) < 0 || H5Pset_shuffle(dcpl.get()) < 0 ||
-        H5Pset_deflate(dcpl.get(), static_cast<unsigned>(std::min(options.gzip_level, 9))) < 0) {
-      fail(id_, "cannot set compression", name);
-    }
+  std::vector<hsize_t> chunk;  // none: contiguous, uncompressed
+  if (compresses(options, count)) {
+    chunk = {static_cast<hsize_t>(std::min(count, std::max<std::size_t>(options.chunk_size, 1)))};
   }
-  Hid lcpl = intermediate_lcpl(id_);
-  Hid ds(H5Dcreate2(id_, name.c_str(), H5T_IEEE_F64LE, space.get(), lcpl.get(), dcpl.get(),
-                    H5P_DEFAULT));
-  if (!ds.ok()) fail(id_, "cannot create dataset", name);
-  if (count > 0 &&
-      H5Dwrite(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values) < 0) {
-    fail(id_, "cannot write dataset", name);
-  }
-  Dataset out(ds.release());
+  Dataset out(write_double_dataset(id_, name, values, count, {static_cast<hsize_t>(count)}, chunk,
+                                   options.gzip_level)
+                  .release());
   out.set_attribute("units", units);
   return out;
 }
@@ -856,45 +691,13 @@ Dataset Group::write_dataset(const std::string& name, const std::vector<double>&
                              const WriteOptions& options) {
   quiet();
   if (shape.empty()) fail(id_, "a dataset needs at least one dimension", name);
-  const std::size_t total =
-      std::accumulate(shape.begin(), shape.end(), std::size_t{1}, std::multiplies<>());
-  if (total != values.size()) {
-    fail(id_, "shape holds " + std::to_string(total) + " values, data has " +
-                  std::to_string(values.size()), name);
-  }
+  const std::size_t total = checked_total(id_, name, shape, values.size());
   if (exists(name)) fail(id_, "already exists", name);
-
   const std::vector<hsize_t> dims(shape.begin(), shape.end());
-  const int rank = static_cast<int>(dims.size());
-  Hid space(H5Screate_simple(rank, dims.data(), nullptr));
-  Hid dcpl(H5Pcreate(H5P_DATASET_CREATE));
-  if (!space.ok() || !dcpl.ok()) fail(id_, "cannot prepare dataset", name);
-  if (options.gzip_level > 0 && total > options.compress_min_size &&
-      H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) {
-    // Halve the largest chunk dimension until a chunk holds at most chunk_size values.
-    std::vector<hsize_t> chunk = dims;
-    const hsize_t target = std::max<std::size_t>(options.chunk_size, 1);
-    auto product = [&] {
-      return std::accumulate(chunk.begin(), chunk.end(), hsize_t{1}, std::multiplies<>());
-    };
-    while (product() > target) {
-      auto it = std::max_element(chunk.begin(), chunk.end());
-      *it = (*it + 1) / 2;
-    }
-    if (H5Pset_chunk(dcpl.get(), rank, chunk.data()) < 0 || H5Pset_shuffle(dcpl.get()) < 0 ||
-        H5Pset_deflate(dcpl.get(), static_cast<unsigned>(std::min(options.gzip_level, 9))) < 0) {
-      fail(id_, "cannot set compression", name);
-    }
-  }
-  Hid lcpl = intermediate_lcpl(id_);
-  Hid ds(H5Dcreate2(id_, name.c_str(), H5T_IEEE_F64LE, space.get(), lcpl.get(), dcpl.get(),
-                    H5P_DEFAULT));
-  if (!ds.ok()) fail(id_, "cannot create dataset", name);
-  if (total > 0 &&
-      H5Dwrite(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0) {
-    fail(id_, "cannot write dataset", name);
-  }
-  Dataset out(ds.release());
+  std::vector<hsize_t> chunk;  // none: contiguous, uncompressed
+  if (compresses(options, total)) chunk = halved_chunk(dims, options.chunk_size);
+  Dataset out(
+      write_double_dataset(id_, name, values.data(), total, dims, chunk, options.gzip_level).release());
   out.set_attribute("units", units);
   return out;
 }
@@ -904,15 +707,9 @@ Dataset Group::write_dataset(const std::string& name, const std::vector<std::int
   quiet();
   if (exists(name)) fail(id_, "already exists", name);
   Hid space = simple_space(id_, values.size());
-  Hid lcpl = intermediate_lcpl(id_);
-  Hid ds(H5Dcreate2(id_, name.c_str(), H5T_STD_I64LE, space.get(), lcpl.get(), H5P_DEFAULT,
-                    H5P_DEFAULT));
-  if (!ds.ok()) fail(id_, "cannot create dataset", name);
-  if (!values.empty() &&
-      H5Dwrite(ds.get(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0) {
-    fail(id_, "cannot write dataset", name);
-  }
-  Dataset out(ds.release());
+  Dataset out(create_written(id_, name, H5T_STD_I64LE, space.get(), H5P_DEFAULT, H5T_NATIVE_INT64,
+                             values.data(), values.size())
+                  .release());
   out.set_attribute("units", units);
   return out;
 }
@@ -920,25 +717,12 @@ Dataset Group::write_dataset(const std::string& name, const std::vector<std::int
 Dataset Group::write_dataset(const std::string& name, const std::vector<std::int64_t>& values,
                              const std::vector<std::size_t>& shape, const std::string& units) {
   quiet();
-  const std::size_t total =
-      std::accumulate(shape.begin(), shape.end(), std::size_t{1}, std::multiplies<>());
-  if (total != values.size()) {
-    fail(id_, "shape holds " + std::to_string(total) + " values, data has " +
-                  std::to_string(values.size()), name);
-  }
+  const std::size_t total = checked_total(id_, name, shape, values.size());
   if (exists(name)) fail(id_, "already exists", name);
-  const std::vector<hsize_t> dims(shape.begin(), shape.end());
-  Hid space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr));
-  if (!space.ok()) fail(id_, "cannot create a dataspace", name);
-  Hid lcpl = intermediate_lcpl(id_);
-  Hid ds(H5Dcreate2(id_, name.c_str(), H5T_STD_I64LE, space.get(), lcpl.get(), H5P_DEFAULT,
-                    H5P_DEFAULT));
-  if (!ds.ok()) fail(id_, "cannot create dataset", name);
-  if (total > 0 &&
-      H5Dwrite(ds.get(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0) {
-    fail(id_, "cannot write dataset", name);
-  }
-  Dataset out(ds.release());
+  Hid space = shaped_space(id_, name, shape);
+  Dataset out(create_written(id_, name, H5T_STD_I64LE, space.get(), H5P_DEFAULT, H5T_NATIVE_INT64,
+                             values.data(), total)
+                  .release());
   if (!units.empty()) out.set_attribute("units", units);
   return out;
 }
@@ -948,28 +732,16 @@ Dataset Group::write_strings(const std::string& name, const std::vector<std::str
   quiet();
   const std::vector<std::size_t> shape =
       shape_in.empty() ? std::vector<std::size_t>{values.size()} : shape_in;
-  const std::size_t total =
-      std::accumulate(shape.begin(), shape.end(), std::size_t{1}, std::multiplies<>());
-  if (total != values.size()) {
-    fail(id_, "shape holds " + std::to_string(total) + " values, data has " +
-                  std::to_string(values.size()), name);
-  }
+  const std::size_t total = checked_total(id_, name, shape, values.size());
   if (exists(name)) fail(id_, "already exists", name);
-  const std::vector<hsize_t> dims(shape.begin(), shape.end());
-  Hid space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr));
-  if (!space.ok()) fail(id_, "cannot create a dataspace", name);
+  Hid space = shaped_space(id_, name, shape);
   Hid type = vlen_string_type(id_);
-  Hid lcpl = intermediate_lcpl(id_);
-  Hid ds(H5Dcreate2(id_, name.c_str(), type.get(), space.get(), lcpl.get(), H5P_DEFAULT,
-                    H5P_DEFAULT));
-  if (!ds.ok()) fail(id_, "cannot create dataset", name);
   std::vector<const char*> p;
   p.reserve(values.size());
   for (const std::string& v : values) p.push_back(v.c_str());
-  if (total > 0 && H5Dwrite(ds.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, p.data()) < 0) {
-    fail(id_, "cannot write dataset", name);
-  }
-  return Dataset(ds.release());
+  return Dataset(
+      create_written(id_, name, type.get(), space.get(), H5P_DEFAULT, type.get(), p.data(), total)
+          .release());
 }
 
 Dataset Group::open_dataset(const std::string& path) const {
@@ -977,84 +749,6 @@ Dataset Group::open_dataset(const std::string& path) const {
   const hid_t d = H5Dopen2(id_, path.c_str(), H5P_DEFAULT);
   if (d < 0) fail(id_, "cannot open dataset", path);
   return Dataset(d);
-}
-
-Table Group::create_table(const std::string& name, const std::vector<Column>& columns,
-                          std::size_t chunk_rows) {
-  quiet();
-  validate_columns(id_, name, columns);
-  if (exists(name)) fail(id_, "already exists", name);
-  Group g = require_group(name);
-  const hsize_t dims[1] = {0};
-  const hsize_t maxdims[1] = {H5S_UNLIMITED};
-  const hsize_t chunk[1] = {static_cast<hsize_t>(std::max<std::size_t>(chunk_rows, 1))};
-  Hid space(H5Screate_simple(1, dims, maxdims));
-  Hid dcpl(H5Pcreate(H5P_DATASET_CREATE));
-  if (!space.ok() || !dcpl.ok() || H5Pset_chunk(dcpl.get(), 1, chunk) < 0) {
-    fail(id_, "cannot prepare table", name);
-  }
-  std::vector<Dataset> cols;
-  for (const Column& c : columns) {
-    Hid ftype = column_file_type(id_, c.type);
-    const hid_t d = H5Dcreate2(g.id(), c.name.c_str(), ftype.get(), space.get(), H5P_DEFAULT,
-                               dcpl.get(), H5P_DEFAULT);
-    if (d < 0) fail(g.id(), "cannot create column", c.name);
-    cols.push_back(Dataset(d));
-    if (!c.units.empty()) cols.back().set_attribute("units", c.units);
-    if (!c.long_name.empty()) cols.back().set_attribute("long_name", c.long_name);
-  }
-  cols.front().make_scale(columns.front().name);
-  for (std::size_t i = 1; i < cols.size(); ++i) cols[i].attach_scale(cols.front(), 0);
-  Table t(H5Gopen2(id_, name.c_str(), H5P_DEFAULT), columns);
-  if (!t.valid()) fail(id_, "cannot open table", name);
-  std::vector<std::string> names, units;
-  for (const Column& c : columns) {
-    names.push_back(c.name);
-    units.push_back(c.units);
-  }
-  t.set_attribute("columns", names);
-  t.set_attribute("units", units);
-  return t;
-}
-
-Table Group::open_table(const std::string& name) const {
-  quiet();
-  H5O_info_t info;
-  if (!exists(name) || H5Oget_info_by_name(id_, name.c_str(), &info, H5P_DEFAULT) < 0) {
-    fail(id_, "cannot open table (absent)", name);
-  }
-  if (info.type != H5O_TYPE_GROUP) {
-    fail(id_, "not a table of columns (a dataset: an older, compound-type table?)", name);
-  }
-  const hid_t g = H5Gopen2(id_, name.c_str(), H5P_DEFAULT);
-  if (g < 0) fail(id_, "cannot open table", name);
-  Table t(g, {});
-  if (!t.has_attribute("columns")) fail(g, "not a table (no 'columns' attribute)");
-  const std::vector<std::string> names = t.attribute_strings("columns");
-  if (names.empty()) fail(g, "not a table (no columns)");
-  std::vector<Column> cols;
-  for (const std::string& n : names) {
-    if (!t.exists(n)) fail(g, "column '" + n + "' is missing");
-    const Dataset d = t.open_dataset(n);
-    if (d.shape().size() != 1) fail(d.id(), "not a table column (not one-dimensional)");
-    Hid type(H5Dget_type(d.id()));
-    Column c{n, ColumnType::Float64, d.units(),
-             d.has_attribute("long_name") ? d.attribute_string("long_name") : std::string()};
-    switch (H5Tget_class(type.get())) {
-      case H5T_FLOAT: c.type = ColumnType::Float64; break;
-      case H5T_INTEGER: c.type = ColumnType::Int64; break;
-      case H5T_STRING:
-        if (H5Tis_variable_str(type.get()) <= 0) {
-          fail(d.id(), "column '" + n + "' is a fixed-length string (unsupported)");
-        }
-        c.type = ColumnType::String;
-        break;
-      default: fail(d.id(), "column '" + n + "' has an unsupported type");
-    }
-    cols.push_back(std::move(c));
-  }
-  t.columns_ = std::move(cols);
-  return t;
 }
 
 // =================================================================================
