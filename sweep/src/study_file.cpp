@@ -32,14 +32,6 @@ std::string policy_text(FailurePolicy p) {
   return p == FailurePolicy::abort_on_failure ? "abort" : "continue";
 }
 
-std::string axis_long_name(const Axis& a) {
-  if (a.kind == "clearance_m") return "radial clearance c = bearing radius - journal radius";
-  if (a.kind == "viscosity_Pa_s") return "lubricant dynamic viscosity";
-  if (a.kind == "speed_rpm") return "driver speed in revolutions per minute";
-  if (a.kind == "force_law") return "hydrodynamic force law of the lubricated joint";
-  return "scene value " + a.pointer;
-}
-
 /// Writes an axis's values as a dimension scale `name` in `g`.
 h5::Dataset write_axis(h5::Group& g, const Axis& a, const std::vector<json>& values) {
   h5::Dataset d;
