@@ -82,11 +82,6 @@ json::json_pointer bearing_radius_of(const Axis& clearance) {
 
 }  // namespace
 
-const std::vector<std::string>& named_axes() {
-  static const std::vector<std::string> names = names_of<AxisKind>();
-  return names;
-}
-
 std::string axis_long_name(const Axis& a) {
   if (a.kind == AxisKind::pointer) return "scene value " + a.pointer;
   return meaning_of(a.kind).long_name;

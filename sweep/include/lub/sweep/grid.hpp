@@ -58,13 +58,10 @@ struct NameTable<sweep::AxisKind> {
 
 namespace lub::sweep {
 
-/// The four axes a grid may name without a pointer, in NameTable<AxisKind> order.
-const std::vector<std::string>& named_axes();
-
 /// One varied quantity: a column of /cases.
 struct Axis {
   std::string name;     ///< column name; the named axes carry their unit in the name
-  AxisKind kind = AxisKind::pointer;
+  AxisKind kind = AxisKind::pointer;  ///< a named axis, or the scene value at `pointer`
   std::string pointer;  ///< the scene value it sets (clearance_m: the journal radius)
   std::string units;    ///< SI unit ("m", "Pa s", "rpm", "" ...)
   bool numeric = true;  ///< every value a number: a float64 column (else strings)
