@@ -247,9 +247,12 @@ TEST(SweepGrid, CaseNames) {
 // value and the rule.
 
 struct BadGrid {
-  const char* rest;     // top-level members after "scene"
-  const char* message;  // the whole message, or its start when it ends with "..."
+  std::string rest;     // top-level members after "scene"
+  std::string message;  // the whole message, or its start when it ends with "..."
 };
+
+/// `rest` of a grid with one axis, the members `spec`: `"axes": [{spec}]`.
+std::string one_axis(const std::string& spec) { return R"("axes": [{)" + spec + "}]"; }
 
 class SweepBadGrid : public ::testing::TestWithParam<BadGrid> {};
 
@@ -271,45 +274,29 @@ INSTANTIATE_TEST_SUITE_P(
         BadGrid{"", "grid: needs axes, cases or grids (see the README, \"Writing a grid\")"},
         BadGrid{R"("axes": [], "colour": 1)", "grid.colour = 1: unknown key (check the spelling; see the README)"},
         BadGrid{R"("axes": {})", "grid.axes = {}: must be an array"},
-        BadGrid{R"("axes": [{"name": "clearance_m", "values": [5e-4, -1e-4]}])",
+        BadGrid{one_axis(R"("name": "clearance_m", "values": [5e-4, -1e-4])"),
                 "grid.axes[0].values[1] = -0.0001: gives an invalid scene (joint rod_slider: journal_radius_m = "
                 "bearing_radius_m - clearance = 0.01 m - -0.0001 m): joints[3].journal_radius_m = 0.0101: must be < "
                 "bearing_radius_m = 0.01 m (the radial clearance must be > 0)"},
-        BadGrid{R"("axes": [{"name": "clearance_m", "values": [0.02]}])",
+        BadGrid{one_axis(R"("name": "clearance_m", "values": [0.02])"),
                 "grid.axes[0].values[0] = 0.02: gives an invalid scene (joint rod_slider: journal_radius_m = "
                 "bearing_radius_m - clearance = 0.01 m - 0.02 m): joints[3].journal_radius_m = -0.01: must be > 0 m"},
-        BadGrid{R"("axes": [{"name": "clearance_m", "values": ["big"]}])",
-                "grid.axes[0].values[0] = \"big\": must be a number, not string"},
-        BadGrid{R"("axes": [{"name": "viscosity_Pa_s", "values": [0]}])",
-                "grid.axes[0].values[0] = 0: gives an invalid scene: joints[3].viscosity_Pa_s = 0: must be > 0 Pa s"},
-        BadGrid{R"("axes": [{"name": "speed_rpm", "values": [0.0]}])",
-                "grid.axes[0].values[0] = 0.0: must not be 0 rpm"},
-        BadGrid{R"("axes": [{"name": "force_law", "values": [3]}])",
-                "grid.axes[0].values[0] = 3: must be a string (a force law name)"},
-        BadGrid{R"("axes": [{"name": "force_law", "values": ["reynolds2d"]}])",
-                "grid.axes[0].values[0] = \"reynolds2d\": gives an invalid scene: joints[3].force_law = \"reynolds2d\": must be one of ..."},
-        BadGrid{R"("axes": [{"name": "viscosity_Pa_s", "values": [0.4, 0.2, 0.4]}])",
-                "grid.axes[0].values[2] = 0.4: repeats grid.axes[0].values[0]"},
-        BadGrid{R"("axes": [{"name": "viscosity_Pa_s", "values": []}])",
-                "grid.axes[0].values = []: must list at least one value"},
-        BadGrid{R"("axes": [{"name": "viscosity", "values": [0.4]}])",
-                "grid.axes[0].name = \"viscosity\": must be one of clearance_m, viscosity_Pa_s, speed_rpm, force_law, or the axis needs a pointer"},
-        BadGrid{R"("axes": [{"values": [0.4]}])",
-                "grid.axes[0]: needs a pointer (\"pointer\": \"/solver/rtol\") or a named axis (clearance_m, viscosity_Pa_s, speed_rpm, force_law)"},
-        BadGrid{R"("axes": [{"name": "speed_rpm", "values": [50], "unit": "rpm"}])",
-                "grid.axes[0].unit = \"rpm\": unknown key (check the spelling; see the README)"},
-        BadGrid{R"("axes": [{"pointer": "solver/rtol", "values": [1e-6]}])",
-                "grid.axes[0].pointer = \"solver/rtol\": must be a JSON Pointer (RFC 6901) starting with '/', e.g. /solver/rtol"},
-        BadGrid{R"("axes": [{"pointer": "/solver/rtoll", "values": [1e-7]}])",
-                "grid.axes[0].values[0] = 1e-07: gives an invalid scene: solver.rtoll = 1e-07: unknown key (check the spelling; see the README)"},
-        BadGrid{R"("axes": [{"pointer": "/joints/9/length_m", "values": [0.1]}])",
-                "grid.axes[0].values[0] = 0.1: /joints/9/length_m names no value of the scene, and its parent is not an object"},
-        BadGrid{R"("axes": [{"pointer": "/solver/rtol", "name": "speed_rpm", "values": [1e-7]}])",
-                "grid.axes[0].name = \"speed_rpm\": is a named axis: it takes no pointer (rename the pointer axis)"},
-        BadGrid{R"("axes": [{"pointer": "/solver/rtol", "name": "status", "values": [1e-7]}])",
-                "grid.axes[0].name = \"status\": is a column lubsweep writes itself: choose another name"},
-        BadGrid{R"("axes": [{"pointer": "/solver/rtol", "name": "a/b", "values": [1e-7]}])",
-                "grid.axes[0].name = \"a/b\": must be 1-64 letters, digits, '_', '-' or '.' (it names a column and a dataset)"},
+        BadGrid{one_axis(R"("name": "clearance_m", "values": ["big"])"), "grid.axes[0].values[0] = \"big\": must be a number, not string"},
+        BadGrid{one_axis(R"("name": "viscosity_Pa_s", "values": [0])"), "grid.axes[0].values[0] = 0: gives an invalid scene: joints[3].viscosity_Pa_s = 0: must be > 0 Pa s"},
+        BadGrid{one_axis(R"("name": "speed_rpm", "values": [0.0])"), "grid.axes[0].values[0] = 0.0: must not be 0 rpm"},
+        BadGrid{one_axis(R"("name": "force_law", "values": [3])"), "grid.axes[0].values[0] = 3: must be a string (a force law name)"},
+        BadGrid{one_axis(R"("name": "force_law", "values": ["reynolds2d"])"), "grid.axes[0].values[0] = \"reynolds2d\": gives an invalid scene: joints[3].force_law = \"reynolds2d\": must be one of ..."},
+        BadGrid{one_axis(R"("name": "viscosity_Pa_s", "values": [0.4, 0.2, 0.4])"), "grid.axes[0].values[2] = 0.4: repeats grid.axes[0].values[0]"},
+        BadGrid{one_axis(R"("name": "viscosity_Pa_s", "values": [])"), "grid.axes[0].values = []: must list at least one value"},
+        BadGrid{one_axis(R"("name": "viscosity", "values": [0.4])"), "grid.axes[0].name = \"viscosity\": must be one of clearance_m, viscosity_Pa_s, speed_rpm, force_law, or the axis needs a pointer"},
+        BadGrid{one_axis(R"("values": [0.4])"), "grid.axes[0]: needs a pointer (\"pointer\": \"/solver/rtol\") or a named axis (clearance_m, viscosity_Pa_s, speed_rpm, force_law)"},
+        BadGrid{one_axis(R"("name": "speed_rpm", "values": [50], "unit": "rpm")"), "grid.axes[0].unit = \"rpm\": unknown key (check the spelling; see the README)"},
+        BadGrid{one_axis(R"("pointer": "solver/rtol", "values": [1e-6])"), "grid.axes[0].pointer = \"solver/rtol\": must be a JSON Pointer (RFC 6901) starting with '/', e.g. /solver/rtol"},
+        BadGrid{one_axis(R"("pointer": "/solver/rtoll", "values": [1e-7])"), "grid.axes[0].values[0] = 1e-07: gives an invalid scene: solver.rtoll = 1e-07: unknown key (check the spelling; see the README)"},
+        BadGrid{one_axis(R"("pointer": "/joints/9/length_m", "values": [0.1])"), "grid.axes[0].values[0] = 0.1: /joints/9/length_m names no value of the scene, and its parent is not an object"},
+        BadGrid{one_axis(R"("pointer": "/solver/rtol", "name": "speed_rpm", "values": [1e-7])"), "grid.axes[0].name = \"speed_rpm\": is a named axis: it takes no pointer (rename the pointer axis)"},
+        BadGrid{one_axis(R"("pointer": "/solver/rtol", "name": "status", "values": [1e-7])"), "grid.axes[0].name = \"status\": is a column lubsweep writes itself: choose another name"},
+        BadGrid{one_axis(R"("pointer": "/solver/rtol", "name": "a/b", "values": [1e-7])"), "grid.axes[0].name = \"a/b\": must be 1-64 letters, digits, '_', '-' or '.' (it names a column and a dataset)"},
         BadGrid{R"("axes": [{"name": "speed_rpm", "values": [50]}, {"name": "speed_rpm", "values": [60]}])",
                 "grid.axes[1] = {\"name\":\"speed_rpm\",\"values\":[60]}: varies axis \"speed_rpm\" twice in one grid"},
         BadGrid{R"("axes": [{"pointer": "/solver/rtol", "name": "x", "values": [1e-7]},

@@ -64,6 +64,15 @@ CaseResult fake(const Grid& g, int id, const std::string& status = "ok") {
   return r;
 }
 
+/// Writes a new study file at `path` holding `results`, in the order given. `finalize`: the
+/// file rewritten canonically, as a sweep that ends leaves it; else the live file (rows in
+/// arrival order), as a killed sweep leaves it.
+void write_study(const std::string& path, const Grid& g, const std::vector<CaseResult>& results, bool finalize) {
+  StudyWriter w(path, g, {}, "");
+  for (const CaseResult& r : results) w.append(r);
+  if (finalize) w.finalize();
+}
+
 class StudyFile : public lub_test::TempDirTest {
  protected:
   StudyFile() : TempDirTest("lub_sweep_") {}
@@ -167,13 +176,8 @@ TEST_F(StudyFile, LayoutUnitsAndAttributes) {
 TEST_F(StudyFile, GridVariablesHoldNaNMetricsForCasesNotOkAndSayWhy) {
   const Grid g = small_grid();
   const std::string path = file("s.h5");
-  {
-    StudyWriter w(path, g, {}, "");
-    w.append(fake(g, 0));
-    w.append(fake(g, 1, "film_collapse"));
-    w.append(fake(g, 2));  // cases 3 and 4 never run: an incomplete study
-    w.finalize();
-  }
+  // Cases 3 and 4 never run: an incomplete study.
+  write_study(path, g, {fake(g, 0), fake(g, 1, "film_collapse"), fake(g, 2)}, true);
   const auto f = lub::h5::File::open(path);
   const auto h = f.open_dataset("grids/main/min_film_thickness_m").read_doubles();
   EXPECT_FALSE(std::isnan(h[0]));
@@ -209,11 +213,8 @@ TEST_F(StudyFile, OlderFormatIsRefusedWithAClearMessage) {
 TEST_F(StudyFile, FinalFileIsInCaseIdOrderWhateverTheArrivalOrder) {
   const Grid g = small_grid();
   const std::string a = file("a.h5"), b = file("b.h5");
-  for (const auto& [path, order] : {std::pair{a, std::vector<int>{0, 1, 2, 3, 4}}, std::pair{b, std::vector<int>{3, 0, 4, 2, 1}}}) {
-    StudyWriter w(path, g, {}, "");
-    for (int id : order) w.append(fake(g, id));
-    w.finalize();
-  }
+  write_study(a, g, {fake(g, 0), fake(g, 1), fake(g, 2), fake(g, 3), fake(g, 4)}, true);
+  write_study(b, g, {fake(g, 3), fake(g, 0), fake(g, 4), fake(g, 2), fake(g, 1)}, true);
   const auto ta = lub::h5::File::open(a).open_table("cases"), tb = lub::h5::File::open(b).open_table("cases");
   EXPECT_EQ(tb.read_int64s("case"), (std::vector<std::int64_t>{0, 1, 2, 3, 4}));
   for (const auto& f : result_fields()) EXPECT_EQ(ta.read_doubles(f.name), tb.read_doubles(f.name)) << f.name;
@@ -222,12 +223,7 @@ TEST_F(StudyFile, FinalFileIsInCaseIdOrderWhateverTheArrivalOrder) {
 TEST_F(StudyFile, ResumeFindsTheCasesByHash) {
   const Grid g = small_grid();
   const std::string path = file("r.h5");
-  {
-    StudyWriter w(path, g, {}, "");
-    w.append(fake(g, 2));
-    w.append(fake(g, 3, "film_collapse"));
-    // not finalized: the live file, rows in arrival order
-  }
+  write_study(path, g, {fake(g, 2), fake(g, 3, "film_collapse")}, false);  // the live file
   ResumeState st = read_existing(path, g, false, lub::build_revision());
   ASSERT_EQ(st.done.size(), 2u);
   EXPECT_EQ(st.done.at(3).status, "film_collapse");
@@ -266,10 +262,7 @@ TEST_F(StudyFile, ResumeIntoAnExtendedGridKeepsEachCaseItsOwnSeries) {
   // follow its hash to its new name (it once kept the old name's, another case's, series).
   const Grid g = small_grid();
   const std::string path = file("x.h5");
-  {
-    StudyWriter w(path, g, {}, "");
-    w.append(fake(g, 2));
-  }
+  write_study(path, g, {fake(g, 2)}, false);
   const Grid wider = parse_grid(R"({
       "scene": "slider_crank.json",
       "set": {"/solver/rtol": 1e-6},

@@ -1,3 +1,6 @@
+// The study writer (StudyWriter): the file's header, its /cases rows as results arrive,
+// the sub-grids' results and the series, and the canonical rewrite at the end. The resume
+// reader is study_resume.cpp, the summary printer study_summary.cpp.
 #include "lub/sweep/study_file.hpp"
 
 #include <algorithm>
@@ -9,6 +12,7 @@
 
 #include "lub/io/json_reader.hpp"
 #include "lub/run/run_io.hpp"
+#include "study_parts.hpp"
 
 namespace lub::sweep {
 
@@ -30,14 +34,6 @@ h5::Cell axis_cell(const Axis& a, const json& v) {
 
 std::string policy_text(FailurePolicy p) {
   return p == FailurePolicy::abort_on_failure ? "abort" : "continue";
-}
-
-std::string axis_long_name(const Axis& a) {
-  if (a.kind == "clearance_m") return "radial clearance c = bearing radius - journal radius";
-  if (a.kind == "viscosity_Pa_s") return "lubricant dynamic viscosity";
-  if (a.kind == "speed_rpm") return "driver speed in revolutions per minute";
-  if (a.kind == "force_law") return "hydrodynamic force law of the lubricated joint";
-  return "scene value " + a.pointer;
 }
 
 /// Writes an axis's values as a dimension scale `name` in `g`.
@@ -68,7 +64,8 @@ std::vector<std::string> scene_patches(const Grid& g) {
   return patches;
 }
 
-void write_header(h5::File& f, const Grid& g, const std::vector<std::string>& patches, bool complete) {
+/// The root attributes: what made the file, from which grid and base scene.
+void write_root_attributes(h5::File& f, const Grid& g, bool complete) {
   f.set_attribute("program", "lubsweep");
   f.set_attribute("format", kStudyFormat);
   f.set_attribute("version", program_version());
@@ -81,7 +78,10 @@ void write_header(h5::File& f, const Grid& g, const std::vector<std::string>& pa
   f.set_attribute("on_failure", policy_text(g.on_failure));
   f.set_attribute("cases_total", static_cast<std::int64_t>(g.cases.size()));
   f.set_attribute_int64("complete", complete ? 1 : 0);
+}
 
+/// The empty /cases table, its columns and the attributes that group them.
+void create_cases_table(h5::File& f, const Grid& g) {
   h5::Table t = f.create_table("cases", case_columns(g));
   std::vector<std::string> axes, metrics, solver;
   for (const Axis& a : g.axes) axes.push_back(a.name);
@@ -91,10 +91,12 @@ void write_header(h5::File& f, const Grid& g, const std::vector<std::string>& pa
   t.set_attribute("metrics", metrics);
   t.set_attribute("solver", solver);
   for (const Axis& a : g.axes) t.column(a.name).set_attribute("pointer", a.pointer);
+}
 
-  // /scene_patches on the root's own `scene` dimension (the case ids of the grid), so the
-  // root group opens in netCDF readers too: each case's effective scene as a JSON Patch
-  // of the root attribute reference_scene (case 0's scene, scene_patches).
+/// /scene_patches on the root's own `scene` dimension (the case ids of the grid), so the
+/// root group opens in netCDF readers too: each case's effective scene as a JSON Patch
+/// of the root attribute reference_scene (case 0's scene, scene_patches).
+void write_scene_patches(h5::File& f, const Grid& g, const std::vector<std::string>& patches) {
   std::vector<std::int64_t> all_ids;
   for (const Case& c : g.cases) all_ids.push_back(c.id);
   if (!g.cases.empty()) f.set_attribute("reference_scene", g.cases.front().scene);
@@ -105,39 +107,49 @@ void write_header(h5::File& f, const Grid& g, const std::vector<std::string>& pa
   sc.set_attribute("long_name",
                    "effective scene of each case: a JSON Patch (RFC 6902) of the root attribute reference_scene");
   sc.attach_scale(scene_ids, 0);
+}
 
-  h5::Group grids = f.require_group("grids");
-  for (const Block& b : g.blocks) {
-    h5::Group bg = grids.require_group(b.name);
-    bg.set_attribute("kind", b.factorial ? "factorial" : "cases");
-    std::vector<std::int64_t> ids(b.case_ids.begin(), b.case_ids.end());
-    std::vector<std::size_t> shape = b.shape.empty() ? std::vector<std::size_t>{ids.size()} : b.shape;
-    h5::Dataset index = bg.write_dataset("case_id", ids, shape, "1");
-    index.set_attribute("long_name", "case id (the coordinate of /cases) of each grid point");
-    std::vector<std::string> names;
-    if (b.factorial) {
-      for (std::size_t i = 0; i < b.axes.size(); ++i) {
-        const Axis& a = g.axes[static_cast<std::size_t>(b.axes[i])];
-        names.push_back(a.name);
-        h5::Dataset scale = write_axis(bg, a, b.values[i]);
-        scale.make_scale(a.name);
-        index.attach_scale(scale, static_cast<unsigned>(i), a.name);
-      }
-    } else {
-      // An explicit list: dimension `case` (the case ids); each axis a variable over it.
-      h5::Dataset scale = bg.write_dataset("case", ids, {ids.size()}, "1");
-      scale.set_attribute("long_name", "case id");
-      scale.make_scale("case");
-      index.attach_scale(scale, 0, "case");
-      for (std::size_t k = 0; k < g.axes.size(); ++k) {
-        std::vector<json> v;
-        for (int id : b.case_ids) v.push_back(g.cases.at(static_cast<std::size_t>(id)).axis_values[k]);
-        h5::Dataset d = write_axis(bg, g.axes[k], v);
-        d.attach_scale(scale, 0);
-      }
+/// /grids/<name> of one block: its case ids over its axes (factorial: the axes as
+/// dimension scales, values as listed; explicit list: the dimension `case`, each axis a
+/// variable over it).
+void write_block_index(h5::Group& grids, const Grid& g, const Block& b) {
+  h5::Group bg = grids.require_group(b.name);
+  bg.set_attribute("kind", b.factorial ? "factorial" : "cases");
+  std::vector<std::int64_t> ids(b.case_ids.begin(), b.case_ids.end());
+  std::vector<std::size_t> shape = b.shape.empty() ? std::vector<std::size_t>{ids.size()} : b.shape;
+  h5::Dataset index = bg.write_dataset("case_id", ids, shape, "1");
+  index.set_attribute("long_name", "case id (the coordinate of /cases) of each grid point");
+  std::vector<std::string> names;
+  if (b.factorial) {
+    for (std::size_t i = 0; i < b.axes.size(); ++i) {
+      const Axis& a = g.axes[static_cast<std::size_t>(b.axes[i])];
+      names.push_back(a.name);
+      h5::Dataset scale = write_axis(bg, a, b.values[i]);
+      scale.make_scale(a.name);
+      index.attach_scale(scale, static_cast<unsigned>(i), a.name);
     }
-    if (!names.empty()) bg.set_attribute("axes", names);
+  } else {
+    h5::Dataset scale = bg.write_dataset("case", ids, {ids.size()}, "1");
+    scale.set_attribute("long_name", "case id");
+    scale.make_scale("case");
+    index.attach_scale(scale, 0, "case");
+    for (std::size_t k = 0; k < g.axes.size(); ++k) {
+      std::vector<json> v;
+      for (int id : b.case_ids) v.push_back(g.cases.at(static_cast<std::size_t>(id)).axis_values[k]);
+      h5::Dataset d = write_axis(bg, g.axes[k], v);
+      d.attach_scale(scale, 0);
+    }
   }
+  if (!names.empty()) bg.set_attribute("axes", names);
+}
+
+/// Everything but the rows, the sub-grids' results and the series.
+void write_header(h5::File& f, const Grid& g, const std::vector<std::string>& patches, bool complete) {
+  write_root_attributes(f, g, complete);
+  create_cases_table(f, g);
+  write_scene_patches(f, g, patches);
+  h5::Group grids = f.require_group("grids");
+  for (const Block& b : g.blocks) write_block_index(grids, g, b);
 }
 
 /// Attaches the dimension scales of sub-grid `bg` (those of its `case_id`) to `d`.
@@ -272,102 +284,6 @@ h5::Row case_row(const Grid& g, const CaseResult& r) {
   return row;
 }
 
-void check_format(const h5::File& f, const std::string& what, const std::string& hint) {
-  const std::string format = f.has_attribute("format") ? f.attribute_string("format") : "(none)";
-  if (format != kStudyFormat)
-    throw InputError(what + ": a study file of format " + format + "; this lubsweep reads and writes format " +
-                     kStudyFormat + " (/cases as columns, /grids as labelled variables)" + hint);
-}
-
-ResumeState read_existing(const std::string& path, const Grid& grid, bool retry_failed,
-                          const std::string& build) {
-  const std::string hint = " (use --restart to overwrite it, or another -o)";
-  h5::File f;
-  try {
-    f = h5::File::open(path, h5::File::Mode::ReadOnly);
-  } catch (const std::exception&) {
-    throw InputError("-o " + path + ": the file exists and is not an HDF5 file" + hint);
-  }
-  if (!f.has_attribute("program") || f.attribute_string("program") != "lubsweep" || !f.exists("cases"))
-    throw InputError("-o " + path + ": the file exists and is not a lubsweep study file" + hint);
-  check_format(f, "-o " + path, hint);
-  ResumeState st;
-  h5::Table t;
-  try {
-    t = f.open_table("cases");
-  } catch (const std::exception& e) {
-    throw InputError("-o " + path + ": cannot read its /cases table: " + e.what() + hint);
-  }
-  const std::size_t n = t.rows();
-  const auto fields = result_fields();
-  bool compatible = true;
-  for (const char* col : {"hash", "status", "message", "classification", "rank", "revision"}) compatible = compatible && t.has_column(col);
-  for (const auto& fld : fields) compatible = compatible && t.has_column(fld.name);
-  if (!compatible) {
-    st.incompatible_rows = n;
-    return st;
-  }
-  const auto hashes = t.read_strings("hash");
-  const auto status = t.read_strings("status");
-  const auto message = t.read_strings("message");
-  const auto classification = t.read_strings("classification");
-  const auto revision = t.read_strings("revision");
-  const auto rank = t.read_int64s("rank");
-  std::vector<std::vector<double>> cols;
-  for (const auto& fld : fields) cols.push_back(t.read_doubles(fld.name));
-
-  std::map<std::string, int> id_of;
-  for (const Case& c : grid.cases) id_of[c.hash] = c.id;
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto it = id_of.find(hashes[i]);
-    if (it == id_of.end()) {
-      ++st.other_rows;
-      continue;
-    }
-    if (st.done.count(it->second)) continue;
-    if (revision[i] != build) {
-      ++st.other_revision;
-      continue;
-    }
-    if (retry_failed && status[i] != "ok") {
-      ++st.retried;
-      continue;
-    }
-    CaseResult r;
-    r.case_id = it->second;
-    r.rank = static_cast<int>(rank[i]);
-    r.status = status[i];
-    r.message = message[i];
-    r.classification = classification[i];
-    r.revision = revision[i];
-    for (std::size_t k = 0; k < fields.size(); ++k) r.values.push_back(cols[k][i]);
-    st.done[r.case_id] = std::move(r);
-  }
-  return st;
-}
-
-// Copies series/<from_name> of `from` to the series of case `to_case` in `to`. The names
-// differ when the file being resumed came from another grid: a case keeps its hash but
-// its id and name follow its place in the new grid.
-void copy_series(const h5::File& from, const std::string& from_name, h5::File& to, const Case& to_case) {
-  const std::string g = "series/" + from_name;
-  if (!from.exists("series") || !from.exists(g)) return;
-  h5::Group src = from.open_group(g);
-  h5::Group dst = to.require_group("series/" + to_case.name);
-  dst.set_attribute("case_id", static_cast<std::int64_t>(to_case.id));
-  dst.set_attribute("hash", to_case.hash);
-  Series s;
-  std::vector<std::string> long_names;
-  s.names = src.has_attribute("channels") ? src.attribute_strings("channels") : src.list();
-  for (const std::string& name : s.names) {
-    h5::Dataset d = src.open_dataset(name);
-    s.data.push_back(d.read_doubles());
-    s.units.push_back(d.units());
-    long_names.push_back(d.has_attribute("long_name") ? d.attribute_string("long_name") : std::string());
-  }
-  lub::write_series(dst, s, long_names);
-}
-
 // ---------------------------------------------------------------------------------------
 
 StudyWriter::StudyWriter(std::string path, const Grid& grid, const std::map<int, CaseResult>& reused,
@@ -382,21 +298,8 @@ StudyWriter::StudyWriter(std::string path, const Grid& grid, const std::map<int,
   {
     h5::File f = h5::File::create(tmp);
     write_header(f, grid_, patches_, false);
-    if (!reuse_from.empty() && !reused.empty()) {
-      const h5::File old = h5::File::open(reuse_from, h5::File::Mode::ReadOnly);
-      // The old file's series by hash (its case names are those of the grid it was made from).
-      std::map<std::string, std::string> old_group;
-      if (old.exists("series"))
-        for (const std::string& name : old.open_group("series").list()) {
-          const h5::Group g = old.open_group("series/" + name);
-          if (g.has_attribute("hash")) old_group[g.attribute_string("hash")] = name;
-        }
-      for (const auto& [id, r] : reused) {
-        const Case& c = grid_.cases.at(static_cast<std::size_t>(id));
-        const auto it = old_group.find(c.hash);
-        if (it != old_group.end()) copy_series(old, it->second, f, c);
-      }
-    }
+    if (!reuse_from.empty() && !reused.empty())
+      detail::copy_reused_series(h5::File::open(reuse_from, h5::File::Mode::ReadOnly), grid_, reused, f);
     h5::Table t = f.open_table("cases");
     append_rows(t, grid_, reused);
     t = h5::Table();
@@ -448,7 +351,7 @@ void StudyWriter::finalize() {
     write_grid_results(f, grid_, results_);
     for (const auto& [id, r] : results_) {
       const Case& c = grid_.cases.at(static_cast<std::size_t>(id));
-      copy_series(file_, c.name, f, c);
+      detail::copy_series(file_, c.name, f, c);
     }
     h5::Table t = f.open_table("cases");
     append_rows(t, grid_, results_);
@@ -458,89 +361,6 @@ void StudyWriter::finalize() {
   table_ = h5::Table();
   file_.close();
   rename_over(tmp, path_);
-}
-
-// ---------------------------------------------------------------------------------------
-
-void print_summary(const std::string& path, std::FILE* out) {
-  const h5::File f = h5::File::open(path, h5::File::Mode::ReadOnly);
-  if (!f.has_attribute("program") || f.attribute_string("program") != "lubsweep")
-    throw InputError("not a lubsweep study file");
-  check_format(f, path, "");
-  const h5::Table t = f.open_table("cases");
-  const std::size_t n = t.rows();
-  std::vector<std::string> axes;
-  if (t.has_attribute("axes")) axes = t.attribute_strings("axes");
-  const auto names = t.read_strings("name");
-  const auto status = t.read_strings("status");
-  const auto message = t.read_strings("message");
-
-  struct Col {
-    std::string head;
-    std::vector<std::string> cells;
-  };
-  std::vector<Col> cols;
-  cols.push_back({"case", names});
-  auto fmt = [](const char* f, double v) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, f, v);
-    return std::string(buf);
-  };
-  for (const auto& a : axes) {
-    Col c{a, {}};
-    const auto& column = t.columns()[t.column_index(a)];
-    if (column.type == h5::ColumnType::String) {
-      c.cells = t.read_strings(a);
-    } else {
-      for (double v : t.read_doubles(a)) c.cells.push_back(std::isnan(v) ? "-" : fmt("%g", v));
-    }
-    cols.push_back(std::move(c));
-  }
-  cols.push_back({"status", status});
-  const auto cls = t.has_column("classification") ? t.read_strings("classification") : status;
-  cols.push_back({"classification", cls});
-  auto numeric = [&](const std::string& head, const std::string& name, const char* f, double scale) {
-    Col c{head, {}};
-    if (!t.has_column(name)) return;
-    for (double v : t.read_doubles(name)) c.cells.push_back(std::isfinite(v) ? fmt(f, v * scale) : "-");
-    cols.push_back(std::move(c));
-  };
-  numeric("h_min[um]", "min_film_thickness_m", "%.3f", 1e6);
-  numeric("max_eps", "max_eps", "%.4f", 1.0);
-  numeric("peak_F[N]", "peak_reaction_N", "%.4g", 1.0);
-  numeric("peak_a[m/s2]", "peak_acceleration_m_s2", "%.4g", 1.0);
-  numeric("periodicity", "periodicity", "%.2e", 1.0);
-  numeric("|mu|max", "multiplier_1_modulus", "%.4f", 1.0);
-  numeric("periods", "periods_integrated", "%.0f", 1.0);
-  numeric("steps", "steps", "%.0f", 1.0);
-  numeric("wall[s]", "wall_time_s", "%.2f", 1.0);
-
-  std::vector<std::size_t> width;
-  for (const Col& c : cols) {
-    std::size_t w = c.head.size();
-    for (const auto& s : c.cells) w = std::max(w, s.size());
-    width.push_back(w);
-  }
-  std::size_t failed = 0;
-  for (const auto& s : status) failed += s != "ok";
-  const std::int64_t total = f.has_attribute("cases_total") ? f.attribute_int64("cases_total") : static_cast<std::int64_t>(n);
-  std::fprintf(out, "%s: %zu of %lld cases, %zu ok, %zu not ok%s\n", path.c_str(), n, static_cast<long long>(total),
-               n - failed, failed, static_cast<std::int64_t>(n) < total ? " (incomplete: re-run to resume)" : "");
-  std::map<std::string, std::size_t> by_class;
-  for (const auto& c : cls) ++by_class[c];
-  std::fprintf(out, "classification:");
-  for (const auto& [name, count] : by_class) std::fprintf(out, " %s %zu,", name.c_str(), count);
-  std::fprintf(out, " (h_min etc. only for periodic cycles: README \"Steady cycles\")\n");
-  for (std::size_t k = 0; k < cols.size(); ++k)
-    std::fprintf(out, "%s%-*s", k ? "  " : "", static_cast<int>(width[k]), cols[k].head.c_str());
-  std::fprintf(out, "\n");
-  for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t k = 0; k < cols.size(); ++k)
-      std::fprintf(out, "%s%-*s", k ? "  " : "", static_cast<int>(width[k]), cols[k].cells[i].c_str());
-    std::fprintf(out, "\n");
-  }
-  for (std::size_t i = 0; i < n; ++i)
-    if (status[i] != "ok") std::fprintf(out, "%s: %s: %s\n", names[i].c_str(), status[i].c_str(), message[i].c_str());
 }
 
 }  // namespace lub::sweep

@@ -22,21 +22,46 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <cstddef>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
+
+#include "lub/common/name_table.hpp"
 
 namespace lub::sweep {
 
 enum class FailurePolicy { continue_on_failure, abort_on_failure };
 
-/// The four axes a grid may name without a pointer (the paper's study axes).
-const std::vector<std::string>& named_axes();
+/// What an axis varies: one of the four named axes (the paper's study axes, which a grid
+/// names without a pointer), or the scene value at a JSON Pointer.
+enum class AxisKind { clearance_m, viscosity_Pa_s, speed_rpm, force_law, pointer };
+
+}  // namespace lub::sweep
+
+namespace lub {
+/// The names a grid may give an axis without a pointer. `pointer` has no entry on purpose:
+/// a grid never names it (a pointer axis is given by its "pointer"), so parsing a name
+/// never yields it and the "must be one of" messages list the named axes only.
+template <>
+struct NameTable<sweep::AxisKind> {
+  static constexpr std::array<std::pair<sweep::AxisKind, std::string_view>, 4> entries{{
+      {sweep::AxisKind::clearance_m, "clearance_m"},
+      {sweep::AxisKind::viscosity_Pa_s, "viscosity_Pa_s"},
+      {sweep::AxisKind::speed_rpm, "speed_rpm"},
+      {sweep::AxisKind::force_law, "force_law"},
+  }};
+};
+}  // namespace lub
+
+namespace lub::sweep {
 
 /// One varied quantity: a column of /cases.
 struct Axis {
   std::string name;     ///< column name; the named axes carry their unit in the name
-  std::string kind;     ///< "clearance_m", "viscosity_Pa_s", "speed_rpm", "force_law" or "pointer"
+  AxisKind kind = AxisKind::pointer;  ///< a named axis, or the scene value at `pointer`
   std::string pointer;  ///< the scene value it sets (clearance_m: the journal radius)
   std::string units;    ///< SI unit ("m", "Pa s", "rpm", "" ...)
   bool numeric = true;  ///< every value a number: a float64 column (else strings)
@@ -84,6 +109,9 @@ Grid load_grid(const std::string& path);
 /// The same from the grid's text; relative scene paths are resolved against `base_dir`,
 /// `file` is recorded as the grid's file name.
 Grid parse_grid(const std::string& text, const std::string& base_dir, const std::string& file = "");
+
+/// The long_name attribute of an axis's column and dimension scale.
+std::string axis_long_name(const Axis& axis);
 
 /// "case_0007": zero-padded to at least four digits and to the width of the largest id.
 std::string case_name(int id, std::size_t total);

@@ -1,0 +1,25 @@
+// Private to the study file's sources: what the writer (study_file.cpp) takes from the
+// resume reader (study_resume.cpp), the series of an earlier run. Not installed.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "lub/io/h5.hpp"
+#include "lub/sweep/case_result.hpp"
+#include "lub/sweep/grid.hpp"
+
+namespace lub::sweep::detail {
+
+/// Copies series/<from_name> of `from` to the series of case `to_case` in `to` (nothing if
+/// `from` has no such group). The names differ when the file being resumed came from
+/// another grid: a case keeps its hash but its id and name follow its place in the new grid.
+void copy_series(const h5::File& from, const std::string& from_name, h5::File& to, const Case& to_case);
+
+/// Copies to `to` the series the earlier study file `from` holds for the `reused` cases of
+/// `grid`, each found by its scene's hash (the earlier file's case names are those of the
+/// grid it was made from).
+void copy_reused_series(const h5::File& from, const Grid& grid, const std::map<int, CaseResult>& reused,
+                        h5::File& to);
+
+}  // namespace lub::sweep::detail

@@ -1,0 +1,117 @@
+// The summary printer (lubsweep --summary, and the table at the end of a sweep): one line
+// per case of a study file, its axes, status, classification and key metrics, in columns.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "lub/io/json_reader.hpp"
+#include "lub/sweep/study_file.hpp"
+
+namespace lub::sweep {
+
+namespace {
+
+/// One column of the printed table: its heading and a cell per case.
+struct SummaryColumn {
+  std::string head;
+  std::vector<std::string> cells;
+};
+
+std::string format_number(const char* format, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+/// The columns of the table after `case`: the axes (numbers in %g, "-" where unset), status,
+/// classification (`cls`), then the key metrics that `t` has, each scaled and formatted.
+void add_columns(const h5::Table& t, const std::vector<std::string>& status, const std::vector<std::string>& cls,
+                 std::vector<SummaryColumn>& cols) {
+  const std::vector<std::string> axes = t.has_attribute("axes") ? t.attribute_strings("axes") : std::vector<std::string>();
+  for (const auto& a : axes) {
+    SummaryColumn c{a, {}};
+    const auto& column = t.columns()[t.column_index(a)];
+    if (column.type == h5::ColumnType::String) {
+      c.cells = t.read_strings(a);
+    } else {
+      for (double v : t.read_doubles(a)) c.cells.push_back(std::isnan(v) ? "-" : format_number("%g", v));
+    }
+    cols.push_back(std::move(c));
+  }
+  cols.push_back({"status", status});
+  cols.push_back({"classification", cls});
+  auto numeric = [&](const std::string& head, const std::string& name, const char* format, double scale) {
+    SummaryColumn c{head, {}};
+    if (!t.has_column(name)) return;
+    for (double v : t.read_doubles(name)) c.cells.push_back(std::isfinite(v) ? format_number(format, v * scale) : "-");
+    cols.push_back(std::move(c));
+  };
+  numeric("h_min[um]", "min_film_thickness_m", "%.3f", 1e6);
+  numeric("max_eps", "max_eps", "%.4f", 1.0);
+  numeric("peak_F[N]", "peak_reaction_N", "%.4g", 1.0);
+  numeric("peak_a[m/s2]", "peak_acceleration_m_s2", "%.4g", 1.0);
+  numeric("periodicity", "periodicity", "%.2e", 1.0);
+  numeric("|mu|max", "multiplier_1_modulus", "%.4f", 1.0);
+  numeric("periods", "periods_integrated", "%.0f", 1.0);
+  numeric("steps", "steps", "%.0f", 1.0);
+  numeric("wall[s]", "wall_time_s", "%.2f", 1.0);
+}
+
+/// The two lines above the table: how many cases, how many ok, and the count of each
+/// classification.
+void print_counts(std::FILE* out, const std::string& path, std::size_t n, std::int64_t total,
+                  const std::vector<std::string>& status, const std::vector<std::string>& cls) {
+  std::size_t failed = 0;
+  for (const auto& s : status) failed += s != "ok";
+  std::fprintf(out, "%s: %zu of %lld cases, %zu ok, %zu not ok%s\n", path.c_str(), n, static_cast<long long>(total),
+               n - failed, failed, static_cast<std::int64_t>(n) < total ? " (incomplete: re-run to resume)" : "");
+  std::map<std::string, std::size_t> by_class;
+  for (const auto& c : cls) ++by_class[c];
+  std::fprintf(out, "classification:");
+  for (const auto& [name, count] : by_class) std::fprintf(out, " %s %zu,", name.c_str(), count);
+  std::fprintf(out, " (h_min etc. only for periodic cycles: README \"Steady cycles\")\n");
+}
+
+/// The table: a heading line, then `n` rows, each column as wide as its widest cell.
+void print_table(std::FILE* out, const std::vector<SummaryColumn>& cols, std::size_t n) {
+  std::vector<std::size_t> width;
+  for (const SummaryColumn& c : cols) {
+    std::size_t w = c.head.size();
+    for (const auto& s : c.cells) w = std::max(w, s.size());
+    width.push_back(w);
+  }
+  for (std::size_t k = 0; k < cols.size(); ++k)
+    std::fprintf(out, "%s%-*s", k ? "  " : "", static_cast<int>(width[k]), cols[k].head.c_str());
+  std::fprintf(out, "\n");
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t k = 0; k < cols.size(); ++k)
+      std::fprintf(out, "%s%-*s", k ? "  " : "", static_cast<int>(width[k]), cols[k].cells[i].c_str());
+    std::fprintf(out, "\n");
+  }
+}
+
+}  // namespace
+
+void print_summary(const std::string& path, std::FILE* out) {
+  const h5::File f = h5::File::open(path, h5::File::Mode::ReadOnly);
+  if (!f.has_attribute("program") || f.attribute_string("program") != "lubsweep")
+    throw InputError("not a lubsweep study file");
+  check_format(f, path, "");
+  const h5::Table t = f.open_table("cases");
+  const std::size_t n = t.rows();
+  const auto names = t.read_strings("name");
+  const auto status = t.read_strings("status");
+  const auto message = t.read_strings("message");
+  const auto cls = t.has_column("classification") ? t.read_strings("classification") : status;
+  std::vector<SummaryColumn> cols = {{"case", names}};
+  add_columns(t, status, cls, cols);
+
+  const std::int64_t total = f.has_attribute("cases_total") ? f.attribute_int64("cases_total") : static_cast<std::int64_t>(n);
+  print_counts(out, path, n, total, status, cls);
+  print_table(out, cols, n);
+  for (std::size_t i = 0; i < n; ++i)
+    if (status[i] != "ok") std::fprintf(out, "%s: %s: %s\n", names[i].c_str(), status[i].c_str(), message[i].c_str());
+}
+
+}  // namespace lub::sweep
