@@ -48,6 +48,7 @@ _FROM_SUBMODULE = {
 
 
 def __getattr__(name):
+    """A name that needs the compiled extension, imported on first use (PEP 562)."""
     if name in _FROM_SUBMODULE:
         value = getattr(importlib.import_module(f"{__name__}.{_FROM_SUBMODULE[name]}"), name)
     elif name in ("__version__", "__revision__"):
@@ -61,4 +62,5 @@ def __getattr__(name):
 
 
 def __dir__():
-    return sorted(set(globals()) | set(__all__))
+    """The module's names, the lazily imported ones included (for dir() and help())."""
+    return sorted(set(globals()) | set(__all__) | {"__revision__"})
