@@ -4,7 +4,7 @@
 // functions lubsim calls (read_json_file / parse_json_text, apply_override, parse_scene,
 // run_scene, write_run_file), and a force law or a steady bearing by the same functions
 // lubbearing calls (film_force, solve_steady_bearing). The Python half
-// (core/python/lubjoint/__init__.py) turns the plain results into xarray objects.
+// (core/python/lubjoint/run.py, bearing.py) turns the named results into xarray and NumPy objects.
 //
 // Bad input throws lub::InputError, seen in Python as lubjoint.InputError (a ValueError)
 // with the same message as the command line (JSON path, value, rule). The GIL is released
@@ -59,7 +59,8 @@ struct Column {
 };
 
 // One run, as lubsim does it: output path check, scene (file or JSON text), overrides in
-// order, validation, run, and the run file only when `output` is given. Returns plain Python values.
+// order, validation, run, and the run file only when `output` is given. Returns a dict of plain
+// values and Scalar/Column records (named fields).
 py::dict simulate(const std::optional<std::string>& scene_path, const std::optional<std::string>& scene_text,
                   const std::string& origin, const std::vector<std::string>& assignments,
                   const std::optional<std::string>& output, const std::string& program) {
@@ -292,7 +293,7 @@ PYBIND11_MODULE(_lubjoint, m) {
       .def_readonly("values", &Column::values);
   m.def("simulate", &simulate, py::arg("scene_path"), py::arg("scene_text"), py::arg("origin"),
         py::arg("assignments"), py::arg("output"), py::arg("program") = "lubjoint",
-        "Runs one scene as lubsim does (GIL released); returns plain values. See lubjoint.simulate.");
+        "Runs one scene as lubsim does (GIL released); returns a dict with Scalar/Column records. See lubjoint.simulate.");
   m.def("force", &force, py::arg("law"), py::arg("eps"), py::arg("eps_dot"), py::arg("wedge_rad_s"),
         py::arg("radius_m"), py::arg("clearance_m"), py::arg("length_m"), py::arg("viscosity_Pa_s"),
         py::arg("cavitation") = py::none(), py::arg("n_theta") = py::none(), py::arg("n_z") = py::none(),

@@ -6,8 +6,8 @@
 // Each check is a predicate and its rule text; the caller has read the value its own way (a
 // JSON value, an option's text, a Python argument) and reports a broken rule under its own
 // field name, with its own error (the bearing stage has none: lubbearing links it alone).
-// The messages are pinned by tests/test_core_scene*.cpp, tests/test_core_lubbearing.cpp and
-// tests/python/test_lubjoint.py.
+// The messages are pinned by tests/test_core_validation.cpp (scene), tests/test_core_lubbearing.cpp
+// and tests/python/test_lubjoint.py.
 #pragma once
 
 #include <cmath>
