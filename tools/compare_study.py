@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Compare a lubsweep study file against a baseline (the nightly reproduction).
 
-    /usr/bin/python3 tools/compare_study.py out/study.h5 baseline/study.h5 \\
+    PYTHONPATH=build/python /usr/bin/python3 tools/compare_study.py out/study.h5 baseline/study.h5 \\
         [--rtol 1e-3] [--tol peak_reaction_N=0.05] [--tol periodicity=0:1e-3] [--steps-rtol 0.5]
 
 Cases are matched by the hash of their scene. A regression, and exit status 1, is:
@@ -13,15 +13,13 @@ below_safe_film, ...) must be equal unless given a tolerance. --tol METRIC=RTOL 
 METRIC=RTOL:ATOL sets one metric's; --tol METRIC=skip ignores it. --steps-rtol R also
 flags a solver cost (steps) grown by more than the fraction R.
 Cases only in the study are reported, not regressions. Exit 0: no regression; 1: a
-regression; 2: bad input. Reads through xarray/pandas (tools/study_io.py).
+regression; 2: bad input. Reads through xarray/pandas (lubjoint.study).
 """
 import argparse
 import math
-import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import study_io  # noqa: E402
+from lubjoint import study as study_reader  # (PYTHONPATH=build/python: README "Post-processing")
 
 
 def tolerances(base, rtol, items):
@@ -47,9 +45,9 @@ def main():
     ap.add_argument("-q", "--quiet", action="store_true", help="print regressions only")
     args = ap.parse_args()
     for p in (args.study, args.baseline):
-        study_io.check(p)
-    new = study_io.cases(args.study).set_index("hash")
-    base = study_io.cases(args.baseline).set_index("hash")
+        study_reader.check_or_exit(p)
+    new = study_reader.cases(args.study).set_index("hash")
+    base = study_reader.cases(args.baseline).set_index("hash")
     tol = tolerances(base, args.rtol, args.tol)
     regressions, worst = [], {}  # worst: metric -> (relative deviation, case)
     for h, b in base.iterrows():

@@ -1,9 +1,9 @@
 #!/usr/bin/python3
 """The nightly reproduction of the paper's study against the committed baseline.
 
-    /usr/bin/python3 tools/nightly.py compare STUDY.h5 [--baseline tests/baselines/paper.csv]
+    PYTHONPATH=build/python /usr/bin/python3 tools/nightly.py compare STUDY.h5 [--baseline tests/baselines/paper.csv]
                                       [--report DIR] [--accepted-study OLD.h5]
-    /usr/bin/python3 tools/nightly.py accept STUDY.h5 [--baseline tests/baselines/paper.csv]
+    PYTHONPATH=build/python /usr/bin/python3 tools/nightly.py accept STUDY.h5 [--baseline tests/baselines/paper.csv]
 
 `tools/nightly.sh` runs the paper grid and calls these; see README, "Nightly reproduction".
 
@@ -26,8 +26,7 @@ import math
 import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import study_io  # noqa: E402
+from lubjoint import study as study_reader  # (PYTHONPATH=build/python: README "Post-processing")
 
 KEY = ["clearance_m", "viscosity_Pa_s", "speed_rpm", "force_law"]
 
@@ -99,8 +98,8 @@ def key_text(key):
 
 def study_rows(path):
     """The study's cases as {key: row dict} (every metric as float, status as str)."""
-    study_io.check(path)
-    cases = study_io.cases(path)
+    study_reader.check_or_exit(path)
+    cases = study_reader.cases(path)
     missing = [k for k in KEY if k not in cases.columns]
     if missing:
         raise SystemExit(f"nightly: {path}: no column {', '.join(missing)}: not the paper grid?")
@@ -170,7 +169,7 @@ def figure(path, key, now, base, study, accepted, outdir):
         except SystemExit:
             pass
     for label, f, case, colour in sources:
-        s = study_io.series(f, case)
+        s = study_reader.series(f, case)
         if s is None or "h_min" not in s:
             continue
         a = s["crank_angle"].values if "crank_angle" in s else s["t"].values

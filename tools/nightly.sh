@@ -28,6 +28,8 @@ while (($#)); do
   shift
 done
 py=/usr/bin/python3
+# nightly.py reads the study with lubjoint.study (the build's Python package).
+export PYTHONPATH="$build_dir/python${PYTHONPATH:+:$PYTHONPATH}"
 if ((build)); then bash "$root/tools/build.sh"; fi
 lubsweep="$build_dir/sweep/lubsweep"
 [ -x "$lubsweep" ] || { echo "nightly: no $lubsweep (build first, or drop --no-build)" >&2; exit 2; }

@@ -2,7 +2,7 @@
 """The paper's figures from a lubsweep study file (configs/grids/paper.json or one of the
 paper_*.json grids).
 
-    /usr/bin/python3 tools/plot_paper.py out/study.h5 [-o out/figures]
+    PYTHONPATH=build/python /usr/bin/python3 tools/plot_paper.py out/study.h5 [-o out/figures]
 
 Writes PNGs (Agg backend, no display needed):
   fig05_reference.png           the reference case (0.5 mm, 400 cP, 5000 rpm, Pinkus-Sternlicht):
@@ -28,8 +28,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import study_io  # noqa: E402
+from lubjoint import study as study_reader  # noqa: E402  (PYTHONPATH=build/python: README "Post-processing")
 
 # Paper figure numbers of the four studies (reaction, orbit, film, phase).
 FIRST_FIGURE = {"clearance": 6, "viscosity": 10, "speed": 14, "force_law": 18}
@@ -63,7 +62,7 @@ def case_title(cases, cid, axis):
 def clearance_m(path, cases, cid):
     if "clearance_m" in cases.columns:
         return float(cases.at[cid, "clearance_m"])
-    scene = study_io.scene(path, cid)
+    scene = study_reader.scene(path, cid)
     name = scene.get("metrics", {}).get("joint")
     for j in scene["joints"]:
         if j.get("name") == name and "bearing_radius_m" in j:
@@ -74,7 +73,7 @@ def clearance_m(path, cases, cid):
 class Figures:
     def __init__(self, path, outdir):
         self.path, self.out, self.written = path, outdir, []
-        self.c = study_io.cases(path)
+        self.c = study_reader.cases(path)
         self.ideal_by_speed = {}
         if "force_law" in self.c.columns:
             ideal = self.c[(self.c["force_law"] == "ideal") & (self.c["status"] == "ok")]
@@ -86,7 +85,7 @@ class Figures:
 
     def series(self, cid):
         """A case's channels as numpy arrays, or None."""
-        ds = study_io.series(self.path, self.value("name", cid))
+        ds = study_reader.series(self.path, self.value("name", cid))
         return None if ds is None else {k: v.values for k, v in ds.variables.items()}
 
     def ideal_for(self, cid):
@@ -217,12 +216,12 @@ def main():
     ap.add_argument("study", help="study file written by lubsweep")
     ap.add_argument("-o", "--outdir", default=None, help="directory of the PNGs (default: <study>_figures)")
     args = ap.parse_args()
-    study_io.check(args.study)
+    study_reader.check_or_exit(args.study)
     out = args.outdir or os.path.splitext(args.study)[0] + "_figures"
     os.makedirs(out, exist_ok=True)
     figs = Figures(args.study, out)
 
-    grids = {n: study_io.grid(args.study, n) for n in study_io.grid_names(args.study)}
+    grids = {n: study_reader.grid(args.study, n) for n in study_reader.grid_names(args.study)}
     studies = [(n, g) for n, g in grids.items() if g.attrs.get("kind") == "factorial" and g.case_id.ndim == 1
                and g.case_id.size > 1]
     # The paper's order first.

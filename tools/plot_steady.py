@@ -1,19 +1,18 @@
 #!/usr/bin/python3
 """Figures of steady cycles (README "Steady cycles").
 
-    /usr/bin/python3 tools/plot_steady.py STUDY.h5 -o DIR [--orbit]
+    PYTHONPATH=build/python /usr/bin/python3 tools/plot_steady.py STUDY.h5 -o DIR [--orbit]
 
 From a study over clearance x viscosity x crank speed x force law (configs/grids/
 full_factorial.json):
   steady_classification.png   each case's classification, one panel per law and speed
   steady_multiplier.png       the dominant Floquet multiplier's modulus |mu|max there
-With --orbit (needs the lubjoint module, build/python): Frene long at the reference case,
+With --orbit (needs the compiled lubjoint module): Frene long at the reference case,
   steady_frene_long_orbit.png  the journal's orbit over a 40-cycle transient, its Poincare
                                points at crank angle 0, and the periodic orbit shooting finds.
 """
 import argparse
 import os
-import sys
 
 import matplotlib
 
@@ -22,8 +21,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 here = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, here)
-import study_io  # noqa: E402
+from lubjoint import study as study_reader  # noqa: E402  (PYTHONPATH=build/python: README "Post-processing")
 
 CLASSES = ["periodic", "periodic_unstable", "drifting", "not_converged", "film_collapse", "solver_failure",
            "budget_exceeded"]
@@ -65,7 +63,6 @@ def grid_panels(cases, value, title, out, cmap=None, norm=None, categorical=Fals
 
 
 def orbit_figure(out):
-    sys.path.insert(0, os.path.join(here, "..", "build", "python"))
     import lubjoint
     scene = os.path.join(here, "..", "configs", "scenes", "slider_crank.json")
     base = {"/joints/3/force_law": "frene_long", "/outputs/last_cycles": 0}
@@ -110,8 +107,8 @@ def main():
     ap.add_argument("-o", "--outdir", default="out/figures")
     ap.add_argument("--orbit", action="store_true")
     a = ap.parse_args()
-    study_io.check(a.study)
-    cases = study_io.cases(a.study)
+    study_reader.check_or_exit(a.study)
+    cases = study_reader.cases(a.study)
     os.makedirs(a.outdir, exist_ok=True)
     from matplotlib.colors import BoundaryNorm, ListedColormap
     cmap = ListedColormap(COLOURS)

@@ -18,4 +18,5 @@ mpirun "${mpi_args[@]}" build/sweep/lubsweep configs/grids/paper.json -o out/stu
 echo
 build/sweep/lubsweep --summary out/study.h5
 echo
-/usr/bin/python3 tools/plot_paper.py out/study.h5 -o out/figures | sed 's/^/figure: /'
+PYTHONPATH="$root/build/python${PYTHONPATH:+:$PYTHONPATH}" \
+  /usr/bin/python3 tools/plot_paper.py out/study.h5 -o out/figures | sed 's/^/figure: /'

@@ -2,9 +2,9 @@
 """Sweep maps: a metric of a lubsweep study over two of its axes, as a colour map with
 the value printed in each cell.
 
-    /usr/bin/python3 tools/sweep_map.py out/ff.h5 -x clearance_m -y viscosity_Pa_s \\
+    PYTHONPATH=build/python /usr/bin/python3 tools/sweep_map.py out/ff.h5 -x clearance_m -y viscosity_Pa_s \\
         --fix speed_rpm=5000 --fix force_law=pinkus_sternlicht -m max_eps -o out/maps
-    /usr/bin/python3 tools/sweep_map.py out/ff.h5 -x speed_rpm -y clearance_m -m all ...
+    PYTHONPATH=build/python /usr/bin/python3 tools/sweep_map.py out/ff.h5 -x speed_rpm -y clearance_m -m all ...
 
 Every other axis that varies among the rows must be fixed with --fix AXIS=VALUE (the
 message lists their values). `-m all` draws one map per metric column. Cases that are
@@ -22,8 +22,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.colors import LogNorm  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import study_io  # noqa: E402
+from lubjoint import study as study_reader  # noqa: E402  (PYTHONPATH=build/python: README "Post-processing")
 
 
 def select(cases, axes, x, y, items):
@@ -102,8 +101,8 @@ def main():
     ap.add_argument("--fix", action="append", default=[], help="AXIS=VALUE for every other varying axis")
     ap.add_argument("-o", "--outdir", default=".")
     args = ap.parse_args()
-    study_io.check(args.study)
-    cases = study_io.cases(args.study)
+    study_reader.check_or_exit(args.study)
+    cases = study_reader.cases(args.study)
     axes, units = list(cases.attrs.get("axes", [])), cases.attrs["units"]
     for a in (args.x, args.y):
         if a not in axes:

@@ -11,7 +11,7 @@ Errors, all dimensionless:
   min_film   |h_min - h_min,ref| / h_min,ref   (steady-cycle metric)
   reaction   |R_peak - R_peak,ref| / R_peak,ref
 
-    /usr/bin/python3 tools/work_precision.py out/accuracy_reference.h5 \
+    PYTHONPATH=build/python /usr/bin/python3 tools/work_precision.py out/accuracy_reference.h5 \
         --png out/work_precision.png --table out/work_precision.md
 
 Exit status 0, or 2 for a file that is not an accuracy study.
@@ -22,7 +22,7 @@ import sys
 
 import numpy as np
 
-import study_io
+from lubjoint import study as study_reader  # PYTHONPATH=build/python: README "Post-processing"
 
 
 def label(cases, i):
@@ -50,10 +50,10 @@ def main():
                     help="radial clearance for the orbit error [m] (default: from the reference scene)")
     args = ap.parse_args()
 
-    study_io.check(args.study)
-    c = study_io.cases(args.study)  # pandas, index: case id
-    series = lambda cid: {k: v.values for k, v in study_io.series(args.study, c["name"][cid]).variables.items()}
-    if "rtol" not in c or "reference" not in study_io.grid_names(args.study):
+    study_reader.check_or_exit(args.study)
+    c = study_reader.cases(args.study)  # pandas, index: case id
+    series = lambda cid: {k: v.values for k, v in study_reader.series(args.study, c["name"][cid]).variables.items()}
+    if "rtol" not in c or "reference" not in study_reader.grid_names(args.study):
         print(f"{args.study}: not an accuracy study (needs an rtol axis and a 'reference' grid)", file=sys.stderr)
         return 2
     # One reference per setting of the other axes (e.g. per force law): a case is measured
@@ -62,13 +62,13 @@ def main():
     others = [a for a in c.attrs.get("axes", []) if a not in numerics]
     key = lambda i: tuple(str(c[a][i]) for a in others)
     refs = {}
-    for rid in study_io.grid(args.study, "reference").case_id.values.ravel():
+    for rid in study_reader.grid(args.study, "reference").case_id.values.ravel():
         r = int(rid)
         if c["status"][r] != "ok":
             print(f"{args.study}: the reference case {int(rid)} did not complete: {c['message'][r]}", file=sys.stderr)
             return 2
         refs[key(r)] = r
-    scene = study_io.scene(args.study, next(iter(refs.values())))
+    scene = study_reader.scene(args.study, next(iter(refs.values())))
     clearance = args.clearance_m
     if clearance is None:
         j = next(j for j in scene["joints"] if j["type"] == "lubricated_revolute")

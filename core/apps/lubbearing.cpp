@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "lub/bearing/bearing_inputs.hpp"
 #include "lub/bearing/film_force.hpp"
 #include "lub/common/constants.hpp"
 #include "lub/bearing/reynolds.hpp"
@@ -122,12 +123,12 @@ class Args {
     if (!rule(v)) bad(name, t, rule_text);
     return v;
   }
-  int integer(const std::string& name, int lo, int hi) const {
+  int integer(const std::string& name, lub::IntRange range) const {
     const std::string t = text(name);
     char* end = nullptr;
     const long v = std::strtol(t.c_str(), &end, 10);
     if (t.empty() || end != t.c_str() + t.size()) bad(name, t, "must be an integer");
-    if (v < lo || v > hi) bad(name, t, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    if (!range.contains(v)) bad(name, t, range.rule());
     return static_cast<int>(v);
   }
 
@@ -135,8 +136,6 @@ class Args {
   std::map<std::string, std::string> values_;
   std::set<std::string> bare_;
 };
-
-const auto kPositive = [](double v) { return v > 0.0; };
 
 struct Common {
   lub::ForceLaw law = lub::ForceLaw::gumbel_short;
@@ -153,13 +152,13 @@ Common read_common(const Args& a) {
     c.law = *law;
   else
     bad("--model", model, "must be one of " + lub::names_list<lub::ForceLaw>());
-  const double r = a.number("--radius-m", kPositive, "must be > 0 m");
-  const double cl = a.number("--clearance-m", kPositive, "must be > 0 m");
+  const double r = a.number("--radius-m", lub::is_positive_input, lub::positive_rule("m"));
+  const double cl = a.number("--clearance-m", lub::is_positive_input, lub::positive_rule("m"));
   c.geometry.journal_radius_m = r;
   c.geometry.bearing_radius_m = r + cl;
   c.clearance = cl;
-  c.geometry.length_m = a.number("--length-m", kPositive, "must be > 0 m");
-  c.viscosity = a.number("--viscosity-Pa-s", kPositive, "must be > 0 Pa s");
+  c.geometry.length_m = a.number("--length-m", lub::is_positive_input, lub::positive_rule("m"));
+  c.viscosity = a.number("--viscosity-Pa-s", lub::is_positive_input, lub::positive_rule("Pa s"));
   const bool finite = c.law == lub::ForceLaw::finite_reynolds;
   const std::string only = "applies only to --model finite_reynolds (got --model " + model + ")";
   for (const char* opt : {"--cavitation", "--n-theta", "--n-z"})
@@ -172,8 +171,8 @@ Common read_common(const Args& a) {
     else
       bad("--cavitation", cav, "must be one of " + lub::names_list<lub::Cavitation>());
   }
-  if (a.has("--n-theta")) c.finite.n_theta = a.integer("--n-theta", 8, 4096);
-  if (a.has("--n-z")) c.finite.n_z = a.integer("--n-z", 1, 1024);
+  if (a.has("--n-theta")) c.finite.n_theta = a.integer("--n-theta", lub::kReynoldsNThetaRange);
+  if (a.has("--n-z")) c.finite.n_z = a.integer("--n-z", lub::kReynoldsNZRange);
   c.finite.groove_at_max_film = a.has("--groove");
   return c;
 }
@@ -204,8 +203,7 @@ int run_force(int argc, char** argv) {
   const Args a(argc, argv, 2, flags, {"--groove"});
   const Common c = read_common(a);
   lub::BearingState s;
-  s.eps = a.number("--eps", [](double v) { return v >= 0.0 && v < 1.0; },
-                   "must be in [0, 1) (eps >= 1: the journal touches the bearing, no film law applies)");
+  s.eps = a.number("--eps", lub::is_film_eccentricity_ratio, std::string(lub::kFilmEccentricityRatioRule));
   s.eps_dot = a.number("--eps-dot", [](double) { return true; }, "");
   const double omega = a.number("--omega", [](double) { return true; }, "");
   const double gamma_dot = a.number("--gamma-dot", [](double) { return true; }, "");
@@ -246,8 +244,8 @@ int run_steady(int argc, char** argv) {
   in.finite = c.finite;
   in.geometry = c.geometry;
   in.viscosity_Pa_s = c.viscosity;
-  in.load_N = a.number("--load-N", kPositive, "must be > 0 N");
-  const double rpm = a.number("--speed-rpm", [](double v) { return v != 0.0; }, "must be != 0 rpm");
+  in.load_N = a.number("--load-N", lub::is_positive_input, lub::positive_rule("N"));
+  const double rpm = a.number("--speed-rpm", lub::is_journal_speed, std::string(lub::kJournalSpeedRule));
   in.speed_rad_s = rpm * 2.0 * kPi / 60.0;
   const lub::SteadyBearingResult r = lub::solve_steady_bearing(in);
   nlohmann::json out = describe(c);

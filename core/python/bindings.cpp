@@ -4,7 +4,7 @@
 // functions lubsim calls (read_json_file / parse_json_text, apply_override, parse_scene,
 // run_scene, write_run_file), and a force law or a steady bearing by the same functions
 // lubbearing calls (film_force, solve_steady_bearing). The Python half
-// (core/python/lubjoint/__init__.py) turns the plain results into xarray objects.
+// (core/python/lubjoint/run.py, bearing.py) turns the named results into xarray and NumPy objects.
 //
 // Bad input throws lub::InputError, seen in Python as lubjoint.InputError (a ValueError)
 // with the same message as the command line (JSON path, value, rule). The GIL is released
@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "lub/bearing/bearing_inputs.hpp"
 #include "lub/bearing/film_force.hpp"
 #include "lub/common/constants.hpp"
 #include "lub/io/json_reader.hpp"
@@ -39,8 +40,27 @@ py::array_t<double> to_array(const std::vector<double>& v) {
   return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
 }
 
+// The records simulate returns, with named fields (lubjoint._lubjoint.Scalar, .Column).
+// A metric or solver statistic: one value with its CF unit; `integer` for counts and flags.
+struct Scalar {
+  std::string name;
+  double value;
+  std::string units;
+  bool integer;
+  std::string long_name;
+};
+
+// A column over time or cycles (a channel of /series, /orbit, or /cycles).
+struct Column {
+  std::string name;
+  std::string units;
+  std::string long_name;
+  py::array_t<double> values;
+};
+
 // One run, as lubsim does it: output path check, scene (file or JSON text), overrides in
-// order, validation, run, and the run file only when `output` is given. Returns plain Python values.
+// order, validation, run, and the run file only when `output` is given. Returns a dict of plain
+// values and Scalar/Column records (named fields).
 py::dict simulate(const std::optional<std::string>& scene_path, const std::optional<std::string>& scene_text,
                   const std::string& origin, const std::vector<std::string>& assignments,
                   const std::optional<std::string>& output, const std::string& program) {
@@ -77,20 +97,18 @@ py::dict simulate(const std::optional<std::string>& scene_path, const std::optio
   out["program"] = program;
   out["version"] = lub::program_version();
   out["revision"] = lub::build_revision();
-  py::list metrics, solver;  // (name, value, CF unit, integer, long_name)
-  for (const auto& f : lub::metric_fields())
-    metrics.append(py::make_tuple(f.name, f.get(r), f.unit, f.integer, f.long_name));
+  std::vector<Scalar> metrics, solver;
+  for (const auto& f : lub::metric_fields()) metrics.push_back({f.name, f.get(r), f.unit, f.integer, f.long_name});
   if (r.metrics.driver_work_J != 0.0 || r.metrics.film_dissipation_J != 0.0) {  // as the run file
-    metrics.append(py::make_tuple("driver_work_J", r.metrics.driver_work_J, "J", false, "work of the drivers"));
-    metrics.append(py::make_tuple("film_dissipation_J", r.metrics.film_dissipation_J, "J", false,
-                                  "energy dissipated by the films"));
-    metrics.append(py::make_tuple("energy_change_J", r.metrics.energy_change_J, "J", false,
-                                  "change of kinetic and potential energy"));
-    metrics.append(py::make_tuple("energy_residual_J", r.metrics.energy_residual_J, "J", false,
-                                  "driver work - energy change - film dissipation"));
+    metrics.push_back({"driver_work_J", r.metrics.driver_work_J, "J", false, "work of the drivers"});
+    metrics.push_back({"film_dissipation_J", r.metrics.film_dissipation_J, "J", false,
+                       "energy dissipated by the films"});
+    metrics.push_back({"energy_change_J", r.metrics.energy_change_J, "J", false,
+                       "change of kinetic and potential energy"});
+    metrics.push_back({"energy_residual_J", r.metrics.energy_residual_J, "J", false,
+                       "driver work - energy change - film dissipation"});
   }
-  for (const auto& f : lub::solver_fields())
-    solver.append(py::make_tuple(f.name, f.get(r), f.unit, f.integer, f.long_name));
+  for (const auto& f : lub::solver_fields()) solver.push_back({f.name, f.get(r), f.unit, f.integer, f.long_name});
   out["metrics"] = metrics;
   out["solver"] = solver;
   py::dict solver_settings;
@@ -101,32 +119,33 @@ py::dict simulate(const std::optional<std::string>& scene_path, const std::optio
   solver_settings["atol"] = r.stats.atol;
   out["solver_settings"] = solver_settings;
   // The channels as the run file's /series: CF units, long names from the scene.
-  py::list series;  // (name, CF unit, long_name, values), "t" first
+  std::vector<Column> series;  // "t" first
   const std::vector<std::string> long_names = lub::channel_long_names(effective, r.series.names);
   for (size_t i = 0; i < r.series.names.size(); ++i)
-    series.append(py::make_tuple(r.series.names[i], lub::cf_units(r.series.units[i]),
-                                 i < long_names.size() ? long_names[i] : std::string(),
-                                 to_array(r.series.data[i])));
+    series.push_back({r.series.names[i], lub::cf_units(r.series.units[i]),
+                      i < long_names.size() ? long_names[i] : std::string(), to_array(r.series.data[i])});
   out["series"] = series;
-  py::list orbit;  // the periodic orbit's channels (shooting), as series
+  std::vector<Column> orbit;  // the periodic orbit's channels (shooting), as series
   for (size_t i = 0; i < r.orbit.names.size(); ++i)
-    orbit.append(py::make_tuple(r.orbit.names[i], lub::cf_units(r.orbit.units[i]), std::string(),
-                                to_array(r.orbit.data[i])));
+    orbit.push_back({r.orbit.names[i], lub::cf_units(r.orbit.units[i]), std::string(), to_array(r.orbit.data[i])});
   out["orbit"] = orbit;
-  // /cycles of the run file, as columns (name, CF unit, long_name, values).
-  py::list cycles;
+  std::vector<Column> cycles;  // /cycles of the run file
   for (const lub::CycleField& f : lub::cycle_fields()) {
     std::vector<double> values;
     values.reserve(r.cycles.size());
     for (const lub::CycleMetrics& cy : r.cycles) values.push_back(f.get(cy));
-    cycles.append(py::make_tuple(f.name, f.unit, f.long_name, to_array(values)));
+    cycles.push_back({f.name, f.unit, f.long_name, to_array(values)});
   }
   out["cycles"] = cycles;
   return out;
 }
 
-// The bearing of lubbearing's read_common: R_B = R_J + c, with the same rules and messages
-// (named after the Python arguments).
+// The bearing of lubbearing's read_common: R_B = R_J + c, with the same rules
+// (lub/bearing/bearing_inputs.hpp) and messages, named after the Python arguments.
+void require_positive(const char* name, double value, const char* unit) {
+  if (!lub::is_positive_input(value)) lub::fail(name, value, lub::positive_rule(unit));
+}
+
 struct Bearing {
   lub::ForceLaw law = lub::ForceLaw::gumbel_short;
   lub::BearingGeometry geometry;
@@ -142,13 +161,10 @@ Bearing read_bearing(const std::string& law, double radius_m, double clearance_m
     b.law = *parsed;
   else
     lub::fail("law", law, "must be one of " + lub::names_list<lub::ForceLaw>());
-  const auto positive = [](const char* name, double v, const char* unit) {
-    if (!std::isfinite(v) || !(v > 0.0)) lub::fail(name, v, std::string("must be > 0 ") + unit);
-  };
-  positive("radius_m", radius_m, "m");
-  positive("clearance_m", clearance_m, "m");
-  positive("length_m", length_m, "m");
-  positive("viscosity_Pa_s", viscosity_Pa_s, "Pa s");
+  require_positive("radius_m", radius_m, "m");
+  require_positive("clearance_m", clearance_m, "m");
+  require_positive("length_m", length_m, "m");
+  require_positive("viscosity_Pa_s", viscosity_Pa_s, "Pa s");
   b.geometry.journal_radius_m = radius_m;
   b.geometry.bearing_radius_m = radius_m + clearance_m;
   b.geometry.length_m = length_m;
@@ -164,12 +180,12 @@ Bearing read_bearing(const std::string& law, double radius_m, double clearance_m
   }
   if (n_theta) {
     if (!finite) lub::fail("n_theta", *n_theta, only);
-    if (*n_theta < 8 || *n_theta > 4096) lub::fail("n_theta", *n_theta, "must be in [8, 4096]");
+    if (!lub::kReynoldsNThetaRange.contains(*n_theta)) lub::fail("n_theta", *n_theta, lub::kReynoldsNThetaRange.rule());
     b.finite.n_theta = *n_theta;
   }
   if (n_z) {
     if (!finite) lub::fail("n_z", *n_z, only);
-    if (*n_z < 1 || *n_z > 1024) lub::fail("n_z", *n_z, "must be in [1, 1024]");
+    if (!lub::kReynoldsNZRange.contains(*n_z)) lub::fail("n_z", *n_z, lub::kReynoldsNZRange.rule());
     b.finite.n_z = *n_z;
   }
   if (groove && !finite) lub::fail("groove_at_max_film", true, only);
@@ -180,7 +196,7 @@ Bearing read_bearing(const std::string& law, double radius_m, double clearance_m
 using Flat = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
 // Film force at n states (the arrays already broadcast and flattened by the Python half).
-py::tuple force(const std::string& law, const Flat& eps, const Flat& eps_dot, const Flat& wedge,
+py::dict force(const std::string& law, const Flat& eps, const Flat& eps_dot, const Flat& wedge,
                 double radius_m, double clearance_m, double length_m, double viscosity_Pa_s,
                 const std::optional<std::string>& cavitation, std::optional<int> n_theta,
                 std::optional<int> n_z, bool groove) {
@@ -200,9 +216,8 @@ py::tuple force(const std::string& law, const Flat& eps, const Flat& eps_dot, co
     // lubbearing force's rules, element by element (index into the broadcast, flattened arrays)
     const auto at = [](const char* name, py::ssize_t i) { return std::string(name) + "[" + std::to_string(i) + "]"; };
     for (py::ssize_t i = 0; i < n; ++i) {
-      if (!(e[i] >= 0.0 && e[i] < 1.0))  // NaN fails too
-        lub::fail(at("eps", i), e[i],
-                  "must be in [0, 1) (eps >= 1: the journal touches the bearing, no film law applies)");
+      if (!lub::is_film_eccentricity_ratio(e[i]))
+        lub::fail(at("eps", i), e[i], std::string(lub::kFilmEccentricityRatioRule));
       if (!std::isfinite(ed[i])) lub::fail(at("eps_dot", i), ed[i], "must be finite");
       if (!std::isfinite(w[i])) lub::fail(at("wedge_rad_s", i), w[i], "must be finite");
     }
@@ -217,7 +232,10 @@ py::tuple force(const std::string& law, const Flat& eps, const Flat& eps_dot, co
       t_out[i] = f.tangential_N;
     }
   }
-  return py::make_tuple(fr, ft);
+  py::dict out;
+  out["radial_N"] = fr;
+  out["tangential_N"] = ft;
+  return out;
 }
 
 // lubbearing steady: the same inputs, the same keys as its JSON.
@@ -227,8 +245,8 @@ py::dict steady_bearing(const std::string& law, double load_N, double speed_rpm,
                         std::optional<int> n_z, bool groove) {
   const Bearing b = read_bearing(law, radius_m, clearance_m, length_m, viscosity_Pa_s, cavitation, n_theta, n_z,
                                  groove);
-  if (!std::isfinite(load_N) || !(load_N > 0.0)) lub::fail("load_N", load_N, "must be > 0 N");
-  if (!std::isfinite(speed_rpm) || speed_rpm == 0.0) lub::fail("speed_rpm", speed_rpm, "must be != 0 rpm");
+  require_positive("load_N", load_N, "N");
+  if (!lub::is_journal_speed(speed_rpm)) lub::fail("speed_rpm", speed_rpm, std::string(lub::kJournalSpeedRule));
   lub::SteadyBearingInput in;
   in.law = b.law;
   in.finite = b.finite;
@@ -262,14 +280,25 @@ py::dict steady_bearing(const std::string& law, double load_N, double speed_rpm,
 PYBIND11_MODULE(_lubjoint, m) {
   m.doc() = "Compiled core of lubjoint (lubcore bindings); use the lubjoint package, not this module.";
   py::register_exception<lub::InputError>(m, "InputError", PyExc_ValueError);
+  py::class_<Scalar>(m, "Scalar", "A metric or solver statistic of a run (simulate's metrics, solver).")
+      .def_readonly("name", &Scalar::name)
+      .def_readonly("value", &Scalar::value)
+      .def_readonly("units", &Scalar::units, "CF style")
+      .def_readonly("integer", &Scalar::integer, "a count or flag (int64 in the Dataset)")
+      .def_readonly("long_name", &Scalar::long_name);
+  py::class_<Column>(m, "Column", "A column of a run (simulate's series, orbit, cycles).")
+      .def_readonly("name", &Column::name)
+      .def_readonly("units", &Column::units, "CF style")
+      .def_readonly("long_name", &Column::long_name)
+      .def_readonly("values", &Column::values);
   m.def("simulate", &simulate, py::arg("scene_path"), py::arg("scene_text"), py::arg("origin"),
         py::arg("assignments"), py::arg("output"), py::arg("program") = "lubjoint",
-        "Runs one scene as lubsim does (GIL released); returns plain values. See lubjoint.simulate.");
+        "Runs one scene as lubsim does (GIL released); returns a dict with Scalar/Column records. See lubjoint.simulate.");
   m.def("force", &force, py::arg("law"), py::arg("eps"), py::arg("eps_dot"), py::arg("wedge_rad_s"),
         py::arg("radius_m"), py::arg("clearance_m"), py::arg("length_m"), py::arg("viscosity_Pa_s"),
         py::arg("cavitation") = py::none(), py::arg("n_theta") = py::none(), py::arg("n_z") = py::none(),
         py::arg("groove_at_max_film") = false,
-        "Film force [N] (radial, tangential) at flat, equally long arrays (GIL released). See lubjoint.force.");
+        "Film force [N] {radial_N, tangential_N} at flat, equally long arrays (GIL released). See lubjoint.force.");
   m.def("steady_bearing", &steady_bearing, py::arg("law"), py::arg("load_N"), py::arg("speed_rpm"),
         py::arg("radius_m"), py::arg("clearance_m"), py::arg("length_m"), py::arg("viscosity_Pa_s"),
         py::arg("cavitation") = py::none(), py::arg("n_theta") = py::none(), py::arg("n_z") = py::none(),

@@ -319,11 +319,8 @@ def test_load_study(study_file):
     assert list(s.cases["status"].values.astype(str)) == ["ok", "ok"]
     # A case's metric equals simulate's on the case's effective scene (its JSON Patch of
     # reference_scene, applied by python3-jsonpatch): the same functions, bit for bit.
-    sys.path.insert(0, str(SOURCE / "tools"))
-    import study_io
-
     for case in (0, 1):
-        one = lubjoint.simulate(study_io.scene(study_file, case))
+        one = lubjoint.simulate(lubjoint.study.scene(study_file, case))
         assert s.cases["max_eps"].values[case] == one["max_eps"].item()
     assert s.cases["max_eps"].values[0] != s.cases["max_eps"].values[1]
 
@@ -349,3 +346,51 @@ def test_load_study_reads_xarray_layout(tmp_path):
         f.attrs["format"] = "lubsweep-study-1"
     with pytest.raises(lubjoint.StudyFormatError):
         lubjoint.load_study(path)
+
+
+def test_the_study_reader_reads_one_format_and_says_what_to_do(tmp_path):
+    # One list of accepted formats (lubjoint.study.STUDY_FORMAT, what lubsweep writes): an
+    # older file, e.g. lubsweep-study-3, is refused by load_study and by the tools' check alike.
+    path = tmp_path / "old.h5"
+    xr.Dataset({"max_eps": ("case", [0.5])}).to_netcdf(path, group="cases", engine="h5netcdf")
+    with h5py.File(path, "a") as f:
+        f.attrs["program"] = "lubsweep"
+        f.attrs["format"] = "lubsweep-study-3"
+    message = (f"{path}: a study file of format lubsweep-study-3; lubjoint.study reads lubsweep-study-4 "
+               "(re-run the sweep with --restart to rewrite it)")
+    for read in (lubjoint.load_study, lubjoint.study.check):
+        with pytest.raises(lubjoint.StudyFormatError) as e:
+            read(path)
+        assert str(e.value) == message
+    with pytest.raises(SystemExit) as e:
+        lubjoint.study.check_or_exit(path)
+    assert str(e.value) == message
+    (tmp_path / "text.h5").write_text("not HDF5")
+    with pytest.raises(lubjoint.StudyFormatError, match="not an HDF5 file"):
+        lubjoint.load_study(tmp_path / "text.h5")
+
+
+def test_the_study_reader_needs_no_compiled_extension(tmp_path):
+    # The package's Python files alone (a build without LUB_BUILD_PYTHON): lubjoint.study
+    # imports and reads; what needs the extension fails only when it is used.
+    package = tmp_path / "lubjoint"
+    package.mkdir()
+    for src in Path(lubjoint.__file__).parent.glob("*.py"):
+        (package / src.name).write_text(src.read_text())
+    code = ("import sys; from lubjoint import study, load_study; import lubjoint; "
+            "assert 'lubjoint._lubjoint' not in sys.modules; print(study.STUDY_FORMAT)\n"
+            "try:\n    lubjoint.simulate\nexcept ImportError as e:\n    print('ImportError', e)")
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                       env={**os.environ, "PYTHONPATH": str(tmp_path)})
+    assert p.returncode == 0, p.stderr
+    lines = p.stdout.splitlines()
+    assert lines[0] == "lubsweep-study-4" and lines[1].startswith("ImportError") and "_lubjoint" in lines[1], p.stdout
+
+
+def test_the_binding_returns_named_fields():
+    f = lubjoint._lubjoint.force("frene_long", np.array([0.5]), np.array([0.0]), np.array([100.0]),
+                                 0.0095, 0.0005, 0.04, 0.4)
+    assert sorted(f) == ["radial_N", "tangential_N"]
+    assert lubjoint.bearing.force("frene_long", 0.5, 0.0, 100.0, **BEARING).radial_N == f["radial_N"][0]
+    assert {"name", "value", "units", "integer", "long_name"} <= set(dir(lubjoint._lubjoint.Scalar))
+    assert {"name", "units", "long_name", "values"} <= set(dir(lubjoint._lubjoint.Column))

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <vector>
 
+#include "lub/bearing/bearing_inputs.hpp"
 #include "lub/common/constants.hpp"
 
 namespace lub {
@@ -93,8 +94,8 @@ JointSpec parse_joint(const Scene& scene, const json& j, const std::string& path
       fail(r.child("journal_body"), j["journal_body"], "must differ from bearing_body");
     s.point_i_m = r.vec2_or("bearing_point_m", {0.0, 0.0});
     s.point_j_m = r.vec2_or("journal_point_m", {0.0, 0.0});
-    s.bearing.bearing_radius_m = r.number("bearing_radius_m", positive, "must be > 0 m");
-    s.bearing.journal_radius_m = r.number("journal_radius_m", positive, "must be > 0 m");
+    s.bearing.bearing_radius_m = r.number("bearing_radius_m", is_positive_input, positive_rule("m"));
+    s.bearing.journal_radius_m = r.number("journal_radius_m", is_positive_input, positive_rule("m"));
     if (s.bearing.journal_radius_m >= s.bearing.bearing_radius_m) {
       std::ostringstream rule;
       rule.precision(17);
@@ -102,8 +103,8 @@ JointSpec parse_joint(const Scene& scene, const json& j, const std::string& path
            << " m (the radial clearance must be > 0)";
       fail(r.child("journal_radius_m"), j["journal_radius_m"], rule.str());
     }
-    s.bearing.length_m = r.number("length_m", positive, "must be > 0 m");
-    s.viscosity_Pa_s = r.number("viscosity_Pa_s", positive, "must be > 0 Pa s");
+    s.bearing.length_m = r.number("length_m", is_positive_input, positive_rule("m"));
+    s.viscosity_Pa_s = r.number("viscosity_Pa_s", is_positive_input, positive_rule("Pa s"));
     const std::string law = r.string("force_law");
     if (law == "ideal") {
       s.ideal = true;
@@ -116,8 +117,9 @@ JointSpec parse_joint(const Scene& scene, const json& j, const std::string& path
     // with them in the base scene; only finite_reynolds reads them).
     FiniteBearingOptions& fo = s.finite;
     if (r.has("cavitation")) fo.cavitation = r.choice_of<Cavitation>("cavitation");
-    fo.n_theta = static_cast<int>(r.integer_or("reynolds_n_theta", fo.n_theta, 8, 4096));
-    fo.n_z = static_cast<int>(r.integer_or("reynolds_n_z", fo.n_z, 1, 1024));
+    fo.n_theta = static_cast<int>(
+        r.integer_or("reynolds_n_theta", fo.n_theta, kReynoldsNThetaRange.min, kReynoldsNThetaRange.max));
+    fo.n_z = static_cast<int>(r.integer_or("reynolds_n_z", fo.n_z, kReynoldsNZRange.min, kReynoldsNZRange.max));
     fo.groove_at_max_film = r.boolean_or("reynolds_groove_at_max_film", fo.groove_at_max_film);
     s.initial_eccentricity_m = r.vec2_or("initial_eccentricity_m", {0.0, 0.0});
   }

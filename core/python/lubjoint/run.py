@@ -1,0 +1,146 @@
+"""lubjoint.run: one run of a scene, as lubsim does it, returned as an ``xarray.Dataset``.
+
+``simulate`` calls the compiled ``_lubjoint.simulate`` (the functions lubsim calls: read,
+override, validate, run, write) and labels what it returns: ``Column`` records (name,
+units, long_name, values) for the series, the orbit and the cycles, ``Scalar`` records
+(name, value, units, integer, long_name) for the metrics and solver statistics.
+"""
+
+import json
+import os
+from collections.abc import Mapping
+
+import numpy as np
+
+from . import _lubjoint
+from ._lubjoint import InputError
+
+#: Bad input (scene, override, argument): the message names the path, the value and the rule.
+SceneError = InputError
+
+
+def _assignment(pointer, value):
+    """``--set POINTER=VALUE`` for one override: the Python value as JSON (a str stays a str)."""
+    if not isinstance(pointer, str):
+        raise InputError(f"overrides: key {pointer!r} must be a JSON Pointer string, e.g. '/joints/3/viscosity_Pa_s'")
+    if isinstance(value, np.generic):
+        value = value.item()
+    return f"{pointer}={json.dumps(value)}"
+
+
+def simulate(scene, overrides=None, output=None):
+    """Run one scene, as ``lubsim`` does, and return it as an ``xarray.Dataset``.
+
+    Parameters
+    ----------
+    scene : dict or str or os.PathLike
+        The scene: a dict (the JSON object of README "Scene format") or the path of a scene
+        file.
+    overrides : dict, optional
+        ``{JSON Pointer: value}`` applied in order before validation, with the semantics of
+        lubsim's ``--set POINTER=VALUE`` (the pointer must name an existing value or a new
+        key of an existing object), e.g. ``{"/joints/3/viscosity_Pa_s": 0.04,
+        "/joints/3/force_law": "frene_long"}``. Values are Python/JSON values: ``"0.04"`` is
+        a string, ``0.04`` a number.
+    output : str or os.PathLike, optional
+        Write the run file (lubsim's run.h5 layout, ``program`` = ``lubjoint``) there. No
+        file is written without it.
+
+    Returns
+    -------
+    xarray.Dataset
+        - one variable per recorded channel over the dimension ``t`` [s], each with its
+          ``units`` (CF style, as the run file: ``m s-2``) and ``long_name`` (the scene's
+          ``outputs.channels``; none if it lists none);
+        - the steady-cycle metrics (``min_film_thickness_m``, ``max_eps``,
+          ``peak_reaction_N``, ...) and solver statistics (``steps``, ``rhs_evals``,
+          ``wall_time_s``, ``max_position_drift``, ...) as 0-d variables with ``units``,
+          ``long_name`` and ``kind`` = ``metric`` or ``solver`` (counts and flags are
+          int64, units ``1``); a name already taken by a channel gets the prefix ``metric_`` or
+          ``solver_``;
+        - the per-cycle extremes (the run file's /cycles) as ``cycle_<name>`` over the
+          dimension ``cycle`` (1, 2, ...);
+        - ``attrs``: ``status`` (``ok``, ``film_collapse``, ``solver_failure``,
+          ``budget_exceeded``), ``message``, ``scene`` (the effective scene JSON),
+          ``program``, ``version``, ``revision``, ``solver_method``,
+          ``solver_formulation``, ``solver_jacobian``, ``solver_rtol``, ``solver_atol``
+          (the absolute tolerance of lengths [m]; README "Integration") and ``output`` (the run file, if written).
+
+    Raises
+    ------
+    InputError
+        (a ``ValueError``) for a bad scene, override or output path (lubsim's rules: a
+        file in an existing, writable directory), with lubsim's message
+        (``SCENE: joints[3].viscosity_Pa_s = -0.4: must be > 0 Pa s``). Nothing is run or
+        written then.
+
+    The GIL is released during the run: Python threads can run scenes side by side.
+    """
+    import xarray as xr
+
+    if isinstance(scene, Mapping):
+        scene_path, scene_text, origin = None, json.dumps(scene), "<scene dict>"
+    elif isinstance(scene, (str, os.PathLike)):
+        scene_path = os.fspath(scene)
+        scene_text, origin = None, scene_path
+    else:
+        raise InputError(f"scene: {type(scene).__name__}: must be a dict or the path of a scene file")
+    assignments = [_assignment(p, v) for p, v in (overrides or {}).items()]
+    out_path = None if output is None else os.fspath(output)
+
+    r = _lubjoint.simulate(scene_path, scene_text, origin, assignments, out_path)
+
+    def attrs_of(unit, long_name, **more):
+        a = {"units": unit} if unit else {}
+        if long_name:
+            a["long_name"] = long_name
+        return {**a, **more}
+
+    coords, data_vars = {}, {}
+    series = r["series"]  # _lubjoint.Column: name, units, long_name, values
+    if series:
+        t = series[0]  # "t" first
+        coords["t"] = ("t", t.values, attrs_of(t.units, t.long_name or "time"))
+        for c in series[1:]:
+            data_vars[c.name] = ("t", c.values, attrs_of(c.units, c.long_name))
+    orbit = r["orbit"]
+    if orbit:  # the periodic orbit found by shooting (run file /orbit), on its own time axis
+        t = orbit[0]
+        coords["orbit_t"] = ("orbit_t", t.values, attrs_of(t.units, "time on the periodic orbit"))
+        for c in orbit[1:]:
+            data_vars["orbit_" + c.name] = ("orbit_t", c.values, attrs_of(c.units, f"{c.name} on the periodic orbit"))
+    cycles = r["cycles"]
+    n_cycles = len(cycles[0].values) if cycles else 0
+    coords["cycle"] = ("cycle", np.arange(1, n_cycles + 1, dtype=np.int64),
+                       {"units": "1", "long_name": "crank cycle number (1: the first)"})
+    for c in cycles:
+        data_vars["cycle_" + c.name] = ("cycle", c.values, attrs_of(c.units, c.long_name))
+    for kind, fields in (("metric", r["metrics"]), ("solver", r["solver"])):  # _lubjoint.Scalar
+        for f in fields:
+            key = f.name if f.name not in data_vars and f.name not in coords else f"{kind}_{f.name}"
+            data_vars[key] = ((), np.int64(f.value) if f.integer else np.float64(f.value),
+                              attrs_of(f.units, f.long_name, kind=kind))
+    # Every Floquet multiplier of the steady cycle (shooting), largest first.
+    data_vars["multiplier_modulus"] = ("multiplier", r["multiplier_modulus"],
+                                       {"units": "1", "long_name": "Floquet multipliers' moduli, largest first"})
+    data_vars["multiplier_angle_rad"] = ("multiplier", r["multiplier_angle_rad"],
+                                         {"units": "rad", "long_name": "Floquet multipliers' angles"})
+    settings = r["solver_settings"]
+    attrs = {
+        "status": r["status"],
+        "message": r["message"],
+        "classification": r["classification"],
+        "steady_method": r["steady_method"],
+        "scene": r["scene"],
+        "program": r["program"],
+        "version": r["version"],
+        "revision": r["revision"],
+        "solver_method": settings["method"],
+        "solver_formulation": settings["formulation"],
+        "solver_jacobian": settings["jacobian"],
+        "solver_rtol": settings["rtol"],
+        "solver_atol": settings["atol"],
+    }
+    if out_path is not None:
+        attrs["output"] = out_path
+    return xr.Dataset(data_vars, coords=coords, attrs=attrs)

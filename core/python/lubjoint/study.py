@@ -1,0 +1,173 @@
+"""lubjoint.study: the one reader of lubsweep study files, for the module, ``tools/`` and the tests.
+
+Pure Python (h5py, xarray with h5netcdf, pandas; ``scene`` needs jsonpatch): it does not load
+the compiled extension, so ``import lubjoint.study`` works in a build without it (see the
+package docstring). The study file is netCDF-4 style (README, "The study file"); this module
+adds the format check and the look-ups the tools share:
+
+    from lubjoint import study
+    s = study.load_study("out/study.h5")          # {grid name: Dataset}, .cases, .attrs
+    study.check("out/study.h5")                   # root attributes, or StudyFormatError
+    cases = study.cases("out/study.h5")           # pandas DataFrame, index: case id
+    ds = study.grid("out/study.h5", "clearance")  # xarray Dataset over the sub-grid's axes
+    s = study.series("out/study.h5", "case_0003") # xarray Dataset indexed by t, or None
+    sc = study.scene("out/study.h5", 3)           # case 3's effective scene (dict)
+
+One format is read, ``STUDY_FORMAT`` (what this build's lubsweep writes); any other is
+refused with one message that says what to do (re-run the sweep with ``--restart``).
+"""
+
+import json
+import os
+from collections.abc import Mapping
+
+#: The study-file format this reader reads (lubsweep's kStudyFormat, sweep/src/study_file.cpp).
+STUDY_FORMAT = "lubsweep-study-4"
+
+
+class StudyFormatError(ValueError):
+    """A file that is not a lubsweep study of ``STUDY_FORMAT`` (not HDF5, not lubsweep's, another format)."""
+
+
+def _text(value):
+    return value.decode() if isinstance(value, bytes) else value
+
+
+def _open(path, group=None):
+    import xarray as xr
+
+    return xr.open_dataset(path, group=group, engine="h5netcdf")
+
+
+def study_format(path):
+    """The ``format`` root attribute of a study file (``lubsweep-study-N``), or None."""
+    import h5py
+
+    with h5py.File(path, "r") as f:
+        fmt = f.attrs.get("format")
+    fmt = _text(fmt)
+    return None if fmt is None else str(fmt)
+
+
+def check(path):
+    """Root attributes of a study file of ``STUDY_FORMAT``; ``StudyFormatError`` with the reason otherwise."""
+    import h5py
+
+    try:
+        with h5py.File(path, "r") as f:
+            attrs = {k: _text(v) for k, v in f.attrs.items()}
+    except OSError as e:
+        raise StudyFormatError(f"{path}: not an HDF5 file ({e})") from None
+    if attrs.get("program") != "lubsweep":
+        raise StudyFormatError(f"{path}: not a lubsweep study file")
+    if attrs.get("format") != STUDY_FORMAT:
+        raise StudyFormatError(f"{path}: a study file of format {attrs.get('format')}; lubjoint.study reads {STUDY_FORMAT} "
+                               "(re-run the sweep with --restart to rewrite it)")
+    return attrs
+
+
+def check_or_exit(path):
+    """``check`` for command-line tools: a ``StudyFormatError`` becomes ``SystemExit`` with its message (exit 1)."""
+    try:
+        return check(path)
+    except StudyFormatError as e:
+        raise SystemExit(str(e)) from None
+
+
+def cases(path):
+    """/cases as a pandas DataFrame indexed by case id (its ``attrs``: the group's attributes, plus ``units``)."""
+    ds = _open(path, "cases")
+    df = ds.to_dataframe()
+    df.attrs = dict(ds.attrs, units={k: ds[k].attrs.get("units", "") for k in ds.variables})
+    return df
+
+
+def grid_names(path):
+    """The names of the study's sub-grids (/grids/<name>), in the file's order."""
+    import h5py
+
+    with h5py.File(path, "r") as f:
+        return list(f.get("grids", {}).keys())
+
+
+def grid(path, name):
+    """The sub-grid ``name``: an xarray Dataset over its axes (the file stays open: lazy)."""
+    return _open(path, f"grids/{name}")
+
+
+def series(path, case_name):
+    """The stored channels of a case (xarray Dataset on t), or None."""
+    import h5py
+
+    with h5py.File(path, "r") as f:
+        if f"series/{case_name}" not in f:
+            return None
+    return _open(path, f"series/{case_name}")
+
+
+def scene(path, case_id):
+    """The effective scene of a case (a dict): its JSON Patch applied to reference_scene."""
+    import h5py
+    import jsonpatch  # Debian: python3-jsonpatch
+
+    with h5py.File(path, "r") as f:
+        reference = f.attrs["reference_scene"]
+        ids = list(f["scene"][:])
+        patch = f["scene_patches"][ids.index(int(case_id))]
+    return jsonpatch.apply_patch(json.loads(_text(reference)), json.loads(_text(patch)))
+
+
+class Study(Mapping):
+    """A lubsweep study: ``{grid name: xarray.Dataset}``, plus ``cases`` and ``attrs``.
+
+    Each grid is the netCDF-4 group ``/grids/<name>``: labelled N-d variables over its
+    axes (dimension scales with ``units``). ``cases`` is the ``/cases`` group: one 1-D
+    variable per column over the dimension ``case`` (``cases.to_dataframe()`` gives the
+    pandas table). ``attrs`` are the file's root attributes (``format``, ``grid``,
+    ``complete``, ...).
+    """
+
+    def __init__(self, path, grids, cases, attrs):
+        self.path = path
+        self.grids = grids
+        self.cases = cases
+        self.attrs = attrs
+
+    def __getitem__(self, name):
+        return self.grids[name]
+
+    def __iter__(self):
+        return iter(self.grids)
+
+    def __len__(self):
+        return len(self.grids)
+
+    def __repr__(self):
+        return f"Study({self.path!r}, grids={list(self.grids)}, cases={self.cases.sizes.get('case', 0)})"
+
+
+def load_study(path):
+    """Open a lubsweep study file as xarray objects.
+
+    Returns a ``Study``: a mapping ``{grid name: xarray.Dataset}``, each
+    ``xr.open_dataset(path, group="grids/<name>", engine="h5netcdf")``, plus
+    ``.cases`` = ``xr.open_dataset(path, group="cases", engine="h5netcdf")`` (columns over
+    the dimension ``case``) and ``.attrs`` (root attributes). The data are loaded into
+    memory and the file closed.
+
+    Raises
+    ------
+    StudyFormatError
+        (a ``ValueError``) for a file that is not HDF5, not a lubsweep study, or of a format
+        other than ``STUDY_FORMAT`` (the message says: re-run the sweep with ``--restart``).
+    """
+    path = os.fspath(path)
+    attrs = check(path)
+    names = sorted(grid_names(path))
+
+    def load(group):
+        with _open(path, group) as ds:
+            return ds.load()
+
+    grids = {name: load(f"grids/{name}") for name in names}
+    return Study(path, grids, load("cases"), attrs)
