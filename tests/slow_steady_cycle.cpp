@@ -33,11 +33,11 @@ TEST(SlowSteadyCycle, FreneLongLongTransientEndsOnTheShootingOrbit) {
   // its per-cycle h_min oscillates; the band of its last 50 cycles is how far it is.
   double lo = 1.0, hi = 0.0;
   for (size_t k = tr.cycles.size() - 50; k < tr.cycles.size(); ++k)
-    lo = std::min(lo, tr.cycles[k].min_film_m), hi = std::max(hi, tr.cycles[k].min_film_m);
+    lo = std::min(lo, tr.cycles[k].min_film_thickness_m), hi = std::max(hi, tr.cycles[k].min_film_thickness_m);
   const double h = s.metrics.min_film_thickness_m;
   const double err = s.metrics.min_film_thickness_m_error;
   std::printf("shooting h_min %.6e ± %.2e m (%lld periods); transient 3000 cycles, last 50: [%.6e, %.6e] m\n", h, err,
-              s.steady.periods, lo, hi);
+              s.steady.periods_integrated, lo, hi);
   EXPECT_GE(h + err, lo - (hi - lo)) << "band [" << lo << ", " << hi << "] m, shooting " << h << " ± " << err;
   EXPECT_LE(h - err, hi + (hi - lo)) << "band [" << lo << ", " << hi << "] m, shooting " << h << " ± " << err;
   EXPECT_LT(hi - lo, 0.05 * h);  // the transient is close: a band of a few % of the film

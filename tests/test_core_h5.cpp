@@ -465,7 +465,7 @@ TEST_F(H5Test, RunFileSeriesOnTimeAndCyclesAsColumns) {
   r.series.units = {"s", "1", "m/s^2"};
   r.series.data = {{0.0, 1e-5, 2e-5}, {0.1, 0.2, 0.3}, {1.0, 2.0, 3.0}};
   r.cycles.resize(2);
-  r.cycles[1].min_film_m = 1e-5;
+  r.cycles[1].min_film_thickness_m = 1e-5;
   const std::string scene =
       R"({"outputs": {"channels": [{"name": "eps", "joint": "rod_slider", "quantity": "eps"},
                                    {"name": "slider_a", "body": "slider", "quantity": "ax"}]}})";

@@ -77,12 +77,12 @@ lub::Scene metric_scene(int metric_joint, int metric_cycles) {
   return scene;
 }
 
-CycleMetrics cycle(double min_film_m, double angle_min_film, double max_eps, double peak_reaction_N,
+CycleMetrics cycle(double min_film_thickness_m, double angle_min_film, double max_eps, double peak_reaction_N,
                    double angle_peak_reaction, double peak_acceleration, double periodicity) {
   CycleMetrics c;
-  std::tie(c.min_film_m, c.angle_at_min_film_rad, c.max_eps, c.peak_reaction_N, c.angle_at_peak_reaction_rad,
+  std::tie(c.min_film_thickness_m, c.crank_angle_at_min_film_rad, c.max_eps, c.peak_reaction_N, c.crank_angle_at_peak_reaction_rad,
            c.peak_acceleration_m_s2, c.periodicity) =
-      std::tie(min_film_m, angle_min_film, max_eps, peak_reaction_N, angle_peak_reaction, peak_acceleration,
+      std::tie(min_film_thickness_m, angle_min_film, max_eps, peak_reaction_N, angle_peak_reaction, peak_acceleration,
                periodicity);
   return c;
 }
@@ -101,10 +101,10 @@ TEST(SteadyCycleMetrics, ExtremesOverTheLastMetricCyclesWithTheirAngles) {
   const Metrics m = steady_cycle_metrics(metric_scene(1, 2), four_cycles(), 7);
   EXPECT_EQ(m.cycles_run, 7);
   EXPECT_EQ(m.min_film_thickness_m, 2e-5);  // the third cycle's
-  EXPECT_EQ(m.angle_at_min_film_rad, 1.5);  // ... and its angle
+  EXPECT_EQ(m.crank_angle_at_min_film_rad, 1.5);  // ... and its angle
   EXPECT_EQ(m.max_eps, 0.95);               // the fourth's
   EXPECT_EQ(m.peak_reaction_N, 4e3);
-  EXPECT_EQ(m.angle_at_peak_reaction_rad, 5.5);
+  EXPECT_EQ(m.crank_angle_at_peak_reaction_rad, 5.5);
   EXPECT_EQ(m.peak_acceleration_m_s2, 5e3);  // the third's
   EXPECT_EQ(m.periodicity, 2e-3);
 }
@@ -117,10 +117,10 @@ TEST(SteadyCycleMetrics, MoreMetricCyclesReachFurtherBack) {
   // More metric cycles than cycles: all of them, the first included.
   const Metrics all = steady_cycle_metrics(metric_scene(1, 10), four_cycles(), 4);
   EXPECT_EQ(all.min_film_thickness_m, 1e-6);
-  EXPECT_EQ(all.angle_at_min_film_rad, 0.1);
+  EXPECT_EQ(all.crank_angle_at_min_film_rad, 0.1);
   EXPECT_EQ(all.max_eps, 0.998);
   EXPECT_EQ(all.peak_reaction_N, 9e4);
-  EXPECT_EQ(all.angle_at_peak_reaction_rad, 0.2);
+  EXPECT_EQ(all.crank_angle_at_peak_reaction_rad, 0.2);
   EXPECT_EQ(all.peak_acceleration_m_s2, 9e5);
   EXPECT_EQ(all.periodicity, 0.5);
 }
@@ -130,8 +130,8 @@ TEST(SteadyCycleMetrics, ATieKeepsTheLatestCyclesAngle) {
   std::vector<CycleMetrics> cycles = {cycle(2e-5, 1.0, 0.9, 3e3, 2.0, 1.0, 0.0),
                                       cycle(2e-5, 3.0, 0.9, 3e3, 4.0, 1.0, 0.0)};
   const Metrics m = steady_cycle_metrics(metric_scene(1, 2), cycles, 2);
-  EXPECT_EQ(m.angle_at_min_film_rad, 3.0);
-  EXPECT_EQ(m.angle_at_peak_reaction_rad, 4.0);
+  EXPECT_EQ(m.crank_angle_at_min_film_rad, 3.0);
+  EXPECT_EQ(m.crank_angle_at_peak_reaction_rad, 4.0);
 }
 
 TEST(SteadyCycleMetrics, SafeFilmIsPerBearingDiameter) {
@@ -139,7 +139,7 @@ TEST(SteadyCycleMetrics, SafeFilmIsPerBearingDiameter) {
   const double safe = 0.00015 * 2.0 * 0.010;
   const Metrics thin = steady_cycle_metrics(metric_scene(1, 2), {cycle(2e-6, 0, 0.99, 0, 0, 0, 0)}, 1);
   EXPECT_TRUE(thin.has_film);
-  EXPECT_NEAR(thin.safe_film_m, safe, 1e-15 * safe);
+  EXPECT_NEAR(thin.safe_film_thickness_m, safe, 1e-15 * safe);
   EXPECT_TRUE(thin.below_safe_film);
   const Metrics thick = steady_cycle_metrics(metric_scene(1, 2), {cycle(4e-6, 0, 0.99, 0, 0, 0, 0)}, 1);
   EXPECT_FALSE(thick.below_safe_film);
@@ -152,7 +152,7 @@ TEST(SteadyCycleMetrics, NoFilmWithoutALubricatedMetricJoint) {
     const Metrics m = steady_cycle_metrics(metric_scene(joint, 2), four_cycles(), 4);
     EXPECT_FALSE(m.has_film);
     EXPECT_EQ(m.min_film_thickness_m, 0.0);
-    EXPECT_EQ(m.safe_film_m, 0.0);
+    EXPECT_EQ(m.safe_film_thickness_m, 0.0);
     EXPECT_FALSE(m.below_safe_film);
     EXPECT_EQ(m.peak_reaction_N, 4e3);  // the other extremes are still reduced
   }

@@ -40,11 +40,11 @@ void expect_same_cycles(const RunResult& a, const RunResult& b, size_t n, const 
     const CycleMetrics& y = b.cycles[k];
     SCOPED_TRACE(what + ", cycle " + std::to_string(k + 1));
     EXPECT_EQ(x.t_end_s, y.t_end_s);
-    EXPECT_EQ(x.min_film_m, y.min_film_m);
-    EXPECT_EQ(x.angle_at_min_film_rad, y.angle_at_min_film_rad);
+    EXPECT_EQ(x.min_film_thickness_m, y.min_film_thickness_m);
+    EXPECT_EQ(x.crank_angle_at_min_film_rad, y.crank_angle_at_min_film_rad);
     EXPECT_EQ(x.max_eps, y.max_eps);
     EXPECT_EQ(x.peak_reaction_N, y.peak_reaction_N);
-    EXPECT_EQ(x.angle_at_peak_reaction_rad, y.angle_at_peak_reaction_rad);
+    EXPECT_EQ(x.crank_angle_at_peak_reaction_rad, y.crank_angle_at_peak_reaction_rad);
     EXPECT_EQ(x.peak_acceleration_m_s2, y.peak_acceleration_m_s2);
     EXPECT_EQ(x.periodicity, y.periodicity);
   }

@@ -206,9 +206,9 @@ TEST(SliderCrankLubricated, PeakEccentricityBetweenObservationsIsInterpolated) {
   ASSERT_EQ(b.cycles.size(), 3u);
   for (size_t k = 0; k < 3; ++k) {
     EXPECT_NEAR(a.cycles[k].max_eps, b.cycles[k].max_eps, 5e-7) << "cycle " << k + 1;
-    EXPECT_NEAR(a.cycles[k].angle_at_min_film_rad, b.cycles[k].angle_at_min_film_rad, 1e-3) << "cycle " << k + 1;
+    EXPECT_NEAR(a.cycles[k].crank_angle_at_min_film_rad, b.cycles[k].crank_angle_at_min_film_rad, 1e-3) << "cycle " << k + 1;
     // min film and max ε describe the same point (c = 10.0 mm − 9.5 mm, to round-off)
-    EXPECT_NEAR(a.cycles[k].min_film_m, 5e-4 * (1.0 - a.cycles[k].max_eps), 1e-15) << "cycle " << k + 1;
+    EXPECT_NEAR(a.cycles[k].min_film_thickness_m, 5e-4 * (1.0 - a.cycles[k].max_eps), 1e-15) << "cycle " << k + 1;
   }
 }
 

@@ -80,7 +80,7 @@ void expect_equilibrium(ForceLaw law, const BearingGeometry& g, double e0, const
   ASSERT_TRUE(r.converged) << lub::name_of(law) << ": " << r.message;
   EXPECT_NEAR(r.eps, e0, 1e-11 * e0) << lub::name_of(law) << " eps0=" << e0;
   EXPECT_NEAR(r.attitude_rad, cl.attitude_rad, 1e-10) << lub::name_of(law) << " eps0=" << e0;
-  EXPECT_NEAR(r.min_film_m, g.clearance_m() * (1.0 - e0), 1e-11 * g.clearance_m());
+  EXPECT_NEAR(r.min_film_thickness_m, g.clearance_m() * (1.0 - e0), 1e-11 * g.clearance_m());
   EXPECT_NEAR(std::hypot(r.force.radial_N, r.force.tangential_N), cl.load_N, 1e-12 * cl.load_N);
 }
 

@@ -45,8 +45,8 @@ TEST(Switching, WithoutEventsTheIntegratorChatters) {
   ASSERT_EQ(events.status, RunStatus::ok);
   ASSERT_EQ(none.status, RunStatus::ok);
   EXPECT_EQ(none.stats.mode_switches, 0);
-  EXPECT_GT(none.stats.rhs_evals + none.stats.rhs_evals_jac,
-            2 * (events.stats.rhs_evals + events.stats.rhs_evals_jac));
+  EXPECT_GT(none.stats.rhs_evals + none.stats.rhs_evals_jacobian,
+            2 * (events.stats.rhs_evals + events.stats.rhs_evals_jacobian));
 }
 
 TEST(Switching, SteadyCycleMetricsConvergeWithTolerance) {

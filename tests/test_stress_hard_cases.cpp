@@ -63,13 +63,13 @@ std::vector<std::pair<std::string, double>> reported_numbers(const RunResult& r)
   const auto& s = r.stats;
   std::vector<std::pair<std::string, double>> v = {
       {"metrics.min_film_thickness_m", m.min_film_thickness_m},
-      {"metrics.angle_at_min_film_rad", m.angle_at_min_film_rad},
+      {"metrics.crank_angle_at_min_film_rad", m.crank_angle_at_min_film_rad},
       {"metrics.max_eps", m.max_eps},
       {"metrics.peak_reaction_N", m.peak_reaction_N},
-      {"metrics.angle_at_peak_reaction_rad", m.angle_at_peak_reaction_rad},
+      {"metrics.crank_angle_at_peak_reaction_rad", m.crank_angle_at_peak_reaction_rad},
       {"metrics.peak_acceleration_m_s2", m.peak_acceleration_m_s2},
       {"metrics.periodicity", m.periodicity},
-      {"metrics.safe_film_m", m.safe_film_m},
+      {"metrics.safe_film_thickness_m", m.safe_film_thickness_m},
       {"metrics.driver_work_J", m.driver_work_J},
       {"metrics.film_dissipation_J", m.film_dissipation_J},
       {"metrics.energy_change_J", m.energy_change_J},
@@ -84,9 +84,9 @@ std::vector<std::pair<std::string, double>> reported_numbers(const RunResult& r)
     const auto& c = r.cycles[k];
     const std::string p = "cycles[" + std::to_string(k) + "].";
     for (const auto& [n, x] : std::vector<std::pair<std::string, double>>{
-             {"t_start_s", c.t_start_s}, {"t_end_s", c.t_end_s}, {"min_film_m", c.min_film_m},
-             {"angle_at_min_film_rad", c.angle_at_min_film_rad}, {"max_eps", c.max_eps},
-             {"peak_reaction_N", c.peak_reaction_N}, {"angle_at_peak_reaction_rad", c.angle_at_peak_reaction_rad},
+             {"t_start_s", c.t_start_s}, {"t_end_s", c.t_end_s}, {"min_film_thickness_m", c.min_film_thickness_m},
+             {"crank_angle_at_min_film_rad", c.crank_angle_at_min_film_rad}, {"max_eps", c.max_eps},
+             {"peak_reaction_N", c.peak_reaction_N}, {"crank_angle_at_peak_reaction_rad", c.crank_angle_at_peak_reaction_rad},
              {"peak_acceleration_m_s2", c.peak_acceleration_m_s2}, {"periodicity", c.periodicity}})
       v.emplace_back(p + n, x);
   }
@@ -218,9 +218,9 @@ void expect_bit_identical(const RunResult& a, const RunResult& b, const std::str
   const std::pair<const char*, Counter> counters[] = {
       {"steps", &lub::SolverStats::steps},
       {"rhs_evals", &lub::SolverStats::rhs_evals},
-      {"jac_evals", &lub::SolverStats::jac_evals},
-      {"err_test_fails", &lub::SolverStats::err_test_fails},
-      {"nonlin_conv_fails", &lub::SolverStats::nonlin_conv_fails},
+      {"jacobian_evals", &lub::SolverStats::jacobian_evals},
+      {"error_test_fails", &lub::SolverStats::error_test_fails},
+      {"nonlinear_conv_fails", &lub::SolverStats::nonlinear_conv_fails},
       {"root_evals", &lub::SolverStats::root_evals},
       {"mode_switches", &lub::SolverStats::mode_switches},
       {"model_evals", &lub::SolverStats::model_evals}};

@@ -124,7 +124,7 @@ TEST_P(LongRun, EndsWithoutSolverFailureOrDrift) {
     const auto& cy = r.cycles;
     ASSERT_GE(cy.size(), 12u) << r.message;
     const size_t last = cy.size() - 2;  // the last complete cycle
-    EXPECT_LT(cy[last].min_film_m, cy[last - 10].min_film_m) << r.message;
+    EXPECT_LT(cy[last].min_film_thickness_m, cy[last - 10].min_film_thickness_m) << r.message;
   }
   for (const double x : {r.metrics.min_film_thickness_m, r.metrics.max_eps, r.metrics.peak_reaction_N,
                          r.metrics.peak_acceleration_m_s2, r.metrics.periodicity})

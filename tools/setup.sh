@@ -17,7 +17,7 @@ PACKAGES=(
   python3-xarray python3-h5netcdf python3-pandas python3-pytest
   python3-dev pybind11-dev
   python3-jsonschema python3-jsonpatch
-  clang libclang-rt-14-dev
+  clang libclang-rt-14-dev clang-tidy
 )
 
 missing=()

@@ -57,7 +57,7 @@ void BM_Engine(benchmark::State& state) {
   for (auto _ : state) r = lub::run_scene(s);
   if (r.status != lub::RunStatus::ok) state.SkipWithError(r.message.c_str());
   state.counters["steps_per_cycle"] = double(r.stats.steps) / kCycles;
-  state.counters["rhs_per_cycle"] = double(r.stats.rhs_evals + r.stats.rhs_evals_jac) / kCycles;
+  state.counters["rhs_per_cycle"] = double(r.stats.rhs_evals + r.stats.rhs_evals_jacobian) / kCycles;
   state.counters["observer_per_cycle"] = double(r.stats.observer_evals) / kCycles;
   state.SetLabel("engine " + key(law, rt) + " " + form);
 }

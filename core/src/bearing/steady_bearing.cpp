@@ -88,7 +88,7 @@ SteadyBearingResult solve_steady_bearing(const SteadyBearingInput& in) {
   res.converged = true;
   res.attitude_rad = std::atan2(res.force.tangential_N * (in.speed_rad_s < 0.0 ? -1.0 : 1.0),
                                 -res.force.radial_N);
-  res.min_film_m = in.geometry.clearance_m() * (1.0 - res.eps);
+  res.min_film_thickness_m = in.geometry.clearance_m() * (1.0 - res.eps);
   res.sommerfeld = sommerfeld_number(in.geometry, in.viscosity_Pa_s, in.load_N, in.speed_rad_s);
   return res;
 }

@@ -101,14 +101,14 @@ class ArkodeIntegrator final : public Integrator {
     long v = 0, w = 0;
     ARKStepGetNumSteps(mem_, &v); s.steps = v;
     ARKStepGetNumRhsEvals(mem_, &v, &w); s.rhs_evals = v + w;
-    ARKStepGetNumErrTestFails(mem_, &v); s.err_test_fails = v;
+    ARKStepGetNumErrTestFails(mem_, &v); s.error_test_fails = v;
     ARKStepGetNumGEvals(mem_, &v); s.root_evals = v;
     if (implicit_) {
-      ARKStepGetNumNonlinSolvIters(mem_, &v); s.nonlin_iters = v;
-      ARKStepGetNumNonlinSolvConvFails(mem_, &v); s.nonlin_conv_fails = v;
-      ARKStepGetNumJacEvals(mem_, &v); s.jac_evals = v;
-      ARKStepGetNumLinRhsEvals(mem_, &v); s.rhs_evals_jac = v;
-      ARKStepGetNumLinSolvSetups(mem_, &v); s.lin_setups = v;
+      ARKStepGetNumNonlinSolvIters(mem_, &v); s.nonlinear_iters = v;
+      ARKStepGetNumNonlinSolvConvFails(mem_, &v); s.nonlinear_conv_fails = v;
+      ARKStepGetNumJacEvals(mem_, &v); s.jacobian_evals = v;
+      ARKStepGetNumLinRhsEvals(mem_, &v); s.rhs_evals_jacobian = v;
+      ARKStepGetNumLinSolvSetups(mem_, &v); s.linear_setups = v;
     }
     s += base_;
   }

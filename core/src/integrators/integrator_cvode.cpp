@@ -132,14 +132,14 @@ class CvodeIntegrator final : public Integrator {
     long v = 0;
     CVodeGetNumSteps(mem_, &v); s.steps = v;
     CVodeGetNumRhsEvals(mem_, &v); s.rhs_evals = v;
-    CVodeGetNumErrTestFails(mem_, &v); s.err_test_fails = v;
-    CVodeGetNumNonlinSolvIters(mem_, &v); s.nonlin_iters = v;
-    CVodeGetNumNonlinSolvConvFails(mem_, &v); s.nonlin_conv_fails = v;
+    CVodeGetNumErrTestFails(mem_, &v); s.error_test_fails = v;
+    CVodeGetNumNonlinSolvIters(mem_, &v); s.nonlinear_iters = v;
+    CVodeGetNumNonlinSolvConvFails(mem_, &v); s.nonlinear_conv_fails = v;
     CVodeGetNumGEvals(mem_, &v); s.root_evals = v;
     if (method_ == Method::cvode_bdf) {
-      CVodeGetNumJacEvals(mem_, &v); s.jac_evals = v;
-      CVodeGetNumLinRhsEvals(mem_, &v); s.rhs_evals_jac = v;
-      CVodeGetNumLinSolvSetups(mem_, &v); s.lin_setups = v;
+      CVodeGetNumJacEvals(mem_, &v); s.jacobian_evals = v;
+      CVodeGetNumLinRhsEvals(mem_, &v); s.rhs_evals_jacobian = v;
+      CVodeGetNumLinSolvSetups(mem_, &v); s.linear_setups = v;
     }
   }
 

@@ -146,13 +146,13 @@ class IdaIntegrator final : public Integrator {
     long v = 0;
     IDAGetNumSteps(mem_, &v); s.steps = v;
     IDAGetNumResEvals(mem_, &v); s.rhs_evals = v;
-    IDAGetNumErrTestFails(mem_, &v); s.err_test_fails = v;
-    IDAGetNumNonlinSolvIters(mem_, &v); s.nonlin_iters = v;
-    IDAGetNumNonlinSolvConvFails(mem_, &v); s.nonlin_conv_fails = v;
+    IDAGetNumErrTestFails(mem_, &v); s.error_test_fails = v;
+    IDAGetNumNonlinSolvIters(mem_, &v); s.nonlinear_iters = v;
+    IDAGetNumNonlinSolvConvFails(mem_, &v); s.nonlinear_conv_fails = v;
     IDAGetNumGEvals(mem_, &v); s.root_evals = v;
-    IDAGetNumJacEvals(mem_, &v); s.jac_evals = v;
-    IDAGetNumLinResEvals(mem_, &v); s.rhs_evals_jac = v;
-    IDAGetNumLinSolvSetups(mem_, &v); s.lin_setups = v;
+    IDAGetNumJacEvals(mem_, &v); s.jacobian_evals = v;
+    IDAGetNumLinResEvals(mem_, &v); s.rhs_evals_jacobian = v;
+    IDAGetNumLinSolvSetups(mem_, &v); s.linear_setups = v;
     s += base_;
   }
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "lub/mechanism/planar.hpp"
@@ -22,6 +23,93 @@ Stabilisation stabilisation(const Scene& scene) {
   return {scene.solver.baumgarte_alpha, scene.solver.baumgarte_beta};
 }
 
+namespace {
+
+/// A constraint block of `rows` rows between two bodies (kGround for none).
+Constraint block(Constraint::Kind kind, int joint, int body_i, int body_j, int rows) {
+  Constraint c;
+  c.kind = kind;
+  c.joint = joint;
+  c.body_i = body_i;
+  c.body_j = body_j;
+  c.rows = rows;
+  return c;
+}
+
+double initial_angle(const Scene& scene, int body) { return body == kGround ? 0.0 : scene.bodies[body].angle_rad; }
+
+Constraint translational_block(const Scene& scene, int jk, const JointSpec& s) {
+  Constraint c = block(Constraint::Kind::translational, jk, s.body_i, s.body_j, 2);
+  c.s_i = s.point_i_m;
+  c.s_j = s.point_j_m;
+  c.n_i = perp(s.axis_i);
+  c.phi0 = initial_angle(scene, s.body_j) - initial_angle(scene, s.body_i);
+  return c;
+}
+
+Constraint ground_block(const Scene& scene, int jk, const JointSpec& s) {
+  Constraint c = block(Constraint::Kind::ground, jk, kGround, s.body_j, 3);
+  const BodySpec& b = scene.bodies[s.body_j];
+  c.q0 = {b.position_m.x(), b.position_m.y(), b.angle_rad};
+  return c;
+}
+
+Constraint driver_block(const Scene& scene, int d) {
+  const DriverSpec& s = scene.drivers[static_cast<size_t>(d)];
+  Constraint c = block(Constraint::Kind::driver, d, kGround, s.body, 1);
+  c.driver_type = s.type;
+  c.omega = s.speed_rad_s;
+  c.Omega = s.reversal_frequency_rad_s;
+  c.phi0 = s.initial_angle_rad.value_or(scene.bodies[s.body].angle_rad);
+  return c;
+}
+
+FilmElement film_element(const Scene& scene, int jk, const JointSpec& s) {
+  FilmElement f;
+  f.joint = jk;
+  f.bearing = s.body_i;
+  f.journal = s.body_j;
+  f.s_bearing = s.point_i_m;
+  f.s_journal = s.point_j_m;
+  f.geometry = s.bearing;
+  f.clearance = s.bearing.clearance_m();
+  f.viscosity = s.viscosity_Pa_s;
+  f.law = s.law;
+  f.finite = s.finite;
+  const auto& covered = scene.contact ? scene.contact->joints : std::vector<int>{};
+  if (scene.contact && (covered.empty() || std::find(covered.begin(), covered.end(), jk) != covered.end()))
+    f.contact = resolve_contact(*scene.contact, s.bearing);
+  f.switching = s.law == ForceLaw::pinkus_sternlicht && scene.solver.switching == Switching::events;
+  return f;
+}
+
+/// Scene joint k as a constraint block or a film element of `m`.
+void add_joint(Model& m, const Scene& scene, size_t k) {
+  const JointSpec& s = scene.joints[k];
+  const int jk = static_cast<int>(k);
+  std::optional<Constraint> c;
+  switch (s.type) {
+    case JointType::revolute:
+      c = revolute_block(jk, s.body_i, s.body_j, s.point_i_m, s.point_j_m, {0, 0});
+      break;
+    case JointType::translational: c = translational_block(scene, jk, s); break;
+    case JointType::ground: c = ground_block(scene, jk, s); break;
+    case JointType::lubricated_revolute:
+      if (s.ideal) c = revolute_block(jk, s.body_i, s.body_j, s.point_i_m, s.point_j_m, s.initial_eccentricity_m);
+      break;
+  }
+  if (c) {
+    m.joint_constraint[k] = static_cast<int>(m.constraints.size());
+    m.constraints.push_back(*c);
+    return;
+  }
+  m.films.push_back(film_element(scene, jk, s));
+  if (m.films.back().switching) ++m.n_switching;
+  m.joint_film[k] = static_cast<int>(m.films.size()) - 1;
+}
+
+}  // namespace
+
 Model build_model(const Scene& scene) {
   Model m;
   m.nb = static_cast<int>(scene.bodies.size());
@@ -35,86 +123,8 @@ Model build_model(const Scene& scene) {
   m.gravity = scene.gravity_m_s2;
   m.joint_constraint.assign(scene.joints.size(), -1);
   m.joint_film.assign(scene.joints.size(), -1);
-
-  for (size_t k = 0; k < scene.joints.size(); ++k) {
-    const JointSpec& s = scene.joints[k];
-    const int jk = static_cast<int>(k);
-    switch (s.type) {
-      case JointType::revolute:
-        m.joint_constraint[k] = static_cast<int>(m.constraints.size());
-        m.constraints.push_back(revolute_block(jk, s.body_i, s.body_j, s.point_i_m, s.point_j_m, {0, 0}));
-        break;
-      case JointType::translational: {
-        Constraint c;
-        c.kind = Constraint::Kind::translational;
-        c.joint = jk;
-        c.body_i = s.body_i;
-        c.body_j = s.body_j;
-        c.s_i = s.point_i_m;
-        c.s_j = s.point_j_m;
-        c.n_i = perp(s.axis_i);
-        const double phi_i = s.body_i == kGround ? 0.0 : scene.bodies[s.body_i].angle_rad;
-        const double phi_j = s.body_j == kGround ? 0.0 : scene.bodies[s.body_j].angle_rad;
-        c.phi0 = phi_j - phi_i;
-        c.rows = 2;
-        m.joint_constraint[k] = static_cast<int>(m.constraints.size());
-        m.constraints.push_back(c);
-        break;
-      }
-      case JointType::ground: {
-        Constraint c;
-        c.kind = Constraint::Kind::ground;
-        c.joint = jk;
-        c.body_j = s.body_j;
-        const BodySpec& b = scene.bodies[s.body_j];
-        c.q0 = {b.position_m.x(), b.position_m.y(), b.angle_rad};
-        c.rows = 3;
-        m.joint_constraint[k] = static_cast<int>(m.constraints.size());
-        m.constraints.push_back(c);
-        break;
-      }
-      case JointType::lubricated_revolute:
-        if (s.ideal) {
-          m.joint_constraint[k] = static_cast<int>(m.constraints.size());
-          m.constraints.push_back(revolute_block(jk, s.body_i, s.body_j, s.point_i_m, s.point_j_m,
-                                                 s.initial_eccentricity_m));
-        } else {
-          FilmElement f;
-          f.joint = jk;
-          f.bearing = s.body_i;
-          f.journal = s.body_j;
-          f.s_bearing = s.point_i_m;
-          f.s_journal = s.point_j_m;
-          f.geometry = s.bearing;
-          f.clearance = s.bearing.clearance_m();
-          f.viscosity = s.viscosity_Pa_s;
-          f.law = s.law;
-          f.finite = s.finite;
-          if (scene.contact && (scene.contact->joints.empty() ||
-                                std::find(scene.contact->joints.begin(), scene.contact->joints.end(),
-                                          jk) != scene.contact->joints.end()))
-            f.contact = resolve_contact(*scene.contact, s.bearing);
-          f.switching = s.law == ForceLaw::pinkus_sternlicht && scene.solver.switching == Switching::events;
-          if (f.switching) ++m.n_switching;
-          m.joint_film[k] = static_cast<int>(m.films.size());
-          m.films.push_back(f);
-        }
-        break;
-    }
-  }
-  for (size_t d = 0; d < scene.drivers.size(); ++d) {
-    const DriverSpec& s = scene.drivers[d];
-    Constraint c;
-    c.kind = Constraint::Kind::driver;
-    c.joint = static_cast<int>(d);
-    c.body_j = s.body;
-    c.driver_type = s.type;
-    c.omega = s.speed_rad_s;
-    c.Omega = s.reversal_frequency_rad_s;
-    c.phi0 = s.initial_angle_rad.value_or(scene.bodies[s.body].angle_rad);
-    c.rows = 1;
-    m.constraints.push_back(c);
-  }
+  for (size_t k = 0; k < scene.joints.size(); ++k) add_joint(m, scene, k);
+  for (size_t d = 0; d < scene.drivers.size(); ++d) m.constraints.push_back(driver_block(scene, static_cast<int>(d)));
   m.nc = count_rows(m.constraints);
   return m;
 }

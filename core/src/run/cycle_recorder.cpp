@@ -29,9 +29,9 @@ void CycleRecorder::film_extreme(double eps, double angle) {
   const double c = scene_.joints[scene_.metrics.joint].bearing.clearance_m();
   const double h = std::max(0.0, c * (1.0 - eps));
   cur_.max_eps = std::max(cur_.max_eps, eps);
-  if (h < cur_.min_film_m) {
-    cur_.min_film_m = h;
-    cur_.angle_at_min_film_rad = angle;
+  if (h < cur_.min_film_thickness_m) {
+    cur_.min_film_thickness_m = h;
+    cur_.crank_angle_at_min_film_rad = angle;
   }
 }
 
@@ -39,14 +39,14 @@ void CycleRecorder::measure(double t, const Workspace& ws, const double* qdd) {
   const double angle = phase_angle(t);
   const int mj = scene_.metrics.joint;
   if (empty_) {
-    cur_.min_film_m = std::numeric_limits<double>::infinity();
+    cur_.min_film_thickness_m = std::numeric_limits<double>::infinity();
     empty_ = false;
   }
   if (mj >= 0) {
     const double R = joint_force(m_, ws, mj).norm();
     if (R > cur_.peak_reaction_N) {
       cur_.peak_reaction_N = R;
-      cur_.angle_at_peak_reaction_rad = angle;
+      cur_.crank_angle_at_peak_reaction_rad = angle;
     }
     if (scene_.joints[mj].type == JointType::lubricated_revolute) {
       const int f = m_.joint_film[mj];
@@ -96,7 +96,7 @@ void CycleRecorder::section(const double* qv) {
 
 void CycleRecorder::close(double t_end, std::vector<CycleMetrics>& cycles) {
   cur_.t_end_s = t_end;
-  if (empty_) cur_.min_film_m = 0.0;
+  if (empty_) cur_.min_film_thickness_m = 0.0;
   if (!cycles.empty() && phase_index_ == kPhasePoints) {
     double d = 0.0;
     const size_t nf = orbit_channels(m_);

@@ -14,10 +14,10 @@ const std::array<SteadyMetric, 6>& steady_metrics() {
       {"min_film_thickness_m", "m", "minimum film thickness h = c (1 - eps) over the metric cycles",
        "minimum film thickness in the cycle",
        ": change at a 100x tighter rtol (+ the transient's remaining change)", &Metrics::min_film_thickness_m,
-       &Metrics::min_film_thickness_m_error, &CycleMetrics::min_film_m, false},
+       &Metrics::min_film_thickness_m_error, &CycleMetrics::min_film_thickness_m, false},
       {"crank_angle_at_min_film_rad", "rad", "crank angle at the minimum film thickness, in [0, 2 pi)",
-       "crank angle at the minimum film thickness", "", &Metrics::angle_at_min_film_rad,
-       &Metrics::angle_at_min_film_rad_error, &CycleMetrics::angle_at_min_film_rad, true},
+       "crank angle at the minimum film thickness", "", &Metrics::crank_angle_at_min_film_rad,
+       &Metrics::crank_angle_at_min_film_rad_error, &CycleMetrics::crank_angle_at_min_film_rad, true},
       {"max_eps", "1", "largest eccentricity ratio |e|/c over the metric cycles",
        "largest eccentricity ratio in the cycle", "", &Metrics::max_eps, &Metrics::max_eps_error,
        &CycleMetrics::max_eps, false},
@@ -25,8 +25,8 @@ const std::array<SteadyMetric, 6>& steady_metrics() {
        "peak force transmitted by the metric joint", "", &Metrics::peak_reaction_N, &Metrics::peak_reaction_N_error,
        &CycleMetrics::peak_reaction_N, false},
       {"crank_angle_at_peak_reaction_rad", "rad", "crank angle at the peak joint force, in [0, 2 pi)",
-       "crank angle at the peak joint force", "", &Metrics::angle_at_peak_reaction_rad,
-       &Metrics::angle_at_peak_reaction_rad_error, &CycleMetrics::angle_at_peak_reaction_rad, true},
+       "crank angle at the peak joint force", "", &Metrics::crank_angle_at_peak_reaction_rad,
+       &Metrics::crank_angle_at_peak_reaction_rad_error, &CycleMetrics::crank_angle_at_peak_reaction_rad, true},
       {"peak_acceleration_m_s2", "m s-2", "peak acceleration magnitude of the metric body",
        "peak acceleration of the metric body", "", &Metrics::peak_acceleration_m_s2,
        &Metrics::peak_acceleration_m_s2_error, &CycleMetrics::peak_acceleration_m_s2, false},
@@ -49,14 +49,14 @@ Metrics steady_cycle_metrics(const Scene& scene, const std::vector<CycleMetrics>
   mt.min_film_thickness_m = std::numeric_limits<double>::infinity();
   for (int i = 0; i < M; ++i) {
     const CycleMetrics& c = cycles[cycles.size() - 1 - i];
-    if (c.min_film_m < mt.min_film_thickness_m) {
-      mt.min_film_thickness_m = c.min_film_m;
-      mt.angle_at_min_film_rad = c.angle_at_min_film_rad;
+    if (c.min_film_thickness_m < mt.min_film_thickness_m) {
+      mt.min_film_thickness_m = c.min_film_thickness_m;
+      mt.crank_angle_at_min_film_rad = c.crank_angle_at_min_film_rad;
     }
     mt.max_eps = std::max(mt.max_eps, c.max_eps);
     if (c.peak_reaction_N > mt.peak_reaction_N) {
       mt.peak_reaction_N = c.peak_reaction_N;
-      mt.angle_at_peak_reaction_rad = c.angle_at_peak_reaction_rad;
+      mt.crank_angle_at_peak_reaction_rad = c.crank_angle_at_peak_reaction_rad;
     }
     mt.peak_acceleration_m_s2 = std::max(mt.peak_acceleration_m_s2, c.peak_acceleration_m_s2);
     mt.periodicity = std::max(mt.periodicity, c.periodicity);
@@ -65,8 +65,8 @@ Metrics steady_cycle_metrics(const Scene& scene, const std::vector<CycleMetrics>
   mt.has_film = mj >= 0 && scene.joints[mj].type == JointType::lubricated_revolute;
   if (!mt.has_film || !std::isfinite(mt.min_film_thickness_m)) mt.min_film_thickness_m = 0.0;
   if (mt.has_film) {
-    mt.safe_film_m = scene.metrics.safe_film_per_diameter * 2.0 * scene.joints[mj].bearing.bearing_radius_m;
-    mt.below_safe_film = mt.min_film_thickness_m < mt.safe_film_m;
+    mt.safe_film_thickness_m = scene.metrics.safe_film_per_diameter * 2.0 * scene.joints[mj].bearing.bearing_radius_m;
+    mt.below_safe_film = mt.min_film_thickness_m < mt.safe_film_thickness_m;
   }
   return mt;
 }

@@ -73,7 +73,7 @@ std::vector<double> cycle_distances(const std::vector<CycleMetrics>& cycles) {
 std::vector<double> cycle_min_films(const std::vector<CycleMetrics>& cycles) {
   std::vector<double> h;
   h.reserve(cycles.size());
-  for (const CycleMetrics& c : cycles) h.push_back(c.min_film_m);
+  for (const CycleMetrics& c : cycles) h.push_back(c.min_film_thickness_m);
   return h;
 }
 
@@ -82,7 +82,7 @@ std::vector<double> cycle_min_films(const std::vector<CycleMetrics>& cycles) {
 std::vector<double> film_changes(const std::vector<CycleMetrics>& cycles) {
   std::vector<double> d(cycles.size(), -1.0);
   for (size_t k = 1; k < cycles.size(); ++k) {
-    const double h = cycles[k].min_film_m, h0 = cycles[k - 1].min_film_m;
+    const double h = cycles[k].min_film_thickness_m, h0 = cycles[k - 1].min_film_thickness_m;
     if (h > 0.0 && h0 > 0.0) d[k] = std::abs(h - h0) / h;
   }
   return d;
@@ -104,11 +104,11 @@ TransientEstimate estimate_transient(const Scene& scene, const std::vector<Cycle
   if (!dh.empty() && dh.back() >= 0.0) {
     // The film's noise floor: the orbit's, relative to the film.
     const double c = scene.min_clearance_m().value_or(1.0);
-    e.film = steady::estimate_contraction(dh, kWindow, floor * c / std::max(cs.back().min_film_m, 1e-300));
+    e.film = steady::estimate_contraction(dh, kWindow, floor * c / std::max(cs.back().min_film_thickness_m, 1e-300));
   }
   return e;
 }
-bool has_film(const std::vector<CycleMetrics>& cs) { return !cs.empty() && cs.back().min_film_m > 0.0; }
+bool has_film(const std::vector<CycleMetrics>& cs) { return !cs.empty() && cs.back().min_film_thickness_m > 0.0; }
 
 bool transient_steady(const Scene& scene, const std::vector<CycleMetrics>& cs, double tol) {
   if (static_cast<int>(cs.size()) < scene.simulation.metric_cycles + 1) return false;
@@ -195,7 +195,7 @@ bool SteadyRun::transient(int cycles, std::function<bool(const std::vector<Cycle
   if (before > 0 && seg.res.status == RunStatus::budget_exceeded && o.max_steps > 0 &&
       seg.res.stats.steps >= o.max_steps) {
     detail::accumulate(res_.stats, seg.res.stats);
-    res_.steady.periods += static_cast<long long>(seg.res.cycles.size());
+    res_.steady.periods_integrated += static_cast<long long>(seg.res.cycles.size());
     return false;  // crawling: not the user's budget, the run stays ok
   }
   if (before == 0) {
@@ -215,7 +215,7 @@ bool SteadyRun::transient(int cycles, std::function<bool(const std::vector<Cycle
       res_.series.data[c].insert(res_.series.data[c].end(), seg.res.series.data[c].begin(),
                                  seg.res.series.data[c].end());
   }
-  res_.steady.periods += static_cast<long long>(res_.cycles.size() - before);
+  res_.steady.periods_integrated += static_cast<long long>(res_.cycles.size() - before);
   // A continuation's first boundary is where the transient ended: already there.
   const size_t skip = before == 0 || seg.boundaries.empty() ? 0 : 1;
   boundaries_.insert(boundaries_.end(), seg.boundaries.begin() + static_cast<std::ptrdiff_t>(skip),
@@ -252,7 +252,7 @@ SegmentResult SteadyRun::measure(const StartState& s, double factor, bool series
   o.series = series;
   SegmentResult seg = detail::run_segment(rm_, o);
   detail::accumulate(res_.stats, seg.res.stats);
-  res_.steady.periods += o.cycles;
+  res_.steady.periods_integrated += o.cycles;
   return seg;
 }
 
@@ -264,8 +264,8 @@ void SteadyRun::finish_transient() {
     sc.remaining_distance = est.remaining;
   }
   const std::vector<double> h = cycle_min_films(res_.cycles);
-  if (!h.empty()) sc.last_min_film_m = h.back();
-  if (h.size() >= 2) sc.min_film_drift_m = steady::trend_per_cycle(h, kWindow);
+  if (!h.empty()) sc.last_cycle_min_film_m = h.back();
+  if (h.size() >= 2) sc.min_film_drift_m_per_cycle = steady::trend_per_cycle(h, kWindow);
 }
 
 void SteadyRun::shoot() {
@@ -348,7 +348,7 @@ void SteadyRun::shoot_from_transient() {
   }
   const std::vector<double> winding =
       detail::winding_per_period(rm_.model, boundaries_[boundaries_.size() - 2], boundaries_.back());
-  PeriodMap period(rm_, chart, base, winding, 1.0, res_.stats, steady.periods);
+  PeriodMap period(rm_, chart, base, winding, 1.0, res_.stats, steady.periods_integrated);
   // 20 times the transient's steps per cycle (its first cycles, from rest, included).
   const long long budget =
       20 * res_.stats.steps / std::max<long long>(1, static_cast<long long>(res_.cycles.size())) + 1000;
@@ -358,7 +358,7 @@ void SteadyRun::shoot_from_transient() {
   // (the map's noise at rtol, ~1e-5 c at 1e-8, over a step of ~1e-2 c would be ~1e-3 in
   // them: Frêne long's |μ|max 0.9973 or 0.9990 with steps 1e-2 and 8.8e-3 at rtol 1e-8,
   // against 0.9966 from the transient's own decay), and the error bars.
-  PeriodMap tight_period(rm_, chart, base, winding, kTightFactor, res_.stats, steady.periods);
+  PeriodMap tight_period(rm_, chart, base, winding, kTightFactor, res_.stats, steady.periods_integrated);
   tight_period.set_step_budget(10 * budget);
   options.jacobian_map = &tight_period;
   const steady::ShootingResult found = steady::solve_periodic_orbit(period, chart.reduce(base.qv), options);
@@ -473,7 +473,7 @@ RunResult SteadyRun::run() {
     }
   }
   res_.metrics.steady = res_.status == RunStatus::ok && steady.kind == SteadyClass::periodic;
-  res_.metrics.cycles_to_steady = res_.metrics.steady ? static_cast<int>(steady.periods) : -1;
+  res_.metrics.cycles_to_steady = res_.metrics.steady ? static_cast<int>(steady.periods_integrated) : -1;
   res_.metrics.cycles_run = static_cast<int>(res_.cycles.size());
   res_.stats.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return std::move(res_);
@@ -485,13 +485,10 @@ namespace detail {
 
 void accumulate(SolverStats& t, const SolverStats& s) {
   static_cast<IntegratorStats&>(t) += s;
-  t.film_law_evals_jac += s.film_law_evals_jac;
-  t.observer_evals += s.observer_evals;
-  t.repartitions += s.repartitions;
-  t.mode_switches += s.mode_switches;
-  t.model_evals += s.model_evals;
-  t.gravity_evals += s.gravity_evals;
-  t.film_law_evals += s.film_law_evals;
+  using S = SolverStats;
+  for (long long S::*c : {&S::film_law_evals_jacobian, &S::observer_evals, &S::repartitions, &S::mode_switches,
+                          &S::model_evals, &S::gravity_evals, &S::film_law_evals})
+    t.*c += s.*c;
   t.max_position_drift = std::max(t.max_position_drift, s.max_position_drift);
   t.max_velocity_drift = std::max(t.max_velocity_drift, s.max_velocity_drift);
   if (t.method.empty()) {

@@ -295,18 +295,9 @@ struct NameTable<Cavitation> {
 
 /// The closed-form laws one by one (what `film_force`, lub/bearing/film_force.hpp,
 /// dispatches to with finite_reynolds); same preconditions.
-FilmForce film_force_pinkus_sternlicht(const BearingGeometry& g, double viscosity_Pa_s,
-                                       const BearingState& s);
-FilmForce film_force_frene_long(const BearingGeometry& g, double viscosity_Pa_s,
-                                const BearingState& s);
-FilmForce film_force_frene_short(const BearingGeometry& g, double viscosity_Pa_s,
-                                 const BearingState& s);
-FilmForce film_force_gumbel_long(const BearingGeometry& g, double viscosity_Pa_s,
-                                 const BearingState& s);
-FilmForce film_force_gumbel_short(const BearingGeometry& g, double viscosity_Pa_s,
-                                  const BearingState& s);
-FilmForce film_force_pinkus_sternlicht_continuous(const BearingGeometry& g, double viscosity_Pa_s,
-                                                  const BearingState& s);
+using ClosedFormLaw = FilmForce(const BearingGeometry& g, double viscosity_Pa_s, const BearingState& s);
+ClosedFormLaw film_force_pinkus_sternlicht, film_force_frene_long, film_force_frene_short, film_force_gumbel_long,
+    film_force_gumbel_short, film_force_pinkus_sternlicht_continuous;
 
 /// Force scale of the long-bearing laws, C = μ L R_J³ / c² [N s].
 double long_bearing_coefficient(const BearingGeometry& g, double viscosity_Pa_s);

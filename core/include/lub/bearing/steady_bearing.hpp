@@ -33,7 +33,7 @@ struct SteadyBearingResult {
   std::string message;       ///< why not, if not converged
   double eps = 0.0;
   double attitude_rad = 0.0;
-  double min_film_m = 0.0;
+  double min_film_thickness_m = 0.0;
   double sommerfeld = 0.0;
   FilmForce force;           ///< film force at the equilibrium (|F| = W)
   int evaluations = 0;       ///< force-law evaluations
@@ -64,7 +64,7 @@ void report_steady_bearing(Out& out, const SteadyBearingInput& in, double speed_
   }
   out["eps"] = r.eps;
   out["attitude_angle_deg"] = r.attitude_rad * 180.0 / kPi;
-  out["min_film_thickness_m"] = r.min_film_m;
+  out["min_film_thickness_m"] = r.min_film_thickness_m;
   out["radial_N"] = r.force.radial_N;
   out["tangential_N"] = r.force.tangential_N;
   out["force_law_evaluations"] = r.evaluations;

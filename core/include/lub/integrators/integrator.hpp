@@ -55,27 +55,22 @@ class OdeSystem {
 struct IntegratorStats {
   long long steps = 0;
   long long rhs_evals = 0;          ///< right-hand-side evaluations by the integrator
-  long long jac_evals = 0;          ///< Jacobian evaluations (BDF with dense Newton)
-  long long rhs_evals_jac = 0;      ///< right-hand sides spent on difference-quotient Jacobians
-  long long lin_setups = 0;
-  long long err_test_fails = 0;
-  long long nonlin_iters = 0;
-  long long nonlin_conv_fails = 0;
+  long long jacobian_evals = 0;     ///< Jacobian evaluations (BDF with dense Newton)
+  long long rhs_evals_jacobian = 0; ///< right-hand sides spent on difference-quotient Jacobians
+  long long linear_setups = 0;
+  long long error_test_fails = 0;
+  long long nonlinear_iters = 0;
+  long long nonlinear_conv_fails = 0;
   long long root_evals = 0;
 };
 
 /// Adds the counters of `b` to `a` (a run of several integrations; the counters kept
 /// across a restart: SUNDIALS resets its own at every reinit).
 inline IntegratorStats& operator+=(IntegratorStats& a, const IntegratorStats& b) {
-  a.steps += b.steps;
-  a.rhs_evals += b.rhs_evals;
-  a.jac_evals += b.jac_evals;
-  a.rhs_evals_jac += b.rhs_evals_jac;
-  a.lin_setups += b.lin_setups;
-  a.err_test_fails += b.err_test_fails;
-  a.nonlin_iters += b.nonlin_iters;
-  a.nonlin_conv_fails += b.nonlin_conv_fails;
-  a.root_evals += b.root_evals;
+  using S = IntegratorStats;
+  for (long long S::*c : {&S::steps, &S::rhs_evals, &S::jacobian_evals, &S::rhs_evals_jacobian, &S::linear_setups,
+                          &S::error_test_fails, &S::nonlinear_iters, &S::nonlinear_conv_fails, &S::root_evals})
+    a.*c += b.*c;
   return a;
 }
 

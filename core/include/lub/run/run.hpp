@@ -35,7 +35,7 @@ inline std::string to_string(RunStatus s) { return std::string(name_of(s)); }
 
 /// What the integrator did and what it cost: the integrator's counters and the run's.
 struct SolverStats : IntegratorStats {
-  long long film_law_evals_jac = 0; ///< force-law calls spent on structured Jacobians
+  long long film_law_evals_jacobian = 0;  ///< force-law calls spent on structured Jacobians
   long long observer_evals = 0;     ///< extra evaluations for metrics and series
   long long repartitions = 0;       ///< new choices of independent coordinates (partitioned)
   long long mode_switches = 0;      ///< switches of a discontinuous law (ε̇ = 0 crossings, sliding)
@@ -59,9 +59,9 @@ struct SolverStats : IntegratorStats {
 /// Extremes over one crank cycle (or the whole run without cycles).
 struct CycleMetrics {
   double t_start_s = 0.0, t_end_s = 0.0;
-  double min_film_m = 0.0, angle_at_min_film_rad = 0.0;
+  double min_film_thickness_m = 0.0, crank_angle_at_min_film_rad = 0.0;
   double max_eps = 0.0;
-  double peak_reaction_N = 0.0, angle_at_peak_reaction_rad = 0.0;
+  double peak_reaction_N = 0.0, crank_angle_at_peak_reaction_rad = 0.0;
   double peak_acceleration_m_s2 = 0.0;
   double periodicity = -1.0;  ///< max orbit distance to the previous cycle / c (-1: first cycle)
   /// The metric joint's state at the cycle's end (crank angle 0: a Poincaré section),
@@ -104,39 +104,39 @@ struct SteadyCycle {
   double orbit_residual = std::numeric_limits<double>::quiet_NaN();
   int newton_iterations = 0;
   int transient_cycles = 0;        ///< cycles integrated before shooting (or in all, transient)
-  long long periods = 0;           ///< crank periods integrated in all (transient, maps, error bars)
+  long long periods_integrated = 0; ///< crank periods integrated in all (transient, maps, error bars)
   /// Floquet multipliers (eigenvalues of the monodromy ∂P/∂z at the orbit), largest first
   std::vector<std::complex<double>> multipliers;
   /// Change of the per-cycle minimum film thickness per cycle over the transient's last
   /// cycles [m/cycle], least squares: how a drifting case drifts.
-  double min_film_drift_m = std::numeric_limits<double>::quiet_NaN();
+  double min_film_drift_m_per_cycle = std::numeric_limits<double>::quiet_NaN();
   /// The last transient cycle's minimum film thickness [m]
-  double last_min_film_m = std::numeric_limits<double>::quiet_NaN();
+  double last_cycle_min_film_m = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Steady-cycle metrics: extremes over the last `metric_cycles` cycles.
 struct Metrics {
   bool has_film = false;             ///< the metric joint is lubricated (film metrics valid)
   double min_film_thickness_m = 0.0; ///< h_min = c (1 − ε), the smallest
-  double angle_at_min_film_rad = 0.0;///< crank angle there, in [0, 2π)
+  double crank_angle_at_min_film_rad = 0.0;  ///< crank angle there, in [0, 2π)
   double max_eps = 0.0;
   double peak_reaction_N = 0.0;      ///< |force| transmitted by the metric joint
-  double angle_at_peak_reaction_rad = 0.0;
+  double crank_angle_at_peak_reaction_rad = 0.0;
   double peak_acceleration_m_s2 = 0.0;  ///< |a| of the metric body
   double periodicity = -1.0;         ///< the largest over the metric cycles (-1: unknown)
   // Error bars (simulation.error_bars; NaN: none): |metric − the same metric of the steady
   // cycle re-found and re-measured at a 100× tighter rtol| (+ a transient's remaining
   // change, README "Steady cycles").
   double min_film_thickness_m_error = std::numeric_limits<double>::quiet_NaN();
-  double angle_at_min_film_rad_error = std::numeric_limits<double>::quiet_NaN();
+  double crank_angle_at_min_film_rad_error = std::numeric_limits<double>::quiet_NaN();
   double max_eps_error = std::numeric_limits<double>::quiet_NaN();
   double peak_reaction_N_error = std::numeric_limits<double>::quiet_NaN();
-  double angle_at_peak_reaction_rad_error = std::numeric_limits<double>::quiet_NaN();
+  double crank_angle_at_peak_reaction_rad_error = std::numeric_limits<double>::quiet_NaN();
   double peak_acceleration_m_s2_error = std::numeric_limits<double>::quiet_NaN();
   bool steady = false;
   int cycles_to_steady = -1;         ///< cycles run when the criterion first held
   int cycles_run = 0;
-  double safe_film_m = 0.0;          ///< 0.00015 mm per mm of bearing diameter
+  double safe_film_thickness_m = 0.0;  ///< 0.00015 mm per mm of bearing diameter
   bool below_safe_film = false;
   // Energy balance (outputs.energy_balance): W_driver = ΔE + D_film + W_drift
   double driver_work_J = 0.0;
