@@ -99,15 +99,8 @@ py::dict simulate(const std::optional<std::string>& scene_path, const std::optio
   out["revision"] = lub::build_revision();
   std::vector<Scalar> metrics, solver;
   for (const auto& f : lub::metric_fields()) metrics.push_back({f.name, f.get(r), f.unit, f.integer, f.long_name});
-  if (r.metrics.driver_work_J != 0.0 || r.metrics.film_dissipation_J != 0.0) {  // as the run file
-    metrics.push_back({"driver_work_J", r.metrics.driver_work_J, "J", false, "work of the drivers"});
-    metrics.push_back({"film_dissipation_J", r.metrics.film_dissipation_J, "J", false,
-                       "energy dissipated by the films"});
-    metrics.push_back({"energy_change_J", r.metrics.energy_change_J, "J", false,
-                       "change of kinetic and potential energy"});
-    metrics.push_back({"energy_residual_J", r.metrics.energy_residual_J, "J", false,
-                       "driver work - energy change - film dissipation"});
-  }
+  if (lub::has_energy_balance(r))  // as the run file
+    for (const auto& f : lub::energy_fields()) metrics.push_back({f.name, f.get(r), f.unit, f.integer, f.long_name});
   for (const auto& f : lub::solver_fields()) solver.push_back({f.name, f.get(r), f.unit, f.integer, f.long_name});
   out["metrics"] = metrics;
   out["solver"] = solver;

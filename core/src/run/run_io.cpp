@@ -89,6 +89,23 @@ const std::vector<ResultField>& metric_fields() {
   return f;
 }
 
+const std::vector<ResultField>& energy_fields() {
+  static const std::vector<ResultField> f = {
+      {"driver_work_J", "J", false, [](const RunResult& r) { return r.metrics.driver_work_J; }, "work of the drivers"},
+      {"film_dissipation_J", "J", false, [](const RunResult& r) { return r.metrics.film_dissipation_J; },
+       "energy dissipated by the films"},
+      {"energy_change_J", "J", false, [](const RunResult& r) { return r.metrics.energy_change_J; },
+       "change of kinetic and potential energy"},
+      {"energy_residual_J", "J", false, [](const RunResult& r) { return r.metrics.energy_residual_J; },
+       "driver work - energy change - film dissipation"},
+  };
+  return f;
+}
+
+bool has_energy_balance(const RunResult& r) {
+  return r.metrics.driver_work_J != 0.0 || r.metrics.film_dissipation_J != 0.0;
+}
+
 const std::vector<ResultField>& solver_fields() {
   static const std::vector<ResultField> f = {
       {"steps", "1", true, [](const RunResult& r) { return double(r.stats.steps); }, "integrator steps"},
@@ -259,12 +276,8 @@ void write_run_file(const std::string& path, const std::string& scene_text, cons
     for (const auto& mu : r.steady.multipliers) mod.push_back(std::abs(mu)), arg.push_back(std::arg(mu));
     m.set_attribute("multiplier_modulus", mod);
     m.set_attribute("multiplier_angle_rad", arg);
-    if (r.metrics.driver_work_J != 0.0 || r.metrics.film_dissipation_J != 0.0) {
-      m.set_attribute("driver_work_J", r.metrics.driver_work_J);
-      m.set_attribute("film_dissipation_J", r.metrics.film_dissipation_J);
-      m.set_attribute("energy_change_J", r.metrics.energy_change_J);
-      m.set_attribute("energy_residual_J", r.metrics.energy_residual_J);
-    }
+    if (has_energy_balance(r))
+      for (const auto& fld : energy_fields()) m.set_attribute(fld.name, fld.get(r));
     h5::Group sv = f.require_group("solver");
     sv.set_attribute("method", r.stats.method);
     sv.set_attribute("formulation", r.stats.formulation);

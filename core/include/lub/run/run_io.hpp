@@ -27,6 +27,10 @@ struct ResultField {
 /// Steady-cycle metrics, in column order: the six of steady_metrics(), periodicity, their
 /// error bars, the classification's numbers, the Floquet multipliers, the safe film.
 const std::vector<ResultField>& metric_fields();
+/// The energy balance (outputs.energy_balance), reported where a run has one
+/// (has_energy_balance): driver work, film dissipation, energy change, residual [J].
+const std::vector<ResultField>& energy_fields();
+bool has_energy_balance(const RunResult& r);
 /// Solver statistics and cost, in column order.
 const std::vector<ResultField>& solver_fields();
 
