@@ -1,12 +1,12 @@
 // Engine against the floor: the cost per crank cycle of the general engine (absolute
 // coordinates, constraints, observers and metrics) and of the hand-written two-degree-
-// of-freedom model of the same lubricated slider-crank (tests/floor_slider_crank.hpp),
+// of-freedom model of the same lubricated slider-crank (tests/fixtures/floor_slider_crank.hpp),
 // with the same integrator (CVODE BDF, dense Newton) and tolerance. Both integrate 4
 // cycles from the paper's initial state; time per cycle = time / 4. After the runs a
 // table gives, per force law and tolerance, the engine's CPU time over the floor's for
 // each formulation, and each law's cost over the Frêne long law's. The printed
 // Pinkus–Sternlicht law runs with events on both sides (the floor's Filippov switching,
-// tests/floor_slider_crank.hpp).
+// tests/fixtures/floor_slider_crank.hpp).
 //
 //   build/tests/bench/bench_floor --benchmark_min_time=1
 #include <benchmark/benchmark.h>

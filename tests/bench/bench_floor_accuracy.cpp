@@ -1,13 +1,13 @@
 // Engine against the floor at equal accuracy (issue 16): work-precision of the general engine
 // (partitioned formulation, CVODE BDF, observers and metrics: run_scene as a study runs it)
-// and of the hand-written two-degree-of-freedom model (tests/floor_slider_crank.hpp, CVODE
+// and of the hand-written two-degree-of-freedom model (tests/fixtures/floor_slider_crank.hpp, CVODE
 // BDF with a dense solver, absolute tolerances per state in their own units), each at
 // rtol 1e-5 ... 1e-11, 4 crank cycles from the paper's initial state (ε = 0).
 //
 // Error: the largest distance, in clearances, between the joint's eccentricity vector at the
 // 4 cycle ends and a reference's: the floor at rtol 1e-12 (checked against the engine at
 // 1e-12: printed), for the printed Pinkus–Sternlicht law with its events on both sides (the
-// engine's mode switches and sliding; the floor's own, tests/floor_slider_crank.hpp).
+// engine's mode switches and sliding; the floor's own, tests/fixtures/floor_slider_crank.hpp).
 // Cost: the best of `repeats` CPU
 // times (steady_clock on an otherwise idle core), per cycle. The costs at errors 1e-4 c and
 // 1e-6 c come from log-log interpolation between the neighbouring tolerances; the ratio of

@@ -70,14 +70,14 @@ IntegrationPlan plan_integration(const Scene& scene, const Model& m, double fact
   plan.formulation = sol.formulation == Formulation::partitioned && m.nq <= m.nc ? Formulation::baumgarte
                                                                                  : sol.formulation;
   is.user_jacobian = plan.newton && sol.jacobian == JacobianKind::structured;
-  // A fresh Jacobian every step where a reused one fails (docs/theory/formulations.md,
-  // "Jacobian reuse"): partitioned, whose squeeze-film mode lies almost along a degree of
-  // freedom and changes within a few degrees of crank, so a stale Jacobian lets an
-  // unconverged stiff component through the error test until CVODE gives up at the dead
-  // centres; and projection with event switching, likewise at the dead centres. Not with
-  // switching none: difference quotients across the printed law's jump make a fresh
-  // Jacobian worse than a reused one. Pinned by the full factorial (tools/nightly.sh) and
-  // the hard case law_pinkus_sternlicht_no_events (tests/test_stress_hard_cases.cpp).
+  // A fresh Jacobian every step where a reused one fails. Partitioned: the squeeze film's
+  // stiff mode lies almost along a degree of freedom and changes within a few degrees of
+  // crank, so a stale Jacobian lets an unconverged stiff component through the error test
+  // until CVODE gives up at the dead centres. Projection with event switching fails the
+  // same way at the dead centres (measured on the full factorial: 4 of 192 cases not ok
+  // with reuse, none with a fresh Jacobian). Not with switching none: difference quotients
+  // across the printed law's jump make a fresh Jacobian worse than a reused one (the hard
+  // case law_pinkus_sternlicht_no_events, tests/test_stress_hard_cases.cpp).
   is.jacobian_every_step = plan.formulation == Formulation::partitioned ||
                            (sol.projection && sol.switching == Switching::events);
   return plan;

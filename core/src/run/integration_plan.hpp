@@ -1,6 +1,6 @@
 // How a scene is integrated (internal to the run stage): the integrator's settings, the
 // formulation actually integrated, and the tolerances, each state's absolute tolerance
-// derived from its unit where the integrator is set up (docs/theory/tolerances.md).
+// derived from its unit where the integrator is set up.
 #pragma once
 
 #include <optional>

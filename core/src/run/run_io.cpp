@@ -34,7 +34,7 @@ const std::vector<ResultField>& metric_fields() {
                         sm.long_name, true});
     fields.push_back({"periodicity", "1", false, [](const RunResult& r) { return r.metrics.periodicity; },
                       "largest cycle-to-cycle journal orbit distance over the metric cycles / clearance (-1: unknown)"});
-    // Error bars (docs/theory/steady-cycles.md): NaN without simulation.error_bars.
+    // Error bars (set_errors, steady_cycle.cpp): NaN without simulation.error_bars.
     for (const SteadyMetric& sm : steady_metrics())
       fields.push_back({std::string(sm.name) + "_error", sm.unit, false,
                         [e = sm.error](const RunResult& r) { return r.metrics.*e; },

@@ -1,4 +1,4 @@
-// A run's steady cycle (docs/theory/steady-cycles.md): run_scene strings integration segments
+// A run's steady cycle: run_scene strings integration segments
 // (segment.hpp) together by simulation.steady:
 //  - transient: cycle after cycle, stopped (stop_when_steady) once the contraction
 //    estimate says the orbit is within steady_tolerance of its limit, δ ρ/(1 − ρ);
