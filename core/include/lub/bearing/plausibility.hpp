@@ -32,14 +32,17 @@ struct PlausibleRange {
 /// to a heavy gear oil at room temperature (5 Pa s). Above: cP or mPa s given as Pa s;
 /// below: a kinematic viscosity in m^2/s given as Pa s.
 inline constexpr PlausibleRange kPlausibleViscosityPaS{1e-4, 5.0};
+inline constexpr const char* kPlausibleViscosityText = "1e-4 – 5 Pa s";
 /// Radial clearance over journal radius c/R: 1e-4 to 0.3. Running bearings have ~1e-3; the
 /// paper's worn joint 0.053 (0.5 mm on 9.5 mm), the shipped extreme configs/scenes/hard/
 /// clearance_2mm.json 0.25. Above: a length in mm given as m, or a diameter as a radius;
 /// below: a radius in mm given as m, or a clearance converted to m twice.
 inline constexpr PlausibleRange kPlausibleClearanceRatio{1e-4, 0.3};
+inline constexpr const char* kPlausibleClearanceRatioText = "1e-4 – 0.3";
 /// Driver (crank) or journal speed |n| [rpm]: up to 50 000 rpm (a fast engine turns at 20 000).
 /// Above: a speed in deg/s or rad/min given as rpm, or a digit too many.
 inline constexpr double kPlausibleMaxSpeedRpm = 5e4;
+inline constexpr const char* kPlausibleMaxSpeedText = "50000 rpm";
 
 /// A number as the warnings print it (%.6g: 400, 0.0005, 5e+06).
 inline std::string plausibility_number(double v) {
@@ -57,7 +60,7 @@ inline std::optional<std::string> implausible_viscosity(const std::string& field
           ? mu + " cP is " + plausibility_number(mu_Pa_s * 1e-3) + " Pa s"
           : "a kinematic viscosity in m^2/s? " + mu + " m^2/s of an oil of 870 kg/m^3 is " +
                 plausibility_number(mu_Pa_s * 870.0) + " Pa s";
-  return field + " = " + mu + " Pa s is outside the plausible 1e-4 – 5 Pa s (" + slip + ")";
+  return field + " = " + mu + " Pa s is outside the plausible " + kPlausibleViscosityText + " (" + slip + ")";
 }
 
 /// "QUANTITY = C m / R m = C/R is outside the plausible clearance/radius 1e-4 – 0.3 (likely
@@ -67,21 +70,23 @@ inline std::optional<std::string> implausible_clearance_ratio(const std::string&
   const double ratio = clearance_m / radius_m;
   if (!std::isfinite(ratio) || kPlausibleClearanceRatio.contains(ratio)) return std::nullopt;
   const std::string c = plausibility_number(clearance_m);
+  // A clearance of 10 mm or more is itself implausible: then say what it is in mm.
   const std::string slip =
       ratio > kPlausibleClearanceRatio.max
-          ? "a length in mm given as m, or a diameter as a radius? " + c + " mm is " +
-                plausibility_number(clearance_m * 1e-3) + " m"
+          ? "a length in mm given as m, or a diameter as a radius?" +
+                (clearance_m >= 0.01 ? " " + c + " mm is " + plausibility_number(clearance_m * 1e-3) + " m" : "")
           : "a radius in mm given as m, or a clearance converted to m twice? " + c + " m × 1000 is " +
                 plausibility_number(clearance_m * 1e3) + " m";
   return quantity + " = " + c + " m / " + plausibility_number(radius_m) + " m = " + plausibility_number(ratio) +
-         " is outside the plausible clearance/radius 1e-4 – 0.3 (" + slip + ")";
+         " is outside the plausible clearance/radius " + kPlausibleClearanceRatioText + " (" + slip + ")";
 }
 
 /// "FIELD = N rpm is above the plausible 50000 rpm (likely slip)", or nothing.
 inline std::optional<std::string> implausible_speed_rpm(const std::string& field, double rpm) {
   if (!std::isfinite(rpm) || std::fabs(rpm) <= kPlausibleMaxSpeedRpm) return std::nullopt;
   const std::string n = plausibility_number(rpm);
-  return field + " = " + n + " rpm is above the plausible 50000 rpm (a speed in deg/s or rad/min given as rpm, " +
+  return field + " = " + n + " rpm is above the plausible " + kPlausibleMaxSpeedText +
+         " (a speed in deg/s or rad/min given as rpm, " +
          "or a digit too many? " + n + " deg/s is " + plausibility_number(rpm / 6.0) + " rpm)";
 }
 
@@ -92,7 +97,7 @@ inline std::optional<std::string> implausible_speed_rad_s(const std::string& fie
   if (!std::isfinite(rpm) || std::fabs(rpm) <= kPlausibleMaxSpeedRpm) return std::nullopt;
   const std::string w = plausibility_number(rad_s);
   return field + " = " + w + " rad/s (" + plausibility_number(rpm) +
-         " rpm) is above the plausible 50000 rpm (rpm given as rad/s? " + w + " rpm is " +
+         " rpm) is above the plausible " + kPlausibleMaxSpeedText + " (rpm given as rad/s? " + w + " rpm is " +
          plausibility_number(rad_s * 2.0 * kPi / 60.0) + " rad/s)";
 }
 
