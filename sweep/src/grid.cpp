@@ -342,7 +342,6 @@ Grid parse_grid(const std::string& text, const std::string& base_dir, const std:
   r.finish();
   if (pending.empty()) throw InputError("grid: needs axes, cases or grids (see the README, \"Writing a grid\")");
   expand_blocks(g, cx, pending);
-  g.warnings = grid_warnings(g);
   return g;
 }
 

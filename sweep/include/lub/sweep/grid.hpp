@@ -97,7 +97,9 @@ struct Grid {
   std::vector<Axis> axes;
   std::vector<Block> blocks;
   std::vector<Case> cases;
-  std::vector<std::string> warnings;  ///< plausibility warnings of its cases (grid_warnings)
+  /// The plausibility warnings of its cases (Scene::warnings, lub/bearing/plausibility.hpp),
+  /// each distinct warning once: "W; in 3 of 16 cases (the first case_0004)".
+  std::vector<std::string> warnings;
 };
 
 /// Reads, validates and expands a grid file. Throws lub::InputError naming the field, the
@@ -110,11 +112,6 @@ Grid load_grid(const std::string& path);
 /// The same from the grid's text; relative scene paths are resolved against `base_dir`,
 /// `file` is recorded as the grid's file name.
 Grid parse_grid(const std::string& text, const std::string& base_dir, const std::string& file = "");
-
-/// The plausibility warnings of the grid's cases (Scene::warnings, lub/bearing/plausibility.hpp),
-/// each distinct warning once: "W; in 3 of 16 cases (the first case_0004)". load_grid and
-/// parse_grid set Grid::warnings with it.
-std::vector<std::string> grid_warnings(const Grid& grid);
 
 /// The long_name attribute of an axis's column and dimension scale.
 std::string axis_long_name(const Axis& axis);
