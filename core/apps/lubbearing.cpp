@@ -2,13 +2,14 @@
 //
 //   lubbearing force  --model M --eps E --eps-dot ED --omega W --gamma-dot GD
 //                     --radius-m R --clearance-m C --length-m L --viscosity-Pa-s MU [--gamma G]
-//                     [finite_reynolds options]
+//                     [finite_reynolds options] [--strict]
 //   lubbearing steady --model M --load-N W --speed-rpm N
 //                     --radius-m R --clearance-m C --length-m L --viscosity-Pa-s MU
-//                     [finite_reynolds options]
+//                     [finite_reynolds options] [--strict]
 //
-// Prints one JSON object on stdout. Exit status: 0 done, 2 bad arguments (message on stderr
-// naming the argument, its value and the rule), 3 a steady state that does not exist (the
+// Prints one JSON object on stdout, with the plausibility warnings (lub/bearing/plausibility.hpp)
+// in "warnings" (also printed on stderr). Exit status: 0 done, 2 bad arguments (message on
+// stderr naming the argument, its value and the rule; or an implausible one under --strict), 3 a steady state that does not exist (the
 // JSON says why).
 #include <nlohmann/json.hpp>
 
@@ -24,6 +25,7 @@
 
 #include "lub/bearing/bearing_inputs.hpp"
 #include "lub/bearing/film_force.hpp"
+#include "lub/bearing/plausibility.hpp"
 #include "lub/common/constants.hpp"
 #include "lub/bearing/reynolds.hpp"
 #include "lub/bearing/steady_bearing.hpp"
@@ -35,10 +37,10 @@ using lub::kPi;
 const char* kUsage =
     "usage: lubbearing force  --model M --eps E --eps-dot ED --omega W --gamma-dot GD\n"
     "                         --radius-m R --clearance-m C --length-m L --viscosity-Pa-s MU\n"
-    "                         [--gamma G] [finite_reynolds options]\n"
+    "                         [--gamma G] [finite_reynolds options] [--strict]\n"
     "       lubbearing steady --model M --load-N W --speed-rpm N\n"
     "                         --radius-m R --clearance-m C --length-m L --viscosity-Pa-s MU\n"
-    "                         [finite_reynolds options]\n"
+    "                         [finite_reynolds options] [--strict]\n"
     "\n"
     "force:  film force on the journal (SI units) at eccentricity ratio E (0 <= E < 1), its rate\n"
     "        ED [1/s], journal angular velocity W relative to the bearing [rad/s] and rate GD of\n"
@@ -60,6 +62,11 @@ const char* kUsage =
     "  --n-z N                  axial nodes over half the length (default 8, >= 1)\n"
     "  --groove                 ambient pressure along the line of maximum film thickness\n"
     "                           (Raimondi & Boyd's supply condition)\n"
+    "  --strict                 an implausible value (viscosity outside 1e-4 - 5 Pa s,\n"
+    "                           clearance/radius outside 1e-4 - 0.3, speed above 50000 rpm:\n"
+    "                           probably a unit slip) is an error, not a warning\n"
+    "\n"
+    "Plausibility warnings go to stderr and into the JSON's \"warnings\" (a list).\n"
     "\n"
     "Exit status: 0 done, 2 bad arguments, 3 no steady state (reason in the JSON).\n";
 
@@ -177,6 +184,24 @@ Common read_common(const Args& a) {
   return c;
 }
 
+// The plausibility warnings of the common arguments (lub/bearing/plausibility.hpp).
+std::vector<std::string> warnings_of(const Common& c) {
+  std::vector<std::string> w;
+  if (auto v = lub::implausible_viscosity("--viscosity-Pa-s", c.viscosity)) w.push_back(*v);
+  if (auto r = lub::implausible_clearance_ratio("--clearance-m / --radius-m", c.clearance, c.geometry.journal_radius_m))
+    w.push_back(*r);
+  return w;
+}
+
+// Prints the warnings on stderr once. Under --strict they refuse the input: returns true
+// (exit 2, no JSON).
+bool refuse_implausible(const std::vector<std::string>& warnings, bool strict) {
+  for (const std::string& w : warnings)
+    std::cerr << "lubbearing: " << (strict ? "" : "warning: ") << w << (strict ? "; refused under --strict" : "")
+              << "\n";
+  return strict && !warnings.empty();
+}
+
 nlohmann::json describe(const Common& c) {
   nlohmann::json j;
   j["model"] = std::string(lub::name_of(c.law));
@@ -200,7 +225,7 @@ const std::set<std::string> kCommonFlags = {"--model",          "--radius-m",   
 int run_force(int argc, char** argv) {
   std::set<std::string> flags = kCommonFlags;
   flags.insert({"--eps", "--eps-dot", "--omega", "--gamma-dot", "--gamma"});
-  const Args a(argc, argv, 2, flags, {"--groove"});
+  const Args a(argc, argv, 2, flags, {"--groove", "--strict"});
   const Common c = read_common(a);
   lub::BearingState s;
   s.eps = a.number("--eps", lub::is_film_eccentricity_ratio, std::string(lub::kFilmEccentricityRatioRule));
@@ -208,6 +233,10 @@ int run_force(int argc, char** argv) {
   const double omega = a.number("--omega", [](double) { return true; }, "");
   const double gamma_dot = a.number("--gamma-dot", [](double) { return true; }, "");
   s.wedge = omega - 2.0 * gamma_dot;
+  const double gamma = a.has("--gamma") ? a.number("--gamma", [](double) { return true; }, "") : 0.0;
+  std::vector<std::string> warnings = warnings_of(c);
+  if (auto w = lub::implausible_speed_rad_s("--omega", omega)) warnings.push_back(*w);
+  if (refuse_implausible(warnings, a.has("--strict"))) return 2;
   lub::FiniteBearingSolver solver(c.finite);
   const lub::FilmForce f = lub::film_force(c.law, c.geometry, c.viscosity, s, &solver);
   nlohmann::json out = describe(c);
@@ -220,16 +249,16 @@ int run_force(int argc, char** argv) {
   out["tangential_N"] = f.tangential_N;
   out["magnitude_N"] = std::hypot(f.radial_N, f.tangential_N);
   if (a.has("--gamma")) {
-    const double g = a.number("--gamma", [](double) { return true; }, "");
-    out["gamma_rad"] = g;
-    out["x_N"] = f.radial_N * std::cos(g) - f.tangential_N * std::sin(g);
-    out["y_N"] = f.radial_N * std::sin(g) + f.tangential_N * std::cos(g);
+    out["gamma_rad"] = gamma;
+    out["x_N"] = f.radial_N * std::cos(gamma) - f.tangential_N * std::sin(gamma);
+    out["y_N"] = f.radial_N * std::sin(gamma) + f.tangential_N * std::cos(gamma);
   }
   if (c.law == lub::ForceLaw::finite_reynolds) {
     out["active_set_iterations"] = solver.stats().active_set_iterations;
     out["cavitated_cells"] = solver.stats().cavitated_cells;
     out["converged"] = solver.stats().converged;
   }
+  out["warnings"] = warnings;
   std::cout << out.dump(2) << "\n";
   return 0;
 }
@@ -237,7 +266,7 @@ int run_force(int argc, char** argv) {
 int run_steady(int argc, char** argv) {
   std::set<std::string> flags = kCommonFlags;
   flags.insert({"--load-N", "--speed-rpm"});
-  const Args a(argc, argv, 2, flags, {"--groove"});
+  const Args a(argc, argv, 2, flags, {"--groove", "--strict"});
   const Common c = read_common(a);
   lub::SteadyBearingInput in;
   in.law = c.law;
@@ -247,9 +276,13 @@ int run_steady(int argc, char** argv) {
   in.load_N = a.number("--load-N", lub::is_positive_input, lub::positive_rule("N"));
   const double rpm = a.number("--speed-rpm", lub::is_journal_speed, std::string(lub::kJournalSpeedRule));
   in.speed_rad_s = rpm * 2.0 * kPi / 60.0;
+  std::vector<std::string> warnings = warnings_of(c);
+  if (auto w = lub::implausible_speed_rpm("--speed-rpm", rpm)) warnings.push_back(*w);
+  if (refuse_implausible(warnings, a.has("--strict"))) return 2;
   const lub::SteadyBearingResult r = lub::solve_steady_bearing(in);
   nlohmann::json out = describe(c);
   lub::report_steady_bearing(out, in, rpm, r);
+  out["warnings"] = warnings;
   std::cout << out.dump(2) << "\n";
   return r.converged ? 0 : 3;
 }

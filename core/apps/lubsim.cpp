@@ -1,8 +1,9 @@
 // lubsim: runs one scene and writes its run file.
 //
-//   lubsim SCENE.json -o RUN.h5 [--set POINTER=VALUE ...] [--quiet]
+//   lubsim SCENE.json -o RUN.h5 [--set POINTER=VALUE ...] [--strict] [--quiet]
 //
-// Exit status: 0 run completed; 2 bad input (nothing written); 3 the run could not be
+// Exit status: 0 run completed; 2 bad input, or implausible input under --strict (nothing
+// written); 3 the run could not be
 // completed (film collapse, solver failure, budget): the file is written with its status.
 #include <cstdio>
 #include <exception>
@@ -19,7 +20,7 @@
 namespace {
 
 const char* kUsage =
-    "usage: lubsim SCENE.json -o RUN.h5 [--set POINTER=VALUE ...] [--quiet]\n"
+    "usage: lubsim SCENE.json -o RUN.h5 [--set POINTER=VALUE ...] [--strict] [--quiet]\n"
     "\n"
     "Runs one scene (see README, \"Scene format\") and writes RUN.h5: /series (the\n"
     "scene's channels, each with a units attribute), /metrics, /solver, /cycles, and\n"
@@ -30,8 +31,14 @@ const char* kUsage =
     "                          VALUE is parsed as JSON, a bare word is a string, e.g.\n"
     "                          --set /joints/3/viscosity_Pa_s=0.04\n"
     "                          --set /joints/3/force_law=frene_long\n"
+    "  --strict                an implausible value (README \"Scene format\", plausible\n"
+    "                          ranges: a viscosity, clearance or speed that looks like a\n"
+    "                          unit slip) is an error, not a warning\n"
     "  -q, --quiet             no summary on stdout\n"
     "  --version               print the version and exit\n"
+    "\n"
+    "Plausibility warnings go to stderr, once, and into the run file's root attribute\n"
+    "`warnings`.\n"
     "\n"
     "Exit status: 0 completed, 2 bad input (no file written), 3 run not completed\n"
     "(file written with its status and message).\n";
@@ -46,7 +53,7 @@ int usage_error(const std::string& msg) {
 int main(int argc, char** argv) {
   std::string scene_path, out_path;
   std::vector<std::string> sets;
-  bool quiet = false;
+  bool quiet = false, strict = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "-h" || a == "--help") {
@@ -65,6 +72,8 @@ int main(int argc, char** argv) {
       sets.push_back(a.substr(6));
     } else if (a == "-q" || a == "--quiet") {
       quiet = true;
+    } else if (a == "--strict") {
+      strict = true;
     } else if (!a.empty() && a[0] == '-') {
       return usage_error("unknown option " + a);
     } else if (scene_path.empty()) {
@@ -92,6 +101,11 @@ int main(int argc, char** argv) {
     std::cerr << "lubsim: " << scene_path << ": " << e.what() << "\n";
     return 2;
   }
+  // Plausibility (lub/bearing/plausibility.hpp): warned once, before the run; refused under --strict.
+  for (const std::string& w : scene.warnings)
+    std::cerr << "lubsim: " << (strict ? scene_path + ": " : std::string("warning: ")) << w
+              << (strict ? "; refused under --strict" : "") << "\n";
+  if (strict && !scene.warnings.empty()) return 2;
 
   lub::RunResult r;
   try {
@@ -101,7 +115,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    lub::write_run_file(out_path, scene_text, "lubsim", r);
+    lub::write_run_file(out_path, scene_text, "lubsim", r, scene.warnings);
   } catch (const std::exception& e) {
     std::cerr << "lubsim: cannot write " << out_path << ": " << e.what() << "\n";
     return 1;

@@ -21,6 +21,7 @@
 
 #include "lub/bearing/bearing_inputs.hpp"
 #include "lub/bearing/film_force.hpp"
+#include "lub/bearing/plausibility.hpp"
 #include "lub/common/constants.hpp"
 #include "lub/io/json_reader.hpp"
 #include "lub/io/output_path.hpp"
@@ -60,12 +61,14 @@ struct Column {
 
 // One run, as lubsim does it: output path check, scene (file or JSON text), overrides in
 // order, validation, run, and the run file only when `output` is given. Returns a dict of plain
-// values and Scalar/Column records (named fields).
+// values and Scalar/Column records (named fields). `strict`: a plausibility warning is an
+// InputError (lubsim --strict), raised before any work.
 py::dict simulate(const std::optional<std::string>& scene_path, const std::optional<std::string>& scene_text,
                   const std::string& origin, const std::vector<std::string>& assignments,
-                  const std::optional<std::string>& output, const std::string& program) {
+                  const std::optional<std::string>& output, const std::string& program, bool strict) {
   lub::RunResult r;
   std::string effective;
+  std::vector<std::string> warnings;
   {
     py::gil_scoped_release release;
     // The output path first, as lubsim: refused before any work, nothing created.
@@ -76,13 +79,19 @@ py::dict simulate(const std::optional<std::string>& scene_path, const std::optio
       nlohmann::json doc = scene_path ? lub::read_json_file(*scene_path) : lub::parse_json_text(*scene_text, origin);
       for (const auto& s : assignments) lub::apply_override(doc, s);
       scene = lub::parse_scene(doc);
+      warnings = scene.warnings;
+      if (strict && !warnings.empty()) {
+        std::string all;
+        for (const std::string& w : warnings) all += (all.empty() ? "" : "\n") + w;
+        throw lub::InputError(all + "; refused under strict=True");
+      }
       effective = doc.dump(2);
       r = lub::run_scene(scene);  // throws InputError only if the mechanism cannot assemble
     } catch (const lub::InputError& e) {
       // lubsim prints "lubsim: SCENE: message"; the message here is "SCENE: message".
       throw lub::InputError(origin + ": " + e.what());
     }
-    if (output) lub::write_run_file(*output, effective, program, r);
+    if (output) lub::write_run_file(*output, effective, program, r, warnings);
   }
   py::dict out;
   out["status"] = lub::to_string(r.status);
@@ -97,6 +106,7 @@ py::dict simulate(const std::optional<std::string>& scene_path, const std::optio
   out["program"] = program;
   out["version"] = lub::program_version();
   out["revision"] = lub::build_revision();
+  out["warnings"] = warnings;
   std::vector<Scalar> metrics, solver;
   for (const auto& f : lub::metric_fields()) metrics.push_back({f.name, f.get(r), f.unit, f.integer, f.long_name});
   if (lub::has_energy_balance(r))  // as the run file
@@ -265,6 +275,13 @@ py::dict steady_bearing(const std::string& law, double load_N, double speed_rpm,
     out["groove_at_max_film"] = b.finite.groove_at_max_film;
   }
   lub::report_steady_bearing(out, in, speed_rpm, r);
+  // Plausibility warnings, as lubbearing's "warnings" (lub/bearing/plausibility.hpp), named
+  // after the Python arguments.
+  std::vector<std::string> warnings;
+  if (auto w = lub::implausible_viscosity("viscosity_Pa_s", viscosity_Pa_s)) warnings.push_back(*w);
+  if (auto w = lub::implausible_clearance_ratio("clearance_m / radius_m", clearance_m, radius_m)) warnings.push_back(*w);
+  if (auto w = lub::implausible_speed_rpm("speed_rpm", speed_rpm)) warnings.push_back(*w);
+  out["warnings"] = warnings;
   return out;
 }
 
@@ -285,7 +302,7 @@ PYBIND11_MODULE(_lubjoint, m) {
       .def_readonly("long_name", &Column::long_name)
       .def_readonly("values", &Column::values);
   m.def("simulate", &simulate, py::arg("scene_path"), py::arg("scene_text"), py::arg("origin"),
-        py::arg("assignments"), py::arg("output"), py::arg("program") = "lubjoint",
+        py::arg("assignments"), py::arg("output"), py::arg("program") = "lubjoint", py::arg("strict") = false,
         "Runs one scene as lubsim does (GIL released); returns a dict with Scalar/Column records. See lubjoint.simulate.");
   m.def("force", &force, py::arg("law"), py::arg("eps"), py::arg("eps_dot"), py::arg("wedge_rad_s"),
         py::arg("radius_m"), py::arg("clearance_m"), py::arg("length_m"), py::arg("viscosity_Pa_s"),

@@ -157,14 +157,17 @@ void Expander::explicit_cases(Block& b, const json& cases, const std::string& pa
 /// the canonical JSON it runs (a parsed scene costs rank 0 ~5 kB a case: 0.5 GB for 10⁵).
 int Expander::add_case(json scene, const std::string& label, const std::string& what, const std::vector<Given>& given) {
   bool valid = false;
+  std::vector<std::string> warnings;  // the plausibility warnings of the scene that runs
   if (cx_.samples_per_cycle && cx_.stores_series) {
     // The sample interval follows the case's cycle period, which only the parsed scene
     // knows: when it sets one, the scene that runs is parsed again below.
     const Scene s = parse_or_blame(scene, what, given);
     if (const auto period = s.cycle_period_s())
       scene["outputs"]["sample_interval_s"] = *period / *cx_.samples_per_cycle;
-    else
+    else {
       valid = true;
+      warnings = s.warnings;
+    }
   }
   Case c;
   c.scene = canonical_json(scene);
@@ -174,13 +177,14 @@ int Expander::add_case(json scene, const std::string& label, const std::string& 
     for (const Given& g : given) given_[static_cast<std::size_t>(found->second)].emplace(g.axis, g.value);
     return found->second;
   }
-  if (!valid) parse_or_blame(scene, what, given);
+  if (!valid) warnings = parse_or_blame(scene, what, given).warnings;
   if (g_.cases.size() >= kMaxCases) throw InputError("grid: more than " + std::to_string(kMaxCases) + " cases");
   c.id = static_cast<int>(g_.cases.size());
   c.label = label.empty() ? "base scene" : label;
   by_hash_[c.hash] = c.id;
   std::map<int, json>& columns = given_.emplace_back();
   for (const Given& g : given) columns[g.axis] = g.value;  // two keys of one axis: the last, as applied
+  warnings_.push_back(std::move(warnings));
   g_.cases.push_back(std::move(c));
   return g_.cases.back().id;
 }
@@ -219,6 +223,7 @@ void Expander::finish() {
   set_column_types();
   std::size_t total = g_.cases.size();
   for (Case& c : g_.cases) c.name = case_name(c.id, total);
+  g_.warnings = distinct_warnings(g_, warnings_);
 }
 
 /// An axis column is float64 if every value it holds is a number (and it holds one); a

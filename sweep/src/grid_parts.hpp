@@ -102,6 +102,11 @@ class Expander {
   Context& cx_;
   std::map<std::string, int> by_hash_;
   std::vector<std::map<int, nlohmann::json>> given_;  ///< per case id
+  std::vector<std::vector<std::string>> warnings_;    ///< per case id: its scene's plausibility warnings
 };
+
+/// Grid::warnings from each case's (by case id): each distinct warning once, in the order
+/// first met, with how many cases give it: "W; in 3 of 16 cases (the first case_0004)".
+std::vector<std::string> distinct_warnings(const Grid& g, const std::vector<std::vector<std::string>>& per_case);
 
 }  // namespace lub::sweep::detail

@@ -78,6 +78,7 @@ void write_root_attributes(h5::File& f, const Grid& g, bool complete) {
   f.set_attribute("on_failure", policy_text(g.on_failure));
   f.set_attribute("cases_total", static_cast<std::int64_t>(g.cases.size()));
   f.set_attribute_int64("complete", complete ? 1 : 0);
+  f.set_attribute("warnings", g.warnings);  // plausibility warnings of the cases (Grid::warnings)
 }
 
 /// The empty /cases table, its columns and the attributes that group them.

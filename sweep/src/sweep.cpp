@@ -43,6 +43,8 @@ const char* const kUsage =
     "  --restart               ignore an existing output file and start afresh\n"
     "  --retry-failed          run again the cases the file records as not ok\n"
     "  --check                 validate the grid and list its cases; run nothing\n"
+    "  --strict                a plausibility warning (a viscosity, clearance or speed that\n"
+    "                          looks like a unit slip) is an error: exit 2, nothing written\n"
     "  --summary STUDY.h5      print the study's table and exit\n"
     "  --no-summary            no table at the end\n"
     "  -q, --quiet             no progress lines on stderr\n"
@@ -67,6 +69,7 @@ std::optional<std::string> parse_options(const std::vector<std::string>& args, O
   app.add_flag("--restart", o.restart);
   app.add_flag("--retry-failed", o.retry_failed);
   app.add_flag("--check", o.check);
+  app.add_flag("--strict", o.strict);
   app.add_flag("--no-summary{false}", o.summary);
   app.add_flag("-q,--quiet", o.quiet);
   try {
@@ -113,6 +116,11 @@ int prepare(const Options& o, Grid& grid, ResumeState& resume, bool& reuse_file,
     std::fprintf(stderr, "lubsweep: %s: %s\n", o.grid.c_str(), e.what());
     return kExitBadInput;
   }
+  // Plausibility warnings: once per grid (each distinct one), stored in the study file; errors under --strict.
+  for (const std::string& w : grid.warnings)
+    std::fprintf(stderr, "lubsweep: %s%s%s\n", o.strict ? (o.grid + ": ").c_str() : "warning: ", w.c_str(),
+                 o.strict ? "; refused under --strict" : "");
+  if (o.strict && !grid.warnings.empty()) return kExitBadInput;
   if (o.check) return 0;
   if (const auto problem = output_path_problem(o.output)) {
     std::fprintf(stderr, "lubsweep: %s\n", problem->c_str());

@@ -12,6 +12,7 @@ import os
 import subprocess
 import sys
 import threading
+import warnings
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
@@ -259,6 +260,54 @@ def test_invalid_scene_raises_lubsim_message(tmp_path):
     assert str(e.value) == p.stderr.splitlines()[0].replace("lubsim: -o ", "output ", 1)
     with pytest.raises(ValueError, match=r"must name a file, not a directory"):
         lubjoint.simulate(SCENE, output=tmp_path)
+
+
+# --- plausibility warnings (issue 29) -----------------------------------------------------
+
+VISCOSITY_400 = ("/joints/3/viscosity_Pa_s = 400 Pa s is outside the plausible 1e-4 – 5 Pa s "
+                 "(400 cP is 0.4 Pa s)")
+
+
+def test_simulate_warns_of_an_implausible_value_as_lubsim_does(tmp_path):
+    slip = {**SHORT, "/joints/3/viscosity_Pa_s": 400}
+    out = tmp_path / "run.h5"
+    with pytest.warns(lubjoint.PlausibilityWarning) as record:
+        ds = lubjoint.simulate(SCENE, slip, output=out)
+    assert [str(w.message) for w in record if w.category is lubjoint.PlausibilityWarning] == [VISCOSITY_400]
+    assert issubclass(lubjoint.PlausibilityWarning, UserWarning)
+    assert ds.attrs["warnings"] == [VISCOSITY_400]
+    with h5py.File(out, "r") as f:
+        assert [w.decode() if isinstance(w, bytes) else w for w in f.attrs["warnings"]] == [VISCOSITY_400]
+    # lubsim: the same line on stderr, prefixed "lubsim: warning: ".
+    sets = [a for k, v in slip.items() for a in ("--set", f"{k}={v}")]
+    p = run([LUBSIM, SCENE, "-o", tmp_path / "lubsim.h5", "--quiet", *sets])
+    assert p.returncode == 0, p.stderr
+    assert p.stderr == f"lubsim: warning: {VISCOSITY_400}\n"
+
+
+def test_simulate_plausible_scene_warns_nothing():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", lubjoint.PlausibilityWarning)
+        ds = lubjoint.simulate(SCENE, SHORT)
+    assert ds.attrs["warnings"] == []
+
+
+def test_simulate_strict_raises_and_writes_nothing(tmp_path):
+    out = tmp_path / "run.h5"
+    with pytest.raises(lubjoint.InputError) as e:
+        lubjoint.simulate(SCENE, {"/joints/3/viscosity_Pa_s": 400}, output=out, strict=True)
+    assert str(e.value) == f"{SCENE}: {VISCOSITY_400}; refused under strict=True"
+    assert not out.exists()
+    with pytest.raises(TypeError):  # keyword only
+        lubjoint.simulate(SCENE, None, None, True)
+    assert lubjoint.simulate(SCENE, SHORT, strict=True).attrs["warnings"] == []
+
+
+def test_steady_bearing_warns_of_mm_typed_as_m():
+    with pytest.warns(lubjoint.PlausibilityWarning, match=r"^clearance_m / radius_m = 0\.5 m / 0\.01 m = 50 is outside"):
+        r = lubjoint.steady_bearing("gumbel_short", load_N=2000.0, speed_rpm=3000.0, radius_m=0.01, clearance_m=0.5,
+                                    length_m=0.04, viscosity_Pa_s=0.4)
+    assert len(r["warnings"]) == 1 and "0.5 mm is 0.0005 m" in r["warnings"][0]
 
 
 def scalars(ds):

@@ -5,11 +5,13 @@ equilibrium of a steadily loaded bearing; both check their arguments with lubbea
 (lub/bearing/bearing_inputs.hpp) in the compiled ``_lubjoint``.
 """
 
+import warnings
 from typing import NamedTuple
 
 import numpy as np
 
 from . import _lubjoint
+from .run import PlausibilityWarning
 
 #: The force laws a scene or ``force`` can name.
 FORCE_LAWS = tuple(n.strip() for n in _lubjoint.force_law_names().split(","))
@@ -93,13 +95,18 @@ def steady_bearing(law, *, load_N, speed_rpm, radius_m, clearance_m, length_m, v
         (S = (R_J/c)² μ N/P, N [rev/s], P = W/(L D)), ``converged``; if converged ``eps``,
         ``attitude_angle_deg`` [deg] (load line to line of centres),
         ``min_film_thickness_m`` [m], ``radial_N``, ``tangential_N`` [N] (|F| = W),
-        ``force_law_evaluations``; if not, ``message`` (lubbearing's exit status 3).
+        ``force_law_evaluations``; if not, ``message`` (lubbearing's exit status 3);
+        ``warnings``: the plausibility warnings (a list of str; each also issued as a
+        ``PlausibilityWarning``).
 
     Raises
     ------
     InputError
         (a ``ValueError``) naming the argument, its value and the rule.
     """
-    return _lubjoint.steady_bearing(law, float(load_N), float(speed_rpm), float(radius_m), float(clearance_m),
-                                    float(length_m), float(viscosity_Pa_s), cavitation, n_theta, n_z,
-                                    bool(groove_at_max_film))
+    r = _lubjoint.steady_bearing(law, float(load_N), float(speed_rpm), float(radius_m), float(clearance_m),
+                                 float(length_m), float(viscosity_Pa_s), cavitation, n_theta, n_z,
+                                 bool(groove_at_max_film))
+    for w in r["warnings"]:
+        warnings.warn(w, PlausibilityWarning, stacklevel=2)
+    return r

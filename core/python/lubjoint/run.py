@@ -8,6 +8,7 @@ units, long_name, values) for the series, the orbit and the cycles, ``Scalar`` r
 
 import json
 import os
+import warnings
 from collections.abc import Mapping
 
 import numpy as np
@@ -19,6 +20,13 @@ from ._lubjoint import InputError
 SceneError = InputError
 
 
+class PlausibilityWarning(UserWarning):
+    """A value the rules accept but that is most likely a unit slip (README "Scene format",
+    plausible ranges): a viscosity outside 1e-4 – 5 Pa s, a clearance/radius outside 1e-4 –
+    0.3, a driver speed above 50 000 rpm. The message is lubsim's warning line: the JSON
+    Pointer, the value, the range and the likely slip."""
+
+
 def _assignment(pointer, value):
     """``--set POINTER=VALUE`` for one override: the Python value as JSON (a str stays a str)."""
     if not isinstance(pointer, str):
@@ -28,7 +36,7 @@ def _assignment(pointer, value):
     return f"{pointer}={json.dumps(value)}"
 
 
-def simulate(scene, overrides=None, output=None):
+def simulate(scene, overrides=None, output=None, *, strict=False):
     """Run one scene, as ``lubsim`` does, and return it as an ``xarray.Dataset``.
 
     Parameters
@@ -45,6 +53,9 @@ def simulate(scene, overrides=None, output=None):
     output : str or os.PathLike, optional
         Write the run file (lubsim's run.h5 layout, ``program`` = ``lubjoint``) there. No
         file is written without it.
+    strict : bool, optional
+        lubsim's ``--strict``: an implausible value is an ``InputError`` (nothing run or
+        written) instead of a ``PlausibilityWarning``.
 
     Returns
     -------
@@ -64,15 +75,22 @@ def simulate(scene, overrides=None, output=None):
           ``budget_exceeded``), ``message``, ``scene`` (the effective scene JSON),
           ``program``, ``version``, ``revision``, ``solver_method``,
           ``solver_formulation``, ``solver_jacobian``, ``solver_rtol``, ``solver_atol``
-          (the absolute tolerance of lengths [m]; README "Integration") and ``output`` (the run file, if written).
+          (the absolute tolerance of lengths [m]; README "Integration"), ``warnings`` (the
+          plausibility warnings, a list of str, empty if none; each also issued as a
+          ``PlausibilityWarning``) and ``output`` (the run file, if written).
 
     Raises
     ------
     InputError
         (a ``ValueError``) for a bad scene, override or output path (lubsim's rules: a
         file in an existing, writable directory), with lubsim's message
-        (``SCENE: joints[3].viscosity_Pa_s = -0.4: must be > 0 Pa s``). Nothing is run or
-        written then.
+        (``SCENE: joints[3].viscosity_Pa_s = -0.4: must be > 0 Pa s``), or with
+        ``strict=True`` an implausible value. Nothing is run or written then.
+
+    Warns
+    -----
+    PlausibilityWarning
+        Once per implausible value (lubsim's warning line), before the run.
 
     The GIL is released during the run: Python threads can run scenes side by side.
     """
@@ -88,7 +106,9 @@ def simulate(scene, overrides=None, output=None):
     assignments = [_assignment(p, v) for p, v in (overrides or {}).items()]
     out_path = None if output is None else os.fspath(output)
 
-    r = _lubjoint.simulate(scene_path, scene_text, origin, assignments, out_path)
+    r = _lubjoint.simulate(scene_path, scene_text, origin, assignments, out_path, strict=bool(strict))
+    for w in r["warnings"]:
+        warnings.warn(w, PlausibilityWarning, stacklevel=2)
 
     def attrs_of(unit, long_name, **more):
         a = {"units": unit} if unit else {}
@@ -140,6 +160,7 @@ def simulate(scene, overrides=None, output=None):
         "solver_jacobian": settings["jacobian"],
         "solver_rtol": settings["rtol"],
         "solver_atol": settings["atol"],
+        "warnings": list(r["warnings"]),
     }
     if out_path is not None:
         attrs["output"] = out_path

@@ -246,7 +246,7 @@ void put(h5::Object& obj, const ResultField& f, const RunResult& r) {
 }  // namespace
 
 void write_run_file(const std::string& path, const std::string& scene_text, const std::string& program,
-                    const RunResult& r) {
+                    const RunResult& r, const std::vector<std::string>& warnings) {
   const std::string tmp = path + ".partial";
   {
     h5::File f = h5::File::create(tmp);
@@ -257,6 +257,7 @@ void write_run_file(const std::string& path, const std::string& scene_text, cons
     f.set_attribute("revision", build_revision());
     f.set_attribute("status", to_string(r.status));
     f.set_attribute("message", r.message);
+    f.set_attribute("warnings", warnings);  // plausibility warnings (Scene::warnings)
     if (!r.series.names.empty()) {
       h5::Group sg = f.require_group("series");
       write_series(sg, r.series, channel_long_names(scene_text, r.series.names));

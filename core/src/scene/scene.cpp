@@ -556,6 +556,7 @@ Scene parse_scene(const json& doc) {
     fail("simulation", doc.value("simulation", json::object()),
          "needs duration_s, or cycle_period_s, or a driver with non-zero speed to define a cycle");
   check_whole_scene(scene, doc);
+  scene.warnings = plausibility_warnings(scene);
   return scene;
 }
 

@@ -69,8 +69,9 @@ void write_series(h5::Group& group, const Series& series, const std::vector<std:
 /// JSON), `program`, `format`, `version`, `revision`, `status`, `message`;
 /// /series/<channel> on the dimension scale /series/t (write_series); /metrics and
 /// /solver attributes; /cycles, a table (one column per quantity, dimension `cycle`).
-/// Writes to PATH.partial and renames, so PATH is never left half-written.
+/// Writes to PATH.partial and renames, so PATH is never left half-written. Root attribute
+/// `warnings`: the scene's plausibility warnings (Scene::warnings; an empty list if none).
 void write_run_file(const std::string& path, const std::string& scene_text, const std::string& program,
-                    const RunResult& result);
+                    const RunResult& result, const std::vector<std::string>& warnings = {});
 
 }  // namespace lub

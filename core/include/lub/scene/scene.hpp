@@ -240,6 +240,10 @@ struct Scene {
   SimulationSpec simulation;
   OutputSpec output;
   MetricSpec metrics;
+  /// Plausibility warnings (lub/bearing/plausibility.hpp): values the rules accept but that
+  /// are most likely a unit slip, one line each naming the JSON Pointer, the value, the
+  /// plausible range and the likely slip. Set by parse_scene; empty for the shipped scenes.
+  std::vector<std::string> warnings;
 
   int body_index(const std::string& name) const;  ///< kGround for "ground", -2 if unknown
   int joint_index(const std::string& name) const;
@@ -251,6 +255,10 @@ struct Scene {
 
 /// Parses and validates a scene. Throws InputError naming the JSON path, value and rule.
 Scene parse_scene(const nlohmann::json& doc);
+
+/// The plausibility warnings of a parsed scene (Scene::warnings): for each lubricated joint
+/// with a film law its viscosity and clearance/radius, for each driver its speed.
+std::vector<std::string> plausibility_warnings(const Scene& scene);
 
 /// True for the joint quantities only a lubricated joint has (e_x, eps, h_min, ...).
 bool is_film_quantity(JointQuantity q);

@@ -97,6 +97,9 @@ struct Grid {
   std::vector<Axis> axes;
   std::vector<Block> blocks;
   std::vector<Case> cases;
+  /// The plausibility warnings of its cases (Scene::warnings, lub/bearing/plausibility.hpp),
+  /// each distinct warning once: "W; in 3 of 16 cases (the first case_0004)".
+  std::vector<std::string> warnings;
 };
 
 /// Reads, validates and expands a grid file. Throws lub::InputError naming the field, the

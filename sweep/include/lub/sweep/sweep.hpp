@@ -22,6 +22,7 @@ struct Options {
   bool summary = true;        ///< print the study's table at the end
   std::string summary_of;     ///< --summary FILE: only print FILE's table
   bool check = false;         ///< validate the grid, list its cases, run nothing
+  bool strict = false;        ///< --strict: a plausibility warning is an error (exit 2)
   long kill_after = -1;       ///< tests: rank 0 kills itself (SIGKILL) after this many new rows
 };
 
