@@ -249,12 +249,60 @@ TEST_F(StudyFile, ResumeFindsTheCasesByHash) {
   EXPECT_EQ(f.open_table("cases").read_int64s("case"), (std::vector<std::int64_t>{0, 1, 2, 3, 4}));
   EXPECT_EQ(f.open_dataset("series/case_0002/h_min").read_doubles(), fake(g, 2).series.data[1]);
 
-  // Another grid over the same file: rows of other scenes are not reused.
+  // Another grid over the same file: rows of other scenes are not reused, and only
+  // dropped with consent (--drop-other-cases).
   const Grid other = parse_grid(R"({"scene": "slider_crank.json", "study": {"max_cycles": 3},
                                     "axes": [{"name": "force_law", "values": ["ideal"]}]})", kScenes);
-  const ResumeState o = read_existing(path, other, false, lub::build_revision());
+  const ResumeState o = read_existing(path, other, false, lub::build_revision(), true);
   EXPECT_TRUE(o.done.empty());
   EXPECT_EQ(o.other_rows, 5u);
+}
+
+TEST_F(StudyFile, AFileOfAnotherGridIsRefusedNamingTheCasesAndAxes) {
+  // Re-running a smaller grid on the same -o once dropped the rows it did not list. Now the
+  // file is refused, naming what would be lost, unless --drop-other-cases says to drop them.
+  const Grid g = small_grid();
+  const std::string path = file("s.h5");
+  write_study(path, g, {fake(g, 0), fake(g, 1), fake(g, 2), fake(g, 3)}, true);
+  const auto before = fs::last_write_time(path);
+  const Grid smaller = parse_grid(R"({
+      "scene": "slider_crank.json",
+      "set": {"/solver/rtol": 1e-6},
+      "study": {"max_cycles": 2, "metric_cycles": 1, "channels": ["h_min"], "last_cycles": 1, "samples_per_cycle": 90},
+      "grids": [{"name": "main", "axes": [{"name": "force_law", "values": ["ideal", "frene_short"]},
+                                          {"name": "speed_rpm", "values": [5000]}]},
+                {"name": "extra", "cases": [{"/solver/rtol": 1e-7, "force_law": "ideal"}]}]})",
+                                  kScenes, "smaller.json");
+  try {
+    read_existing(path, smaller, false, lub::build_revision());
+    FAIL() << "a file holding cases of another grid was resumed";
+  } catch (const lub::InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("the file holds 2 computed cases that are not cases of the grid smaller.json: "
+                       "case_0001 (force_law=ideal speed_rpm=500 solver.rtol=1e-06), "
+                       "case_0003 (force_law=frene_short speed_rpm=500 solver.rtol=1e-06)"),
+              std::string::npos) << msg;
+    EXPECT_NE(msg.find("same axes (force_law, speed_rpm, solver.rtol)"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("--drop-other-cases"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("--restart"), std::string::npos) << msg;
+  }
+  const Grid other_axes = parse_grid(R"({"scene": "slider_crank.json", "study": {"max_cycles": 3},
+                                         "axes": [{"name": "viscosity_Pa_s", "values": [0.4]}]})", kScenes, "v.json");
+  try {
+    read_existing(path, other_axes, false, lub::build_revision());
+    FAIL() << "a file holding cases of another grid was resumed";
+  } catch (const lub::InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("4 computed cases"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("axes only in the file: force_law, speed_rpm, solver.rtol; only in this grid: viscosity_Pa_s"),
+              std::string::npos) << msg;
+  }
+  EXPECT_EQ(fs::last_write_time(path), before) << "the refused file was changed";
+  const ResumeState consent = read_existing(path, smaller, false, lub::build_revision(), true);
+  EXPECT_EQ(consent.other_rows, 2u);
+  EXPECT_EQ(consent.done.size(), 2u);
+  // A subset of the file's cases is no refusal: a grid that holds every case of the file.
+  EXPECT_EQ(read_existing(path, g, false, lub::build_revision()).done.size(), 4u);
 }
 
 TEST_F(StudyFile, ResumeIntoAnExtendedGridKeepsEachCaseItsOwnSeries) {
@@ -445,6 +493,10 @@ TEST(SweepOptions, CommandLine) {
   EXPECT_EQ(o.grid, "g.json");
   EXPECT_EQ(o.output, "s.h5");
   EXPECT_TRUE(o.retry_failed && o.quiet);
+  EXPECT_FALSE(o.drop_other_cases);
+  Options d;
+  EXPECT_FALSE(parse_options({"g.json", "-o", "s.h5", "--drop-other-cases"}, d, help, text));
+  EXPECT_TRUE(d.drop_other_cases);
   Options e;
   EXPECT_EQ(*parse_options({"g.json"}, e, help, text), "no output file given (-o STUDY.h5)");
   Options c;
