@@ -190,6 +190,48 @@ TEST_F(StudyFile, GridVariablesHoldNaNMetricsForCasesNotOkAndSayWhy) {
   EXPECT_FALSE(std::isnan(f.open_dataset("grids/main/steps").read_doubles()[1]));
 }
 
+TEST_F(StudyFile, OneMissingValueConventionNaNForFloatsADeclaredSentinelForIntegers) {
+  // An unknown periodicity (a float) is NaN in /cases as in /grids (it was -1 in /cases);
+  // an unknown count (cycles_to_steady, an integer) is -1 in /cases, declared by the
+  // column's missing_value, NaN in /grids; every float column declares _FillValue = NaN.
+  const Grid g = small_grid();
+  const std::string path = file("m.h5");
+  const auto fields = result_fields();
+  auto at = [&](const std::string& name) {
+    std::size_t i = 0;
+    while (fields[i].name != name) ++i;
+    return i;
+  };
+  CaseResult r = fake(g, 0);
+  r.values[at("periodicity")] = std::nan("");
+  r.values[at("cycles_to_steady")] = std::nan("");
+  write_study(path, g, {r, fake(g, 1)}, true);
+  {
+    const auto f = lub::h5::File::open(path);
+    const auto t = f.open_table("cases");
+    EXPECT_TRUE(std::isnan(t.read_doubles("periodicity")[0]));
+    EXPECT_EQ(t.read_int64s("cycles_to_steady")[0], -1);
+    EXPECT_EQ(t.read_int64s("cycles_to_steady")[1], static_cast<std::int64_t>(fake(g, 1).values[at("cycles_to_steady")]));
+    EXPECT_TRUE(std::isnan(f.open_dataset("grids/main/periodicity").read_doubles()[0]));
+    EXPECT_TRUE(std::isnan(f.open_dataset("grids/main/cycles_to_steady").read_doubles()[0]));
+    for (const auto& fld : fields) {
+      SCOPED_TRACE(fld.name);
+      const auto col = t.column(fld.name);
+      if (fld.integer) {
+        EXPECT_EQ(col.attribute_int64("missing_value"), lub::kMissingInteger);
+      } else {
+        EXPECT_TRUE(std::isnan(col.attribute_double("_FillValue")));
+      }
+      EXPECT_TRUE(std::isnan(f.open_dataset("grids/main/" + fld.name).attribute_double("_FillValue")));
+    }
+    EXPECT_TRUE(std::isnan(t.column("speed_rpm").attribute_double("_FillValue")));
+  }
+  // Resumed, the sentinel reads back as NaN: the rewritten /grids is the same as a fresh one's.
+  const ResumeState st = read_existing(path, g, false, lub::build_revision());
+  EXPECT_TRUE(std::isnan(st.done.at(0).values[at("cycles_to_steady")]));
+  EXPECT_EQ(st.done.at(1).values[at("cycles_to_steady")], fake(g, 1).values[at("cycles_to_steady")]);
+}
+
 TEST_F(StudyFile, OlderFormatIsRefusedWithAClearMessage) {
   const Grid g = small_grid();
   const std::string path = file("old.h5");
@@ -410,7 +452,7 @@ TEST(SweepCase, RunsAScene) {
   // none); counts, the periodicity measure and the solver's statistics always.
   const bool steady = r.classification == "periodic" || r.classification == "periodic_unstable";
   EXPECT_TRUE(steady || r.classification == "drifting" || r.classification == "not_converged") << r.classification;
-  const std::set<std::string> always = {"periodicity", "steady", "cycles_to_steady", "cycles_run",
+  const std::set<std::string> always = {"periodicity", "steady", "cycles_run",
                                         "safe_film_thickness_m", "below_safe_film", "newton_iterations",
                                         "transient_cycles", "periods_integrated"};
   const auto fields = result_fields();
@@ -423,6 +465,10 @@ TEST(SweepCase, RunsAScene) {
       EXPECT_TRUE(std::isfinite(r.values[i]));
     }
   }
+  // Unknown is NaN for every field, integers included (a writer of integers stores -1).
+  std::size_t to_steady = 0;
+  while (fields[to_steady].name != "cycles_to_steady") ++to_steady;
+  EXPECT_EQ(std::isnan(r.values[to_steady]), r.classification != "periodic") << r.values[to_steady];
   EXPECT_EQ(r.series.names, (std::vector<std::string>{"t", "h_min"}));
   // Only the last cycle is kept, sampled 90 times (both ends included).
   EXPECT_EQ(r.series.data[0].size(), 91u);

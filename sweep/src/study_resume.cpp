@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <stdexcept>
 
@@ -111,7 +112,12 @@ struct EarlierRows {
         classification(t.read_strings("classification")),
         revision(t.read_strings("revision")),
         rank(t.read_int64s("rank")) {
-    for (const auto& fld : result_fields()) values.push_back(t.read_doubles(fld.name));
+    for (const auto& fld : result_fields()) {
+      values.push_back(t.read_doubles(fld.name));
+      if (fld.integer)  // the sentinel back to NaN, as run_case gives it
+        for (double& v : values.back())
+          if (v == static_cast<double>(kMissingInteger)) v = std::numeric_limits<double>::quiet_NaN();
+    }
   }
 
   /// Row `i` as the result of case `case_id`.
@@ -138,7 +144,7 @@ void check_format(const h5::File& f, const std::string& what, const std::string&
   const std::string format = f.has_attribute("format") ? f.attribute_string("format") : "(none)";
   if (format != kStudyFormat)
     throw InputError(what + ": a study file of format " + format + "; this lubsweep reads and writes format " +
-                     kStudyFormat + " (/cases as columns, /grids as labelled variables)" + hint);
+                     kStudyFormat + (hint.empty() ? std::string(" (re-run the sweep with --restart to rewrite it)") : hint));
 }
 
 ResumeState read_existing(const std::string& path, const Grid& grid, bool retry_failed,

@@ -36,7 +36,7 @@
 namespace lub::sweep {
 
 /// Version of the layout above, in the root attribute `format`.
-inline constexpr const char* kStudyFormat = "lubsweep-study-4";
+inline constexpr const char* kStudyFormat = "lubsweep-study-5";  // 5: NaN for unknown floats (4: -1 periodicity)
 
 /// Columns of /cases for a grid.
 std::vector<h5::Column> case_columns(const Grid& grid);
