@@ -232,6 +232,23 @@ TEST_F(StudyFile, OneMissingValueConventionNaNForFloatsADeclaredSentinelForInteg
   EXPECT_EQ(st.done.at(1).values[at("cycles_to_steady")], fake(g, 1).values[at("cycles_to_steady")]);
 }
 
+TEST_F(StudyFile, SummaryOfAMissingOrForeignFileIsOneShortLine) {
+  // lubsweep --summary prints "lubsweep: --summary PATH: " and this: no HDF5 error stack.
+  auto message = [](const std::string& path) {
+    try {
+      print_summary(path, stdout);
+    } catch (const lub::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message(file("missing.h5")), "no such file");
+  std::ofstream(file("text.h5")) << "not a study";
+  EXPECT_EQ(message(file("text.h5")), "not an HDF5 file, so not a lubsweep study file");
+  lub::h5::File::create(file("plain.h5")).set_attribute("program", "lubsim");
+  EXPECT_EQ(message(file("plain.h5")), "not a lubsweep study file");
+}
+
 TEST_F(StudyFile, OlderFormatIsRefusedWithAClearMessage) {
   const Grid g = small_grid();
   const std::string path = file("old.h5");
