@@ -11,6 +11,8 @@
 #include <cstdlib>
 #include <string>
 
+#include "fuzz_check.hpp"
+
 #include "lub/io/json_reader.hpp"
 #include "lub/sweep/grid.hpp"
 
@@ -20,13 +22,7 @@
 
 namespace {
 
-#define FUZZ_CHECK(cond)                                                        \
-  do {                                                                          \
-    if (!(cond)) {                                                              \
-      std::fprintf(stderr, "fuzz_grid: accepted grid violates %s\n", #cond);   \
-      std::abort();                                                             \
-    }                                                                           \
-  } while (0)
+#define FUZZ_CHECK(cond) LUB_FUZZ_CHECK("fuzz_grid", cond)
 
 void check_invariants(const lub::sweep::Grid& g) {
   FUZZ_CHECK(!g.cases.empty());
