@@ -359,6 +359,24 @@ TEST_F(StudyFile, AFileOfAnotherGridIsRefusedNamingTheCasesAndAxes) {
     EXPECT_NE(msg.find("axes only in the file: force_law, speed_rpm, solver.rtol; only in this grid: viscosity_Pa_s"),
               std::string::npos) << msg;
   }
+  // A file whose /cases lacks this build's result columns: its rows cannot be reused,
+  // and are not dropped without consent either.
+  const std::string bare = file("bare.h5");
+  {
+    auto f = lub::h5::File::create(bare);
+    f.set_attribute("program", "lubsweep");
+    f.set_attribute("format", kStudyFormat);
+    auto t = f.create_table("cases", {{"case", lub::h5::ColumnType::Int64, "1", "case id"},
+                                      {"hash", lub::h5::ColumnType::String, "", "hash"}});
+    t.append(lub::h5::Row{std::int64_t{0}, g.cases[0].hash});
+  }
+  try {
+    read_existing(bare, g, false, lub::build_revision());
+    ADD_FAILURE() << "rows without result columns were dropped silently";
+  } catch (const lub::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("its 1 rows lack result columns of this build"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(read_existing(bare, g, false, lub::build_revision(), true).incompatible_rows, 1u);
   EXPECT_EQ(fs::last_write_time(path), before) << "the refused file was changed";
   const ResumeState consent = read_existing(path, smaller, false, lub::build_revision(), true);
   EXPECT_EQ(consent.other_rows, 2u);
