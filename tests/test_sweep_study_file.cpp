@@ -190,6 +190,65 @@ TEST_F(StudyFile, GridVariablesHoldNaNMetricsForCasesNotOkAndSayWhy) {
   EXPECT_FALSE(std::isnan(f.open_dataset("grids/main/steps").read_doubles()[1]));
 }
 
+TEST_F(StudyFile, OneMissingValueConventionNaNForFloatsADeclaredSentinelForIntegers) {
+  // An unknown periodicity (a float) is NaN in /cases as in /grids (it was -1 in /cases);
+  // an unknown count (cycles_to_steady, an integer) is -1 in /cases, declared by the
+  // column's missing_value, NaN in /grids; every float column declares _FillValue = NaN.
+  const Grid g = small_grid();
+  const std::string path = file("m.h5");
+  const auto fields = result_fields();
+  auto at = [&](const std::string& name) {
+    std::size_t i = 0;
+    while (fields[i].name != name) ++i;
+    return i;
+  };
+  CaseResult r = fake(g, 0);
+  r.values[at("periodicity")] = std::nan("");
+  r.values[at("cycles_to_steady")] = std::nan("");
+  write_study(path, g, {r, fake(g, 1)}, true);
+  {
+    const auto f = lub::h5::File::open(path);
+    const auto t = f.open_table("cases");
+    EXPECT_TRUE(std::isnan(t.read_doubles("periodicity")[0]));
+    EXPECT_EQ(t.read_int64s("cycles_to_steady")[0], -1);
+    EXPECT_EQ(t.read_int64s("cycles_to_steady")[1], static_cast<std::int64_t>(fake(g, 1).values[at("cycles_to_steady")]));
+    EXPECT_TRUE(std::isnan(f.open_dataset("grids/main/periodicity").read_doubles()[0]));
+    EXPECT_TRUE(std::isnan(f.open_dataset("grids/main/cycles_to_steady").read_doubles()[0]));
+    for (const auto& fld : fields) {
+      SCOPED_TRACE(fld.name);
+      const auto col = t.column(fld.name);
+      if (fld.integer) {
+        EXPECT_EQ(col.attribute_int64("missing_value"), lub::kMissingInteger);
+      } else {
+        EXPECT_TRUE(std::isnan(col.attribute_double("_FillValue")));
+      }
+      EXPECT_TRUE(std::isnan(f.open_dataset("grids/main/" + fld.name).attribute_double("_FillValue")));
+    }
+    EXPECT_TRUE(std::isnan(t.column("speed_rpm").attribute_double("_FillValue")));
+  }
+  // Resumed, the sentinel reads back as NaN: the rewritten /grids is the same as a fresh one's.
+  const ResumeState st = read_existing(path, g, false, lub::build_revision());
+  EXPECT_TRUE(std::isnan(st.done.at(0).values[at("cycles_to_steady")]));
+  EXPECT_EQ(st.done.at(1).values[at("cycles_to_steady")], fake(g, 1).values[at("cycles_to_steady")]);
+}
+
+TEST_F(StudyFile, SummaryOfAMissingOrForeignFileIsOneShortLine) {
+  // lubsweep --summary prints "lubsweep: --summary PATH: " and this: no HDF5 error stack.
+  auto message = [](const std::string& path) {
+    try {
+      print_summary(path, stdout);
+    } catch (const lub::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message(file("missing.h5")), "no such file");
+  std::ofstream(file("text.h5")) << "not a study";
+  EXPECT_EQ(message(file("text.h5")), "not an HDF5 file, so not a lubsweep study file");
+  lub::h5::File::create(file("plain.h5")).set_attribute("program", "lubsim");
+  EXPECT_EQ(message(file("plain.h5")), "not a lubsweep study file");
+}
+
 TEST_F(StudyFile, OlderFormatIsRefusedWithAClearMessage) {
   const Grid g = small_grid();
   const std::string path = file("old.h5");
@@ -249,12 +308,81 @@ TEST_F(StudyFile, ResumeFindsTheCasesByHash) {
   EXPECT_EQ(f.open_table("cases").read_int64s("case"), (std::vector<std::int64_t>{0, 1, 2, 3, 4}));
   EXPECT_EQ(f.open_dataset("series/case_0002/h_min").read_doubles(), fake(g, 2).series.data[1]);
 
-  // Another grid over the same file: rows of other scenes are not reused.
+  // Another grid over the same file: rows of other scenes are not reused, and only
+  // dropped with consent (--drop-other-cases).
   const Grid other = parse_grid(R"({"scene": "slider_crank.json", "study": {"max_cycles": 3},
                                     "axes": [{"name": "force_law", "values": ["ideal"]}]})", kScenes);
-  const ResumeState o = read_existing(path, other, false, lub::build_revision());
+  const ResumeState o = read_existing(path, other, false, lub::build_revision(), true);
   EXPECT_TRUE(o.done.empty());
   EXPECT_EQ(o.other_rows, 5u);
+}
+
+TEST_F(StudyFile, AFileOfAnotherGridIsRefusedNamingTheCasesAndAxes) {
+  // Re-running a smaller grid on the same -o once dropped the rows it did not list. Now the
+  // file is refused, naming what would be lost, unless --drop-other-cases says to drop them.
+  const Grid g = small_grid();
+  const std::string path = file("s.h5");
+  write_study(path, g, {fake(g, 0), fake(g, 1), fake(g, 2), fake(g, 3)}, true);
+  const auto before = fs::last_write_time(path);
+  const Grid smaller = parse_grid(R"({
+      "scene": "slider_crank.json",
+      "set": {"/solver/rtol": 1e-6},
+      "study": {"max_cycles": 2, "metric_cycles": 1, "channels": ["h_min"], "last_cycles": 1, "samples_per_cycle": 90},
+      "grids": [{"name": "main", "axes": [{"name": "force_law", "values": ["ideal", "frene_short"]},
+                                          {"name": "speed_rpm", "values": [5000]}]},
+                {"name": "extra", "cases": [{"/solver/rtol": 1e-7, "force_law": "ideal"}]}]})",
+                                  kScenes, "smaller.json");
+  // The message read_existing refuses `grid` with ("" if it does not).
+  auto refusal = [&path](const Grid& grid) {
+    try {
+      read_existing(path, grid, false, lub::build_revision());
+    } catch (const lub::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  {
+    const std::string msg = refusal(smaller);
+    EXPECT_NE(msg.find("the file holds 2 computed cases that are not cases of the grid smaller.json: "
+                       "case_0001 (force_law=ideal speed_rpm=500 solver.rtol=1e-06), "
+                       "case_0003 (force_law=frene_short speed_rpm=500 solver.rtol=1e-06)"),
+              std::string::npos) << msg;
+    EXPECT_NE(msg.find("same axes (force_law, speed_rpm, solver.rtol)"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("--drop-other-cases"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("--restart"), std::string::npos) << msg;
+  }
+  const Grid other_axes = parse_grid(R"({"scene": "slider_crank.json", "study": {"max_cycles": 3},
+                                         "axes": [{"name": "viscosity_Pa_s", "values": [0.4]}]})", kScenes, "v.json");
+  {
+    const std::string msg = refusal(other_axes);
+    EXPECT_NE(msg.find("4 computed cases"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("axes only in the file: force_law, speed_rpm, solver.rtol; only in this grid: viscosity_Pa_s"),
+              std::string::npos) << msg;
+  }
+  // A file whose /cases lacks this build's result columns: its rows cannot be reused,
+  // and are not dropped without consent either.
+  const std::string bare = file("bare.h5");
+  {
+    auto f = lub::h5::File::create(bare);
+    f.set_attribute("program", "lubsweep");
+    f.set_attribute("format", kStudyFormat);
+    auto t = f.create_table("cases", {{"case", lub::h5::ColumnType::Int64, "1", "case id"},
+                                      {"hash", lub::h5::ColumnType::String, "", "hash"}});
+    t.append(lub::h5::Row{std::int64_t{0}, g.cases[0].hash});
+  }
+  try {
+    read_existing(bare, g, false, lub::build_revision());
+    ADD_FAILURE() << "rows without result columns were dropped silently";
+  } catch (const lub::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("its 1 rows lack result columns of this build"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(read_existing(bare, g, false, lub::build_revision(), true).incompatible_rows, 1u);
+  EXPECT_EQ(fs::last_write_time(path), before) << "the refused file was changed";
+  const ResumeState consent = read_existing(path, smaller, false, lub::build_revision(), true);
+  EXPECT_EQ(consent.other_rows, 2u);
+  EXPECT_EQ(consent.done.size(), 2u);
+  // A subset of the file's cases is no refusal: a grid that holds every case of the file.
+  EXPECT_EQ(read_existing(path, g, false, lub::build_revision()).done.size(), 4u);
 }
 
 TEST_F(StudyFile, ResumeIntoAnExtendedGridKeepsEachCaseItsOwnSeries) {
@@ -362,7 +490,7 @@ TEST(SweepCase, RunsAScene) {
   // none); counts, the periodicity measure and the solver's statistics always.
   const bool steady = r.classification == "periodic" || r.classification == "periodic_unstable";
   EXPECT_TRUE(steady || r.classification == "drifting" || r.classification == "not_converged") << r.classification;
-  const std::set<std::string> always = {"periodicity", "steady", "cycles_to_steady", "cycles_run",
+  const std::set<std::string> always = {"periodicity", "steady", "cycles_run",
                                         "safe_film_thickness_m", "below_safe_film", "newton_iterations",
                                         "transient_cycles", "periods_integrated"};
   const auto fields = result_fields();
@@ -375,6 +503,10 @@ TEST(SweepCase, RunsAScene) {
       EXPECT_TRUE(std::isfinite(r.values[i]));
     }
   }
+  // Unknown is NaN for every field, integers included (a writer of integers stores -1).
+  std::size_t to_steady = 0;
+  while (fields[to_steady].name != "cycles_to_steady") ++to_steady;
+  EXPECT_EQ(std::isnan(r.values[to_steady]), r.classification != "periodic") << r.values[to_steady];
   EXPECT_EQ(r.series.names, (std::vector<std::string>{"t", "h_min"}));
   // Only the last cycle is kept, sampled 90 times (both ends included).
   EXPECT_EQ(r.series.data[0].size(), 91u);
@@ -445,6 +577,10 @@ TEST(SweepOptions, CommandLine) {
   EXPECT_EQ(o.grid, "g.json");
   EXPECT_EQ(o.output, "s.h5");
   EXPECT_TRUE(o.retry_failed && o.quiet);
+  EXPECT_FALSE(o.drop_other_cases);
+  Options d;
+  EXPECT_FALSE(parse_options({"g.json", "-o", "s.h5", "--drop-other-cases"}, d, help, text));
+  EXPECT_TRUE(d.drop_other_cases);
   Options e;
   EXPECT_EQ(*parse_options({"g.json"}, e, help, text), "no output file given (-o STUDY.h5)");
   Options c;

@@ -8,6 +8,8 @@
 #   LUB_FUZZ_RUNS=5000000 bash tools/fuzz.sh
 #   bash tools/fuzz.sh -max_total_time=600  # any further arguments go to libFuzzer
 #   bash tools/fuzz.sh -runs=0              # replay the corpus only
+#   LUB_FUZZ_TARGET=grid bash tools/fuzz.sh # the grid reader instead (fuzz_grid.cpp; seeds
+#                                           # configs/grids/*.json, tests/fuzz/grid_corpus/*)
 #
 # New interesting inputs accumulate in build-fuzz/fuzz-corpus/; a crashing input is written
 # to build-fuzz/fuzz-artifacts/ (reproduce: build-fuzz/tests/fuzz/fuzz_scene FILE). Once it
@@ -21,6 +23,13 @@ build="$root/build-fuzz"
 cmake -S "$root" -B "$build" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
   -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g" -DLUB_FUZZ=ON -DLUB_BUILD_BENCH=OFF >/dev/null
+if [ "${LUB_FUZZ_TARGET:-scene}" = grid ]; then
+  cmake --build "$build" -j "$(nproc)" --target fuzz_grid
+  mkdir -p "$build/fuzz-grid-corpus" "$build/fuzz-artifacts"
+  exec "$build/tests/fuzz/fuzz_grid" -runs="${LUB_FUZZ_RUNS:-20000}" -max_len=4096 -timeout=20 \
+    -artifact_prefix="$build/fuzz-artifacts/grid-" -print_final_stats=1 "$@" "$build/fuzz-grid-corpus" \
+    "$root/configs/grids" "$root/tests/fuzz/grid_corpus"
+fi
 cmake --build "$build" -j "$(nproc)" --target fuzz_scene
 mkdir -p "$build/fuzz-corpus" "$build/fuzz-artifacts"
 exec "$build/tests/fuzz/fuzz_scene" -runs="${LUB_FUZZ_RUNS:-200000}" -max_len=8192 -timeout=10 \

@@ -242,7 +242,7 @@ def compare(study, baseline, report_dir, accepted):
                                    f"(change {vn - vb:+.3g}, {rel:.2%} relative; tolerance {lim:.3g})")
                 changed.setdefault(k, []).append((m, f"{vb:.9g}", f"{vn:.9g}", f"{rel:.2%}", f"{lim:.3g}"))
         for m in NOTES:
-            if b[m] != n[m]:
+            if b[m] != n[m] and not (math.isnan(b[m]) and math.isnan(n[m])):  # NaN: unknown (never steady)
                 notes.append(f"{name}: {m} = {n[m]:g}, baseline {b[m]:g} (reported, not compared)")
     for k, n in now.items():
         if k not in base:

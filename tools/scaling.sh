@@ -12,6 +12,7 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 if [ "${1:-}" != "--no-build" ]; then bash "$root/tools/build.sh"; fi
 cd "$root"
+export PYTHONPATH="$root/build/python${PYTHONPATH:+:$PYTHONPATH}"  # lubjoint.study reads the studies
 out=out/scaling
 mkdir -p "$out"
 if [ "$(id -u)" -eq 0 ]; then export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1; fi
@@ -40,10 +41,11 @@ for grid in "$out/full_factorial_transient.json" configs/grids/cheap_4096.json; 
     wall[$name,$np]=$(/usr/bin/python3 -c "print(f'{$e - $s:.2f}')")
   done
   /usr/bin/python3 - "$out/${name}_np1.h5" "${wall[$name,1]}" "$out/${name}_np2.h5" "${wall[$name,2]}" "$name" <<'PY'
-import sys, h5py
+import sys
+from lubjoint import study  # the one reader of study files (build/python)
 f1, w1, f2, w2, name = sys.argv[1], float(sys.argv[2]), sys.argv[3], float(sys.argv[4]), sys.argv[5]
-c1 = h5py.File(f1, "r")["cases/wall_time_s"][:].sum()
-c2 = h5py.File(f2, "r")["cases/wall_time_s"][:].sum()
+c1 = study.cases(f1)["wall_time_s"].sum()
+c2 = study.cases(f2)["wall_time_s"].sum()
 print(f"{name}: -np 1 {w1:.2f} s (case time {c1:.2f} s), -np 2 {w2:.2f} s (case time {c2:.2f} s); "
       f"efficiency T1/(2 T2) = {w1 / (2 * w2):.3f}; at the same per-case speed "
       f"(T1 c2/c1)/(2 T2) = {w1 * c2 / c1 / (2 * w2):.3f}")

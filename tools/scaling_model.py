@@ -18,7 +18,7 @@ thread that shares its core with the coordinator (each service delays its case);
 otherwise; a message takes half a round trip each way. With more ranks than one machine's
 cores it assumes one rank per core and the same per-case costs.
 
-    /usr/bin/python3 tools/scaling_model.py STUDY_NP1.h5 --overhead bench.json \
+    PYTHONPATH=build/python /usr/bin/python3 tools/scaling_model.py STUDY_NP1.h5 --overhead bench.json \
         --measured 2=WALL_NP2 --wall1 WALL_NP1 [--ranks 1 2 16 64 256 1024] [--replicate K]
 
 Prints a table (ranks, predicted wall, efficiency, coordinator utilisation, what limits it);
@@ -129,13 +129,12 @@ def simulate(costs, ranks, service_s, latency_s, worker_overhead_s, prefetch=2, 
 
 
 def read_costs(path):
-    """wall_time_s of every case of a study file, in case-id order (the hand-out order)."""
-    import h5py
-    with h5py.File(path, "r") as f:
-        cases = f["cases"]
-        costs = np.asarray(cases["wall_time_s"][:], dtype=float)
-        order = np.argsort(np.asarray(cases["case"][:]))
-    return costs[order]
+    """wall_time_s of every case of a study file, in case-id order (the hand-out order).
+    Read with lubjoint.study, the one reader of study files (PYTHONPATH=build/python)."""
+    from lubjoint import study as study_reader
+    study_reader.check_or_exit(path)
+    cases = study_reader.cases(path).sort_index()  # index: the case id
+    return np.asarray(cases["wall_time_s"], dtype=float)
 
 
 def main(argv=None):

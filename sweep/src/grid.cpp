@@ -106,7 +106,7 @@ Scene parse_case(const json& scene, const std::string& what, const json& shown) 
 json parse_grid_json(const std::string& text, const std::string& file) {
   try {
     return json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, or out_of_range.406: a number overflows a double
     throw InputError((file.empty() ? std::string("grid") : file) + ": not valid JSON: " + e.what());
   }
 }
@@ -123,7 +123,7 @@ void read_base_scene(ObjectReader& r, const std::string& base_dir, Grid& g, Cont
     try {
       g.base_scene_text = read_text(p);
       cx.base = json::parse(g.base_scene_text);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {  // parse_error, or a number that overflows a double
       fail(r.child("scene"), sc, p + ": not valid JSON: " + e.what());
     } catch (const InputError& e) {
       fail(r.child("scene"), sc, e.what());

@@ -81,6 +81,20 @@ void write_root_attributes(h5::File& f, const Grid& g, bool complete) {
   f.set_attribute("warnings", g.warnings);  // plausibility warnings of the cases (Grid::warnings)
 }
 
+/// The missing-value convention (run_io.hpp) on /cases: a float column declares NaN
+/// (`_FillValue`), an integer result column its sentinel (`missing_value` = -1).
+void declare_missing_values(h5::Table& t, const Grid& g) {
+  for (const Axis& a : g.axes)
+    if (a.numeric) t.column(a.name).set_attribute("_FillValue", std::numeric_limits<double>::quiet_NaN());
+  for (const auto& fld : result_fields()) {
+    h5::Dataset d = t.column(fld.name);
+    if (fld.integer)
+      d.set_attribute_int64("missing_value", kMissingInteger);
+    else
+      d.set_attribute("_FillValue", std::numeric_limits<double>::quiet_NaN());
+  }
+}
+
 /// The empty /cases table, its columns and the attributes that group them.
 void create_cases_table(h5::File& f, const Grid& g) {
   h5::Table t = f.create_table("cases", case_columns(g));
@@ -92,6 +106,7 @@ void create_cases_table(h5::File& f, const Grid& g) {
   t.set_attribute("metrics", metrics);
   t.set_attribute("solver", solver);
   for (const Axis& a : g.axes) t.column(a.name).set_attribute("pointer", a.pointer);
+  declare_missing_values(t, g);
 }
 
 /// /scene_patches on the root's own `scene` dimension (the case ids of the grid), so the
@@ -138,6 +153,7 @@ void write_block_index(h5::Group& grids, const Grid& g, const Block& b) {
       std::vector<json> v;
       for (int id : b.case_ids) v.push_back(g.cases.at(static_cast<std::size_t>(id)).axis_values[k]);
       h5::Dataset d = write_axis(bg, g.axes[k], v);
+      if (g.axes[k].numeric) d.set_attribute("_FillValue", std::numeric_limits<double>::quiet_NaN());  // unset
       d.attach_scale(scale, 0);
     }
   }
@@ -188,6 +204,7 @@ void write_grid_results(h5::File& f, const Grid& g, const std::map<int, CaseResu
         v.push_back(have ? r->values[k] : nan);
       }
       h5::Dataset d = bg.write_dataset(fields[k].name, v, shape, fields[k].unit, h5::WriteOptions{0});
+      d.set_attribute("_FillValue", nan);  // float64 here, integer fields included
       d.set_attribute("long_name", std::string(fields[k].long_name) +
                                        (fields[k].steady_metric ? " (NaN: no steady cycle, see classification)"
                                         : k < n_metrics      ? " (NaN: the case is not ok, see status)"
@@ -276,7 +293,7 @@ h5::Row case_row(const Grid& g, const CaseResult& r) {
   for (std::size_t i = 0; i < fields.size(); ++i) {
     const double v = i < r.values.size() ? r.values[i] : std::nan("");
     if (fields[i].integer)
-      row.push_back(static_cast<std::int64_t>(std::isfinite(v) ? v : -1.0));
+      row.push_back(std::isfinite(v) ? static_cast<std::int64_t>(v) : kMissingInteger);
     else
       row.push_back(v);
   }

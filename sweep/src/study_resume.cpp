@@ -1,5 +1,9 @@
 // The resume reader: what an earlier study file at the output path holds for this grid
 // (check_format, read_existing), and the series of its reused cases (study_parts.hpp).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
 #include <map>
 #include <stdexcept>
 
@@ -14,6 +18,11 @@ namespace {
 
 /// What -o errors add: how to get past a file that cannot be resumed.
 constexpr const char* kResumeHint = " (use --restart to overwrite it, or another -o)";
+
+/// What a refusal to drop rows adds: nothing was changed, and the three ways on.
+constexpr const char* kDropHint =
+    ". Nothing was changed: to keep them, give another -o; to drop them, add --drop-other-cases; "
+    "to start over, --restart";
 
 /// The /cases table of the study file at `path`, opened as `f`; throws lub::InputError
 /// unless it is a lubsweep study file of this build's format.
@@ -42,6 +51,58 @@ bool has_result_columns(const h5::Table& t) {
   return compatible;
 }
 
+/// " (a=1 b=x)": row `i`'s values on the axes of the file's /cases (its attribute `axes`).
+std::string row_label(const h5::Table& t, const std::vector<std::string>& axes, std::size_t i) {
+  std::string label;
+  for (const std::string& a : axes) {
+    if (!t.has_column(a)) continue;
+    std::string v;
+    if (t.columns()[t.column_index(a)].type == h5::ColumnType::String) {
+      v = t.read_strings(a).at(i);
+    } else {
+      const double x = t.read_doubles(a).at(i);
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%g", x);
+      v = std::isnan(x) ? "unset" : buf;
+    }
+    label += (label.empty() ? "" : " ") + a + "=" + v;
+  }
+  return label.empty() ? "" : " (" + label + ")";
+}
+
+/// "a, b" ("none" if empty).
+std::string joined(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s.empty() ? "none" : s;
+}
+
+/// The refusal of a file whose rows `other` (row numbers) are not cases of `grid`: names
+/// them (at most five, with their axis values) and how the axes differ.
+InputError other_cases_error(const std::string& path, const h5::Table& t, const Grid& grid,
+                             const std::vector<std::size_t>& other) {
+  const std::vector<std::string> file_axes =
+      t.has_attribute("axes") ? t.attribute_strings("axes") : std::vector<std::string>();
+  std::vector<std::string> grid_axes, only_file, only_grid;
+  for (const Axis& a : grid.axes) grid_axes.push_back(a.name);
+  for (const auto& a : file_axes)
+    if (std::find(grid_axes.begin(), grid_axes.end(), a) == grid_axes.end()) only_file.push_back(a);
+  for (const auto& a : grid_axes)
+    if (std::find(file_axes.begin(), file_axes.end(), a) == file_axes.end()) only_grid.push_back(a);
+  const std::vector<std::string> names = t.read_strings("name");
+  std::string msg = "-o " + path + ": the file holds " + std::to_string(other.size()) + " computed case" +
+                    (other.size() == 1 ? "" : "s") + " that " + (other.size() == 1 ? "is not a case" : "are not cases") +
+                    " of the grid " + (grid.file.empty() ? std::string("given") : grid.file) + ": ";
+  for (std::size_t k = 0; k < other.size() && k < 5; ++k)
+    msg += (k ? ", " : "") + names.at(other[k]) + row_label(t, file_axes, other[k]);
+  if (other.size() > 5) msg += ", and " + std::to_string(other.size() - 5) + " more";
+  if (only_file.empty() && only_grid.empty())
+    msg += "; same axes (" + joined(grid_axes) + "), other values or settings";
+  else
+    msg += "; axes only in the file: " + joined(only_file) + "; only in this grid: " + joined(only_grid);
+  return InputError(msg + kDropHint);
+}
+
 /// The columns of /cases a resumed row is made of.
 struct EarlierRows {
   explicit EarlierRows(const h5::Table& t)
@@ -51,7 +112,12 @@ struct EarlierRows {
         classification(t.read_strings("classification")),
         revision(t.read_strings("revision")),
         rank(t.read_int64s("rank")) {
-    for (const auto& fld : result_fields()) values.push_back(t.read_doubles(fld.name));
+    for (const auto& fld : result_fields()) {
+      values.push_back(t.read_doubles(fld.name));
+      if (fld.integer)  // the sentinel back to NaN, as run_case gives it
+        for (double& v : values.back())
+          if (v == static_cast<double>(kMissingInteger)) v = std::numeric_limits<double>::quiet_NaN();
+    }
   }
 
   /// Row `i` as the result of case `case_id`.
@@ -78,22 +144,30 @@ void check_format(const h5::File& f, const std::string& what, const std::string&
   const std::string format = f.has_attribute("format") ? f.attribute_string("format") : "(none)";
   if (format != kStudyFormat)
     throw InputError(what + ": a study file of format " + format + "; this lubsweep reads and writes format " +
-                     kStudyFormat + " (/cases as columns, /grids as labelled variables)" + hint);
+                     kStudyFormat + (hint.empty() ? std::string(" (re-run the sweep with --restart to rewrite it)") : hint));
 }
 
 ResumeState read_existing(const std::string& path, const Grid& grid, bool retry_failed,
-                          const std::string& build) {
+                          const std::string& build, bool drop_other_cases) {
   h5::File f;
   const h5::Table t = open_cases_table(path, f);
   ResumeState st;
   const std::size_t n = t.rows();
   if (!has_result_columns(t)) {
+    if (n > 0 && !drop_other_cases)
+      throw InputError("-o " + path + ": its " + std::to_string(n) +
+                       " rows lack result columns of this build (another version?), so they cannot be reused" +
+                       kDropHint);
     st.incompatible_rows = n;
     return st;
   }
   const EarlierRows rows(t);
   std::map<std::string, int> id_of;
   for (const Case& c : grid.cases) id_of[c.hash] = c.id;
+  std::vector<std::size_t> other;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!id_of.count(rows.hashes[i])) other.push_back(i);
+  if (!other.empty() && !drop_other_cases) throw other_cases_error(path, t, grid, other);
   for (std::size_t i = 0; i < n; ++i) {
     const auto it = id_of.find(rows.hashes[i]);
     if (it == id_of.end()) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <system_error>
 #include <map>
 
 #include "lub/io/json_reader.hpp"
@@ -94,7 +96,16 @@ void print_table(std::FILE* out, const std::vector<SummaryColumn>& cols, std::si
 }  // namespace
 
 void print_summary(const std::string& path, std::FILE* out) {
-  const h5::File f = h5::File::open(path, h5::File::Mode::ReadOnly);
+  // One line for a path that is not a study (lubsweep --summary): not HDF5's error stack.
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw InputError("no such file");
+  if (std::filesystem::is_directory(path, ec)) throw InputError("a directory, not a study file");
+  h5::File f;
+  try {
+    f = h5::File::open(path, h5::File::Mode::ReadOnly);
+  } catch (const std::exception&) {
+    throw InputError("not an HDF5 file, so not a lubsweep study file");
+  }
   if (!f.has_attribute("program") || f.attribute_string("program") != "lubsweep")
     throw InputError("not a lubsweep study file");
   check_format(f, path, "");

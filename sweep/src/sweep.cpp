@@ -41,6 +41,8 @@ const char* const kUsage =
     "                          their scene) are not run again: re-running a killed sweep\n"
     "                          resumes it\n"
     "  --restart               ignore an existing output file and start afresh\n"
+    "  --drop-other-cases      resume, dropping the file's rows that are not cases of\n"
+    "                          this grid (without it such a file is refused: exit 2)\n"
     "  --retry-failed          run again the cases the file records as not ok\n"
     "  --check                 validate the grid and list its cases; run nothing\n"
     "  --strict                a plausibility warning (a viscosity, clearance or speed that\n"
@@ -68,6 +70,7 @@ std::optional<std::string> parse_options(const std::vector<std::string>& args, O
   app.add_option("--summary", o.summary_of);
   app.add_flag("--restart", o.restart);
   app.add_flag("--retry-failed", o.retry_failed);
+  app.add_flag("--drop-other-cases", o.drop_other_cases);
   app.add_flag("--check", o.check);
   app.add_flag("--strict", o.strict);
   app.add_flag("--no-summary{false}", o.summary);
@@ -139,7 +142,7 @@ int prepare(const Options& o, Grid& grid, ResumeState& resume, bool& reuse_file,
   reuse_file = false;
   if (file_exists(o.output) && !o.restart) {
     try {
-      resume = read_existing(o.output, grid, o.retry_failed, build_revision());
+      resume = read_existing(o.output, grid, o.retry_failed, build_revision(), o.drop_other_cases);
       reuse_file = true;
     } catch (const InputError& e) {
       std::fprintf(stderr, "lubsweep: %s\n", e.what());

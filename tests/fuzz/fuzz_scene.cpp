@@ -16,6 +16,8 @@
 #include <cstdlib>
 #include <string>
 
+#include "fuzz_check.hpp"
+
 #include "lub/mechanism/builder.hpp"
 #include "lub/mechanism/model.hpp"
 #include "lub/scene/scene.hpp"
@@ -24,15 +26,7 @@ namespace {
 
 using nlohmann::json;
 
-// A violated invariant of an accepted scene: a validator gap. Abort so the fuzzer keeps
-// the input.
-#define FUZZ_CHECK(cond)                                                         \
-  do {                                                                           \
-    if (!(cond)) {                                                               \
-      std::fprintf(stderr, "fuzz_scene: accepted scene violates %s\n", #cond);  \
-      std::abort();                                                              \
-    }                                                                            \
-  } while (0)
+#define FUZZ_CHECK(cond) LUB_FUZZ_CHECK("fuzz_scene", cond)
 
 bool body_ok(const lub::Scene& s, int b, bool ground_ok) {
   return (ground_ok && b == lub::kGround) || (b >= 0 && b < static_cast<int>(s.bodies.size()));

@@ -4,8 +4,9 @@
 # CASE: ranks     -np 1 and -np 2 give bit-identical results, in the same order
 #       resume    a sweep killed after 3 cases (SIGKILL on rank 0) resumes to the same
 #                 results as an uninterrupted run, running only the missing cases
-#       bad_input a bad grid exits 2 under mpirun and creates no file; an existing
-#                 non-study output is refused and left untouched
+#       bad_input a bad grid exits 2 under mpirun, one message, and creates no file; an
+#                 existing non-study output is refused and left untouched; a study of
+#                 another grid is refused (exit 2, untouched) unless --drop-other-cases
 #       abort     on_failure = abort stops the sweep (exit 3, incomplete file); a re-run
 #                 completes it, the failure kept
 #       lock      a second sweep on the output of a running one is refused (exit 2, naming
@@ -60,6 +61,26 @@ bad_input)
   # The grid's path and value, then the scene parser's rule on the journal radius it sets.
   grep -q "grid.axes\[0\].values\[1\] = -0.0001: gives an invalid scene (joint rod_slider: journal_radius_m = bearing_radius_m - clearance = 0.01 m - -0.0001 m): joints\[3\].journal_radius_m = 0.0101: must be < bearing_radius_m = 0.01 m (the radial clearance must be > 0)" bad.log || { cat bad.log >&2; fail "message"; }
   [ ! -e bad.h5 ] || fail "a bad grid created its output file"
+  # One message, from rank 0 only; every rank left MPI through MPI_Finalize (Open MPI 4
+  # still adds its own box after any non-zero exit status: README "Running a study").
+  [ "$(grep -c '^lubsweep: ' bad.log)" = 1 ] || { cat bad.log >&2; fail "the message is not printed once"; }
+  ! grep -q "without calling \"finalize\"\|MPI_ABORT\|exited on signal" bad.log || { cat bad.log >&2; fail "a rank did not leave MPI cleanly"; }
+  # A study file of another grid is refused, untouched, naming the cases it would lose;
+  # --drop-other-cases drops them.
+  run 2 ten.h5 2> ten.log
+  cp ten.h5 ten_before.h5
+  sed 's/"values": \[5000, 500, 50\]/"values": [5000, 500]/; s|"\.\./\.\./configs|"'"$here"'/../../configs|' "$grid" > smaller.json
+  set +e
+  "$mpiexec" -np 2 "$lubsweep" smaller.json -o ten.h5 --no-summary 2> smaller.log
+  rc=$?
+  set -e
+  [ "$rc" -eq 2 ] || { cat smaller.log >&2; fail "a file of a larger grid: exit $rc, expected 2"; }
+  grep -q "ten.h5: the file holds 3 computed cases that are not cases of the grid smaller.json: case_0002 (force_law=ideal speed_rpm=50 solver.rtol=1e-06)" smaller.log \
+    || { cat smaller.log >&2; fail "the refusal does not name the cases"; }
+  cmp -s ten.h5 ten_before.h5 || fail "a refused study file was changed"
+  "$mpiexec" -np 2 "$lubsweep" smaller.json -o ten.h5 --no-summary --drop-other-cases 2> drop.log \
+    || { cat drop.log >&2; fail "--drop-other-cases was refused"; }
+  grep -q "dropping 3 rows" drop.log || { cat drop.log >&2; fail "--drop-other-cases: no dropping line"; }
   echo "not a study" > other.h5
   set +e
   "$mpiexec" -np 2 "$lubsweep" "$grid" -o other.h5 2> other.log

@@ -155,7 +155,9 @@ def assert_same_dicts(a, b):
 def assert_same_metric(ds, name, value):
     """A run file's /metrics attribute against the module's dataset: strings are dataset
     attributes, the multipliers a variable; NaN (not computed) equals NaN."""
-    if name in ("classification", "steady_method"):
+    if name == "missing_value":  # the group's declaration of its integers' sentinel, not a metric
+        assert value == lubjoint.run.MISSING_INTEGER
+    elif name in ("classification", "steady_method"):
         assert ds.attrs[name] == value, name
     elif name.startswith("multiplier_") and np.ndim(value) == 1:
         np.testing.assert_array_equal(ds[name].values, value, err_msg=name)
@@ -180,7 +182,7 @@ def test_simulate_matches_lubsim(tmp_path):
         for name, value in h5_attrs(ref["metrics"]).items():
             assert_same_metric(ds, name, value)
         for name, value in h5_attrs(ref["solver"]).items():
-            if name == "wall_time_s":
+            if name in ("wall_time_s", "missing_value"):
                 continue
             got = ds[name].item() if name in ds else ds.attrs["solver_" + name]
             assert got == value, name
@@ -357,7 +359,7 @@ def study_file(tmp_path_factory):
 
 
 def test_load_study(study_file):
-    assert lubjoint.study_format(study_file) == "lubsweep-study-4"  # the xarray layout (issue 15), scene patches (16)
+    assert lubjoint.study_format(study_file) == "lubsweep-study-5"  # the xarray layout (issue 15), scene patches (16)
     s = lubjoint.load_study(study_file)
     assert list(s) == ["grid"]
     g = s["grid"]
@@ -386,9 +388,9 @@ def test_load_study_reads_xarray_layout(tmp_path):
     g.to_netcdf(path, group="grids/clearance", engine="h5netcdf", mode="a")
     with h5py.File(path, "a") as f:
         f.attrs["program"] = "lubsweep"
-        f.attrs["format"] = "lubsweep-study-4"
+        f.attrs["format"] = "lubsweep-study-5"
     s = lubjoint.load_study(path)
-    assert list(s) == ["clearance"] and s.attrs["format"] == "lubsweep-study-4"
+    assert list(s) == ["clearance"] and s.attrs["format"] == "lubsweep-study-5"
     np.testing.assert_array_equal(s["clearance"]["max_eps"].sel(clearance_m=1e-4).values, 0.6)
     assert s.cases.to_dataframe()["status"].tolist() == ["ok", "ok", "film_collapse"]
     with h5py.File(path, "a") as f:
@@ -405,7 +407,7 @@ def test_the_study_reader_reads_one_format_and_says_what_to_do(tmp_path):
     with h5py.File(path, "a") as f:
         f.attrs["program"] = "lubsweep"
         f.attrs["format"] = "lubsweep-study-3"
-    message = (f"{path}: a study file of format lubsweep-study-3; lubjoint.study reads lubsweep-study-4 "
+    message = (f"{path}: a study file of format lubsweep-study-3; lubjoint.study reads lubsweep-study-5 "
                "(re-run the sweep with --restart to rewrite it)")
     for read in (lubjoint.load_study, lubjoint.study.check):
         with pytest.raises(lubjoint.StudyFormatError) as e:
@@ -433,7 +435,7 @@ def test_the_study_reader_needs_no_compiled_extension(tmp_path):
                        env={**os.environ, "PYTHONPATH": str(tmp_path)})
     assert p.returncode == 0, p.stderr
     lines = p.stdout.splitlines()
-    assert lines[0] == "lubsweep-study-4" and lines[1].startswith("ImportError") and "_lubjoint" in lines[1], p.stdout
+    assert lines[0] == "lubsweep-study-5" and lines[1].startswith("ImportError") and "_lubjoint" in lines[1], p.stdout
 
 
 def test_the_binding_returns_named_fields():
@@ -443,3 +445,38 @@ def test_the_binding_returns_named_fields():
     assert lubjoint.bearing.force("frene_long", 0.5, 0.0, 100.0, **BEARING).radial_N == f["radial_N"][0]
     assert {"name", "value", "units", "integer", "long_name"} <= set(dir(lubjoint._lubjoint.Scalar))
     assert {"name", "units", "long_name", "values"} <= set(dir(lubjoint._lubjoint.Column))
+
+
+def test_one_missing_value_convention(study_file, tmp_path):
+    # NaN for every unknown float (the first cycle's periodicity, a study case's
+    # periodicity after one cycle), in the run, the run file, /cases and /grids alike; an
+    # unknown integer (cycles_to_steady, never steady) holds -1 and says so (missing_value).
+    one = lubjoint.simulate(SCENE, {"/simulation/max_cycles": 2, "/simulation/stop_when_steady": False},
+                            output=tmp_path / "run.h5")
+    assert np.isnan(one["cycle_periodicity"].values[0]) and np.isfinite(one["cycle_periodicity"].values[1])
+    assert one["cycles_to_steady"].item() == -1 and one["cycles_to_steady"].attrs["missing_value"] == -1
+    with h5py.File(tmp_path / "run.h5", "r") as f:
+        assert f.attrs["format"] == "lubsim-run-3"
+        assert np.isnan(f["cycles/periodicity"][0]) and np.isnan(f["cycles/periodicity"].attrs["_FillValue"])
+        assert f["metrics"].attrs["cycles_to_steady"] == -1 and f["metrics"].attrs["missing_value"] == -1
+    with h5py.File(study_file, "r") as f:  # max_cycles 1: no periodicity, never steady
+        assert np.isnan(f["cases/periodicity"][:]).all() and np.isnan(f["grids/grid/periodicity"][:]).all()
+        assert f["cases/cycles_to_steady"].attrs["missing_value"] == -1
+        assert np.isnan(f["cases/periodicity"].attrs["_FillValue"])
+    cases = lubjoint.study.cases(study_file)  # the reader: NaN for the unknown integer too
+    assert cases["periodicity"].isna().all() and cases["cycles_to_steady"].dtype.kind == "f"
+    assert (cases["steps"] > 0).all()
+
+
+def test_tools_read_study_files_only_through_lubjoint_study():
+    # One reader of study files (lubjoint.study: one list of formats, one message for an old
+    # file): no tool opens HDF5 itself, except h5_identical.py, which compares any two HDF5
+    # files byte for byte and reads no study semantics.
+    tools = SOURCE / "tools"
+    readers = [p.name for p in sorted(tools.glob("*.py")) + sorted(tools.glob("*.sh"))
+               if p.name not in ("h5_identical.py", "setup.sh")  # setup.sh installs python3-h5py
+               and ("h5py" in p.read_text() or "open_dataset" in p.read_text())]
+    assert readers == [], f"tools reading HDF5 without lubjoint.study: {readers}"
+    for p in ("compare_study.py", "nightly.py", "plot_paper.py", "plot_steady.py", "sweep_map.py",
+              "work_precision.py", "scaling_model.py"):
+        assert "from lubjoint import study" in (tools / p).read_text(), p

@@ -58,9 +58,16 @@ def test_command_line_on_a_study_file(tmp_path):
     study = tmp_path / "s.h5"
     rng = np.random.default_rng(1)
     walls = rng.uniform(0.01, 0.02, 200)
-    with h5py.File(study, "w") as f:
-        f["cases/case"] = np.arange(200)
-        f["cases/wall_time_s"] = walls
+    # A study file as the one reader (lubjoint.study) accepts it: /cases over `case`.
+    import xarray as xr
+    from lubjoint import study as study_reader
+    order = rng.permutation(200)  # rows in arrival order: the costs come back in case-id order
+    xr.Dataset({"wall_time_s": ("case", walls[order])}, coords={"case": order}).to_netcdf(
+        study, group="cases", engine="h5netcdf")
+    with h5py.File(study, "a") as f:
+        f.attrs["program"] = "lubsweep"
+        f.attrs["format"] = study_reader.STUDY_FORMAT
+    np.testing.assert_array_equal(sm.read_costs(study), walls)
     overhead = tmp_path / "o.json"
     overhead.write_text(json.dumps({"cases": 1000, "service_us": 40.0, "round_trip_us": 250.0,
                                     "finalize_s": 0.07}) + "\n")

@@ -19,6 +19,11 @@ from ._lubjoint import InputError
 #: Bad input (scene, override, argument): the message names the path, the value and the rule.
 SceneError = InputError
 
+#: An integer metric or statistic that is unknown (e.g. ``cycles_to_steady`` of a run that
+#: never settled) holds this, and says so in its ``missing_value`` attribute; an unknown
+#: float is NaN (README, "Missing values").
+MISSING_INTEGER = -1
+
 
 class PlausibilityWarning(UserWarning):
     """A value the rules accept but that is most likely a unit slip (README "Scene format",
@@ -67,8 +72,9 @@ def simulate(scene, overrides=None, output=None, *, strict=False):
           ``peak_reaction_N``, ...) and solver statistics (``steps``, ``rhs_evals``,
           ``wall_time_s``, ``max_position_drift``, ...) as 0-d variables with ``units``,
           ``long_name`` and ``kind`` = ``metric`` or ``solver`` (counts and flags are
-          int64, units ``1``); a name already taken by a channel gets the prefix ``metric_`` or
-          ``solver_``;
+          int64, units ``1``, ``missing_value`` = -1: the value of an unknown one, e.g.
+          ``cycles_to_steady`` of a run that never settled; an unknown float is NaN); a
+          name already taken by a channel gets the prefix ``metric_`` or ``solver_``;
         - the per-cycle extremes (the run file's /cycles) as ``cycle_<name>`` over the
           dimension ``cycle`` (1, 2, ...);
         - ``attrs``: ``status`` (``ok``, ``film_collapse``, ``solver_failure``,
@@ -138,8 +144,11 @@ def simulate(scene, overrides=None, output=None, *, strict=False):
     for kind, fields in (("metric", r["metrics"]), ("solver", r["solver"])):  # _lubjoint.Scalar
         for f in fields:
             key = f.name if f.name not in data_vars and f.name not in coords else f"{kind}_{f.name}"
-            data_vars[key] = ((), np.int64(f.value) if f.integer else np.float64(f.value),
-                              attrs_of(f.units, f.long_name, kind=kind))
+            if f.integer:  # unknown (NaN from the engine): the sentinel, declared (README "Missing values")
+                value = np.int64(f.value) if np.isfinite(f.value) else np.int64(MISSING_INTEGER)
+                data_vars[key] = ((), value, attrs_of(f.units, f.long_name, kind=kind, missing_value=MISSING_INTEGER))
+            else:
+                data_vars[key] = ((), np.float64(f.value), attrs_of(f.units, f.long_name, kind=kind))
     # Every Floquet multiplier of the steady cycle (shooting), largest first.
     data_vars["multiplier_modulus"] = ("multiplier", r["multiplier_modulus"],
                                        {"units": "1", "long_name": "Floquet multipliers' moduli, largest first"})

@@ -13,20 +13,30 @@ adds the format check and the look-ups the tools share:
     s = study.series("out/study.h5", "case_0003") # xarray Dataset indexed by t, or None
     sc = study.scene("out/study.h5", 3)           # case 3's effective scene (dict)
 
-One format is read, ``STUDY_FORMAT`` (what this build's lubsweep writes); any other is
-refused with one message that says what to do (re-run the sweep with ``--restart``).
+The formats read are ``ACCEPTED_FORMATS`` (one: ``STUDY_FORMAT``, what this build's lubsweep
+writes); any other is refused with one message that says what to do (re-run the sweep with
+``--restart``).
+
+Missing values (README, "Missing values"): a float that is unknown is NaN (``_FillValue`` =
+NaN); an integer column of ``/cases`` (counts, flags) holds -1 and says so in its
+``missing_value`` attribute, so xarray and pandas (``cases``) show NaN there too.
 """
 
 import json
 import os
 from collections.abc import Mapping
 
-#: The study-file format this reader reads (lubsweep's kStudyFormat, sweep/src/study_file.cpp).
-STUDY_FORMAT = "lubsweep-study-4"
+#: The study-file format lubsweep writes (kStudyFormat, sweep/include/lub/sweep/study_file.hpp).
+#: 5: NaN for every unknown float (4 wrote -1 for an unknown periodicity).
+STUDY_FORMAT = "lubsweep-study-5"
+#: The one list of formats this reader accepts (every reader of study files goes through ``check``).
+ACCEPTED_FORMATS = (STUDY_FORMAT,)
+#: What to do with a file of another format, in every refusal.
+OLD_FORMAT_ADVICE = "re-run the sweep with --restart to rewrite it"
 
 
 class StudyFormatError(ValueError):
-    """A file that is not a lubsweep study of ``STUDY_FORMAT`` (not HDF5, not lubsweep's, another format)."""
+    """A file that is not a lubsweep study of ``ACCEPTED_FORMATS`` (not HDF5, not lubsweep's, another format)."""
 
 
 def _text(value):
@@ -60,9 +70,9 @@ def check(path):
         raise StudyFormatError(f"{path}: not an HDF5 file ({e})") from None
     if attrs.get("program") != "lubsweep":
         raise StudyFormatError(f"{path}: not a lubsweep study file")
-    if attrs.get("format") != STUDY_FORMAT:
-        raise StudyFormatError(f"{path}: a study file of format {attrs.get('format')}; lubjoint.study reads {STUDY_FORMAT} "
-                               "(re-run the sweep with --restart to rewrite it)")
+    if attrs.get("format") not in ACCEPTED_FORMATS:
+        raise StudyFormatError(f"{path}: a study file of format {attrs.get('format')}; lubjoint.study reads "
+                               f"{', '.join(ACCEPTED_FORMATS)} ({OLD_FORMAT_ADVICE})")
     return attrs
 
 
@@ -159,7 +169,7 @@ def load_study(path):
     ------
     StudyFormatError
         (a ``ValueError``) for a file that is not HDF5, not a lubsweep study, or of a format
-        other than ``STUDY_FORMAT`` (the message says: re-run the sweep with ``--restart``).
+        not in ``ACCEPTED_FORMATS`` (the message says: re-run the sweep with ``--restart``).
     """
     path = os.fspath(path)
     attrs = check(path)

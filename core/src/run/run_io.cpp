@@ -19,6 +19,12 @@
 namespace lub {
 
 namespace {
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// A value whose negative stands for "unknown" in the run's structs (periodicity of the
+/// first cycle, cycles_to_steady of a run that never settled): NaN in every output.
+double known(double v) { return v < 0 ? kNaN : v; }
+
 // The k-th Floquet multiplier's modulus or angle (NaN when there is none).
 double multiplier(const RunResult& r, size_t k, bool angle) {
   if (k >= r.steady.multipliers.size()) return std::numeric_limits<double>::quiet_NaN();
@@ -32,8 +38,8 @@ const std::vector<ResultField>& metric_fields() {
     for (const SteadyMetric& sm : steady_metrics())
       fields.push_back({sm.name, sm.unit, false, [v = sm.value](const RunResult& r) { return r.metrics.*v; },
                         sm.long_name, true});
-    fields.push_back({"periodicity", "1", false, [](const RunResult& r) { return r.metrics.periodicity; },
-                      "largest cycle-to-cycle journal orbit distance over the metric cycles / clearance (-1: unknown)"});
+    fields.push_back({"periodicity", "1", false, [](const RunResult& r) { return known(r.metrics.periodicity); },
+                      "largest cycle-to-cycle journal orbit distance over the metric cycles / clearance (NaN: unknown)"});
     // Error bars (set_errors, steady_cycle.cpp): NaN without simulation.error_bars.
     for (const SteadyMetric& sm : steady_metrics())
       fields.push_back({std::string(sm.name) + "_error", sm.unit, false,
@@ -42,8 +48,8 @@ const std::vector<ResultField>& metric_fields() {
     std::vector<ResultField> rest = {
         {"steady", "1", true, [](const RunResult& r) { return r.metrics.steady ? 1.0 : 0.0; },
          "1 if the classification is periodic"},
-        {"cycles_to_steady", "1", true, [](const RunResult& r) { return double(r.metrics.cycles_to_steady); },
-         "periods integrated until the steady cycle was known (-1: never)"},
+        {"cycles_to_steady", "1", true, [](const RunResult& r) { return known(r.metrics.cycles_to_steady); },
+         "periods integrated until the steady cycle was known (missing: never)"},
         {"cycles_run", "1", true, [](const RunResult& r) { return double(r.metrics.cycles_run); },
          "transient crank cycles run"},
         {"contraction_rate", "1", false, [](const RunResult& r) { return r.steady.contraction_rate; },
@@ -215,8 +221,8 @@ const std::vector<CycleField>& cycle_fields() {
     for (const SteadyMetric& sm : steady_metrics())
       fields.push_back({sm.name, sm.unit, sm.cycle_long_name, [p = sm.per_cycle](const CycleMetrics& c) { return c.*p; }});
     std::vector<CycleField> rest = {
-        {"periodicity", "1", "largest orbit distance to the previous cycle / clearance (-1: first cycle)",
-         [](const CycleMetrics& c) { return c.periodicity; }},
+        {"periodicity", "1", "largest orbit distance to the previous cycle / clearance (NaN: first cycle)",
+         [](const CycleMetrics& c) { return known(c.periodicity); }},
         {"end_eccentricity_x", "1", "metric joint's e_x / c at the cycle's end (crank angle 0: Poincare section)",
          [](const CycleMetrics& c) { return c.end_eccentricity_x; }},
         {"end_eccentricity_y", "1", "metric joint's e_y / c at the cycle's end",
@@ -239,7 +245,7 @@ namespace {
 void put(h5::Object& obj, const ResultField& f, const RunResult& r) {
   const double v = f.get(r);
   if (f.integer)
-    obj.set_attribute_int64(f.name, static_cast<std::int64_t>(v));
+    obj.set_attribute_int64(f.name, std::isfinite(v) ? static_cast<std::int64_t>(v) : kMissingInteger);
   else
     obj.set_attribute(f.name, v);
 }
@@ -271,6 +277,7 @@ void write_run_file(const std::string& path, const std::string& scene_text, cons
     std::vector<std::string> units;
     m.set_attribute("classification", classification(r));
     m.set_attribute("steady_method", r.steady.method);
+    m.set_attribute_int64("missing_value", kMissingInteger);  // of its integer attributes; floats: NaN
     for (const auto& fld : metric_fields()) put(m, fld, r);
     // Every Floquet multiplier (the columns above hold the four largest).
     std::vector<double> mod, arg;
@@ -285,12 +292,14 @@ void write_run_file(const std::string& path, const std::string& scene_text, cons
     sv.set_attribute("jacobian", r.stats.jacobian);
     sv.set_attribute("rtol", r.stats.rtol);
     sv.set_attribute("atol", r.stats.atol);
+    sv.set_attribute_int64("missing_value", kMissingInteger);
     for (const auto& fld : solver_fields()) put(sv, fld, r);
 
     std::vector<h5::Column> columns = {{"cycle", h5::ColumnType::Int64, "1", "crank cycle number (1: the first)"}};
     for (const CycleField& fld : cycle_fields())
       columns.push_back({fld.name, h5::ColumnType::Float64, fld.unit, fld.long_name});
     h5::Table c = f.create_table("cycles", columns);
+    for (const CycleField& fld : cycle_fields()) c.column(fld.name).set_attribute("_FillValue", kNaN);
     std::vector<h5::Row> rows;
     std::int64_t number = 0;
     for (const CycleMetrics& cy : r.cycles) {

@@ -2,6 +2,7 @@
 // /solver, lubsim's summary and the sweep's /cases columns, so they cannot disagree.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -10,6 +11,13 @@
 #include "lub/run/run.hpp"
 
 namespace lub {
+
+/// The missing-value convention of every file and of the Python module (README, "Missing
+/// values"): a float value that is unknown is NaN (a float variable or column declares
+/// `_FillValue` = NaN, CF 2.5.1); an integer one (a count or flag) keeps this sentinel,
+/// declared by the attribute `missing_value` = -1. ResultField::get, CycleField::get return
+/// NaN for an unknown value, integer fields included: writers of integers store the sentinel.
+inline constexpr std::int64_t kMissingInteger = -1;
 
 /// One scalar a run reports.
 struct ResultField {
@@ -45,7 +53,7 @@ struct CycleField {
 const std::vector<CycleField>& cycle_fields();
 
 /// Version of the run file's layout, in the root attribute `format`.
-inline constexpr const char* kRunFormat = "lubsim-run-2";
+inline constexpr const char* kRunFormat = "lubsim-run-3";  // 3: NaN for an unknown periodicity (2: -1)
 
 /// Program version and the build's revision.
 std::string program_version();

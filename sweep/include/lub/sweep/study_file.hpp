@@ -36,7 +36,7 @@
 namespace lub::sweep {
 
 /// Version of the layout above, in the root attribute `format`.
-inline constexpr const char* kStudyFormat = "lubsweep-study-4";
+inline constexpr const char* kStudyFormat = "lubsweep-study-5";  // 5: NaN for unknown floats (4: -1 periodicity)
 
 /// Columns of /cases for a grid.
 std::vector<h5::Column> case_columns(const Grid& grid);
@@ -46,7 +46,7 @@ h5::Row case_row(const Grid& grid, const CaseResult& result);
 /// What an existing output file holds for this grid.
 struct ResumeState {
   std::map<int, CaseResult> done;  ///< results of this grid's cases, by case id (series not loaded)
-  std::size_t other_rows = 0;      ///< rows that are not cases of this grid (dropped)
+  std::size_t other_rows = 0;      ///< rows that are not cases of this grid (dropped: drop_other_cases)
   std::size_t incompatible_rows = 0;  ///< rows of a file without this build's result columns
   std::size_t retried = 0;         ///< failed rows left out to be run again (retry_failed)
   std::size_t other_revision = 0;  ///< rows computed by another build revision (run again)
@@ -55,9 +55,12 @@ struct ResumeState {
 /// Reads the results an existing study file holds for `grid`'s cases, matched by hash.
 /// Only rows computed by build `revision` are reused (a file never mixes results of two
 /// builds), and only if the file has every result column of this build.
+/// Nothing computed is dropped without consent: rows that are not cases of `grid` (or a
+/// file without this build's result columns) throw lub::InputError naming those cases and
+/// how the axes differ, unless `drop_other_cases` (lubsweep --drop-other-cases).
 /// Throws lub::InputError if `path` is not a lubsweep study file.
 ResumeState read_existing(const std::string& path, const Grid& grid, bool retry_failed,
-                          const std::string& revision);
+                          const std::string& revision, bool drop_other_cases = false);
 
 /// Writes the study file.
 class StudyWriter {

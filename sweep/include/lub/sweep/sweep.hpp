@@ -18,6 +18,7 @@ struct Options {
   std::string output;
   bool restart = false;       ///< ignore (and overwrite) an existing output file
   bool retry_failed = false;  ///< run again the cases the file records as failed
+  bool drop_other_cases = false;  ///< resume a file holding rows of other cases, dropping them
   bool quiet = false;         ///< no progress lines
   bool summary = true;        ///< print the study's table at the end
   std::string summary_of;     ///< --summary FILE: only print FILE's table
