@@ -3,6 +3,8 @@
 //   mpirun -np 2 lubsweep GRID.json -o STUDY.h5
 #include <mpi.h>
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -10,6 +12,7 @@
 #include "lub/sweep/sweep.hpp"
 
 int main(int argc, char** argv) {
+  const long launcher = ::getppid();  // first: a launcher gone later is noticed (setup_process)
   std::vector<std::string> args(argv + 1, argv + argc);
   lub::sweep::Options options;
   bool help = false;
@@ -20,6 +23,7 @@ int main(int argc, char** argv) {
   MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  lub::sweep::setup_process(rank, launcher);
   int status = 0;
   if (help || error) {
     if (rank == 0) {

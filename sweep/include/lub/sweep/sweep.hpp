@@ -30,6 +30,21 @@ inline constexpr int kExitOk = 0;           ///< complete: every case has a row 
 inline constexpr int kExitIoError = 1;      ///< the study file could not be written
 inline constexpr int kExitBadInput = 2;     ///< bad grid, options or output: nothing written
 inline constexpr int kExitCaseFailed = 3;   ///< stopped early by on_failure = abort
+inline constexpr int kExitInterrupted = 128;  ///< + the signal: 130 SIGINT, 143 SIGTERM
+
+/// A rank's signal wiring, right after MPI_Init; `launcher` is getppid() read first in main.
+/// - Under a launcher (Open MPI, PMIx or PMI in the environment) the rank ends with its
+///   parent (mpirun, or the daemon it started): a parent-death signal (Linux prctl),
+///   SIGTERM for rank 0 (it saves, below), SIGKILL for the others (they hold nothing).
+///   Not without a launcher: `nohup lubsweep ... &` outlives its shell.
+/// - Rank 0: SIGINT and SIGTERM only record the signal. The coordinator's loop acts on it
+///   within ~1 ms: it writes the rows it holds, closes the file, tells the workers to stop,
+///   prints "lubsweep: interrupted: k of N cases saved in FILE; run the same command to
+///   resume" and exits 128 + the signal without waiting for the case it computes. Outside
+///   that loop (start-up, the final rewrite) a watchdog thread does it 0.5 s after the
+///   signal, never while rows are being written. mpirun itself, signalled, sends SIGTERM to
+///   every rank 1 s later and SIGKILL 1 s after that (Open MPI 4.1), and exits 1.
+void setup_process(int rank, long launcher);
 
 extern const char* const kUsage;
 
