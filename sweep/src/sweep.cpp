@@ -54,7 +54,8 @@ const char* const kUsage =
     "Exit status: 0 the study is complete (a case that could not be integrated is a\n"
     "result: recorded with its status and message); 3 it stopped early (on_failure =\n"
     "abort): re-run to resume; 2 bad input (grid, options, output: nothing written);\n"
-    "1 the file could not be written.\n";
+    "1 the file could not be written; 130/143 interrupted (SIGINT/SIGTERM): every case\n"
+    "finished is saved, re-run to resume.\n";
 
 std::optional<std::string> parse_options(const std::vector<std::string>& args, Options& o, bool& help,
                                          std::string& help_text) {
@@ -341,6 +342,7 @@ int finish(const Options& o, const Grid& grid, StudyWriter& writer, const Progre
   try {
     const WritingRows busy;
     writer.finalize();
+    g_saved = writer.rows();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "lubsweep: cannot write %s: %s\n", o.output.c_str(), e.what());
     return kExitIoError;
