@@ -4,9 +4,11 @@ mpi_sweep_signals_slow, label slow). Usage:
 
   sweep_signal_test.py MPIEXEC LUBSWEEP STUDY_COMPARE WORKDIR COUNT [SEED]
 
-COUNT signals of each kind (SIGINT, SIGTERM, SIGKILL), in a seeded random order, each sent to
-mpirun at a seeded random moment of a run of tests/mpi/signal_grid.json; each run is the
-resume of the one before, started at once with the same command. Asserted:
+COUNT signals of each kind (SIGINT, SIGTERM, SIGKILL) that land on a running sweep, in a
+seeded random order, each sent to mpirun at a seeded random moment of a run of
+tests/mpi/signal_grid.json (a run that ends first is followed by another with the same
+signal); each run is the resume of the one before, started at once with the same command.
+Asserted:
 - every case whose `ok` line was printed before the signal is in the file (SIGINT/SIGTERM:
   read once mpirun has ended; SIGKILL: the resume says it holds it, and never runs it again);
 - no resume is refused: the ranks of a killed mpirun end within 0.9 s (they lived ~1.03 s,
@@ -37,6 +39,7 @@ OK = re.compile(r"lubsweep: \[ *\d+/\d+\] (case_\d+) ok ")
 SAVED = re.compile(r"lubsweep: interrupted: (\d+) of (\d+) cases saved in (\S+); run the same command to resume")
 HOLDS = re.compile(r"holds (\d+) of them")
 ORPHAN_BOUND_S = 0.9
+TOTAL = 18  # cases in signal_grid.json
 
 failures = []
 
@@ -123,9 +126,14 @@ def signal_chains(rng, reference_s):
     chain, out = 0, "chain0.h5"
     remove(out, out + ".lock")
     seen = set()  # cases printed ok in this chain so far
-    stats = {"orphan_max_s": 0.0, "lines": 0, "interrupted": 0, "chains": 0}
-    for i, sig in enumerate(kinds):
-        delay = rng.uniform(0.0, reference_s)
+    stats = {"orphan_max_s": 0.0, "lines": 0, "interrupted": 0, "chains": 0, "landed": 0}
+    i, attempts = 0, 0
+    while kinds and attempts < 9 * COUNT + 10:
+        sig = kinds[0]
+        attempts += 1
+        # A moment while the run still has work: its start-up, then the cases left.
+        delay = rng.uniform(0.0, 0.5 + reference_s * (TOTAL - len(seen)) / TOTAL)
+        i += 1
         run = Run(out)
         time.sleep(delay)
         kids = children(run.proc.pid)
@@ -136,7 +144,7 @@ def signal_chains(rng, reference_s):
         rc = run.finish()
         text = run.text()
         before = run.ok_before(t_sig)
-        tag = "signal %d/%d (%s at %.2f s)" % (i + 1, len(kinds), signal.Signals(sig).name, delay)
+        tag = "run %d (%s at %.2f s)" % (i, signal.Signals(sig).name, delay)
         if "in use by another sweep" in text:
             fail(tag + ": the run was refused:\n" + text)
         again = seen.intersection(run.ok_before(float("inf")))
@@ -168,6 +176,9 @@ def signal_chains(rng, reference_s):
                 if int(m.group(1)) != len(names_in(out)) or m.group(3) != out:
                     fail(tag + ": '%s' but the file holds %d rows" % (m.group(0), len(names_in(out))))
         stats["lines"] += 1
+        if not finished_first and rc != 0:  # it landed: the next kind; else this one again
+            kinds.pop(0)
+            stats["landed"] += 1
         print("%s: exit %d, %d ok before the signal, %d in the chain" % (tag, rc, len(before), len(seen)),
               flush=True)
         if rc == 0:  # the run completed before or despite the signal: a new chain
@@ -179,6 +190,8 @@ def signal_chains(rng, reference_s):
             seen = set()
         elif finished_first:
             fail(tag + ": a run ended with %d before any signal:\n%s" % (rc, text))
+    if kinds:
+        fail("%d signals did not land on a running sweep in %d runs" % (len(kinds), attempts))
     # The last chain: the same command, not signalled, completes it.
     run = Run(out)
     if run.finish() != 0:
@@ -229,9 +242,9 @@ def main():
     rng = random.Random(SEED)
     stats = signal_chains(rng, reference_s)
     without_mpirun()
-    print("%d signals, %d chains completed, %d interrupt lines forwarded by mpirun; ranks of a killed "
-          "mpirun lived at most %.3f s" % (stats["lines"], stats["chains"], stats["interrupted"],
-                                            stats["orphan_max_s"]))
+    print("%d runs, %d signals landed on a running sweep, %d chains completed, %d interrupt lines forwarded "
+          "by mpirun; ranks of a killed mpirun lived at most %.3f s"
+          % (stats["lines"], stats["landed"], stats["chains"], stats["interrupted"], stats["orphan_max_s"]))
     if failures:
         sys.exit("FAIL: %d problems" % len(failures))
     print("sweep_signal_test: ok")
