@@ -129,6 +129,16 @@ def signal_chains(rng, reference_s):
     stats = {"orphan_max_s": 0.0, "lines": 0, "interrupted": 0, "chains": 0, "landed": 0}
     i, attempts = 0, 0
     while kinds and attempts < 9 * COUNT + 10:
+        if len(seen) == TOTAL:  # every case done: the same command completes the file; a new chain
+            run = Run(out)
+            if run.finish() != 0:
+                fail("a resume with every case done failed:\n" + run.text())
+            check_complete(out, "chain %d" % chain)
+            chain += 1
+            stats["chains"] += 1
+            out = "chain%d.h5" % chain
+            remove(out, out + ".lock")
+            seen = set()
         sig = kinds[0]
         attempts += 1
         # A moment while the run still has work: its start-up, then the cases left.
