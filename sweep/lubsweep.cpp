@@ -3,8 +3,6 @@
 //   mpirun -np 2 lubsweep GRID.json -o STUDY.h5
 #include <mpi.h>
 
-#include <unistd.h>
-
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -12,7 +10,7 @@
 #include "lub/sweep/sweep.hpp"
 
 int main(int argc, char** argv) {
-  const long launcher = ::getppid();  // first: a launcher gone later is noticed (setup_process)
+  lub::sweep::end_with_launcher();  // first: before MPI_Init
   std::vector<std::string> args(argv + 1, argv + argc);
   lub::sweep::Options options;
   bool help = false;
@@ -23,7 +21,7 @@ int main(int argc, char** argv) {
   MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  lub::sweep::setup_process(rank, launcher);
+  lub::sweep::setup_process(rank);
   int status = 0;
   if (help || error) {
     if (rank == 0) {

@@ -363,18 +363,20 @@ int finish(const Options& o, const Grid& grid, StudyWriter& writer, const Progre
 
 }  // namespace
 
-void setup_process(int rank, long launcher) {
-  if (under_launcher()) {
-    // Rank 0 saves the rows it holds (on_interrupt); the others hold nothing.
-    const int sig = rank == 0 ? SIGTERM : SIGKILL;
-    ::prctl(PR_SET_PDEATHSIG, sig);
-    if (static_cast<long>(::getppid()) != launcher) {  // gone before prctl
-      if (rank == 0)
-        on_interrupt(sig);
-      else
-        std::_Exit(kExitInterrupted + sig);
-    }
-  }
+void end_with_launcher() {
+  if (!under_launcher()) return;
+  const char* rank = std::getenv("OMPI_COMM_WORLD_RANK");
+  if (!rank) rank = std::getenv("PMIX_RANK");
+  if (!rank) rank = std::getenv("PMI_RANK");
+  // Rank 0 saves the rows it holds (on_interrupt, from setup_process on); the others hold
+  // nothing. A rank unknown here takes SIGTERM too (then it leaves after kWorkerGrace).
+  const int sig = rank == nullptr || std::string(rank) == "0" ? SIGTERM : SIGKILL;
+  const pid_t parent = ::getppid();
+  ::prctl(PR_SET_PDEATHSIG, sig);
+  if (::getppid() != parent) std::raise(sig);  // gone before prctl
+}
+
+void setup_process(int rank) {
   struct sigaction sa{};
   sa.sa_handler = on_interrupt;
   sigemptyset(&sa.sa_mask);
