@@ -10,6 +10,7 @@
 #include "lub/sweep/sweep.hpp"
 
 int main(int argc, char** argv) {
+  lub::sweep::end_with_launcher();  // first: before MPI_Init
   std::vector<std::string> args(argv + 1, argv + argc);
   lub::sweep::Options options;
   bool help = false;
@@ -20,6 +21,7 @@ int main(int argc, char** argv) {
   MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  lub::sweep::setup_process(rank);
   int status = 0;
   if (help || error) {
     if (rank == 0) {

@@ -6,9 +6,11 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <ctime>
 #include <stdexcept>
+#include <thread>
 #include <utility>
 
 #include "lub/io/json_reader.hpp"
@@ -38,11 +40,14 @@ std::string holder_text(const std::string& content) {
 
 }  // namespace
 
-OutputLock::OutputLock(const std::string& study_path) : path_(lock_path(study_path)) {
+OutputLock::OutputLock(const std::string& study_path, double patience_s) : path_(lock_path(study_path)) {
   // Open, lock, then check that the path still names the file locked: a sweep that ends
   // unlinks its lock file while holding it, and one that opened the old file meanwhile
   // must not run on a lock nobody else can see.
-  for (int attempt = 0; attempt < 100; ++attempt) {
+  // A held lock is tried again for `patience_s`: a sweep whose mpirun was just killed is
+  // still saving its last rows for a few milliseconds, and its resume must not be refused.
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::duration<double>(patience_s);
+  for (int attempt = 0; attempt < 100;) {
     const int fd = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
     if (fd < 0)
       throw std::runtime_error("-o " + study_path + ": cannot create the lock file " + path_ + ": " +
@@ -51,6 +56,10 @@ OutputLock::OutputLock(const std::string& study_path) : path_(lock_path(study_pa
       const int err = errno;
       const std::string holder = read_all(fd);
       ::close(fd);
+      if (err == EWOULDBLOCK && std::chrono::steady_clock::now() < give_up) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        continue;
+      }
       if (err == EWOULDBLOCK)
         throw InputError("-o " + study_path + ": the file is in use by another sweep (" + holder_text(holder) +
                          "; lock file " + path_ + "): wait for it to end, or choose another -o");
@@ -63,6 +72,7 @@ OutputLock::OutputLock(const std::string& study_path) : path_(lock_path(study_pa
       break;
     }
     ::close(fd);  // unlinked by its previous holder: take the new one
+    ++attempt;
   }
   if (fd_ < 0) throw std::runtime_error("-o " + study_path + ": cannot take the lock " + path_);
 

@@ -135,8 +135,10 @@ bool schedule(const Grid& grid, std::deque<int> queue, CoordinatorTransport& tra
   };
   // Idle waits grow from 50 µs to 1 ms: a worker waiting for its next case waits at most
   // ~1 ms, and the polling costs the coordinator's core ~1 % (Open MPI would spin at 100 %).
+  // No wait is longer, so s.tick runs at least every ~1 ms.
   auto idle = std::chrono::microseconds(50);
   for (;;) {
+    if (s.tick) s.tick();
     bool progressed = false;
     if (local) {
       std::optional<CaseResult> r = local->take();

@@ -339,8 +339,15 @@ StudyWriter::~StudyWriter() {
 
 void StudyWriter::append(const CaseResult& r) {
   pending_.push_back(r);
-  const std::chrono::duration<double> since = std::chrono::steady_clock::now() - last_flush_;
-  if (since.count() >= flush_interval_s_) flush();
+  flush_if_due();
+}
+
+bool StudyWriter::flush_if_due(std::chrono::steady_clock::time_point now) {
+  if (pending_.empty()) return false;
+  const std::chrono::duration<double> since = now - last_flush_;
+  if (since.count() < flush_interval_s_) return false;
+  flush();
+  return true;
 }
 
 void StudyWriter::flush() {

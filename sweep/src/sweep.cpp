@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -11,6 +12,8 @@
 #include <deque>
 #include <exception>
 #include <memory>
+#include <thread>
+#include <sys/prctl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -55,7 +58,8 @@ const char* const kUsage =
     "Exit status: 0 the study is complete (a case that could not be integrated is a\n"
     "result: recorded with its status and message); 3 it stopped early (on_failure =\n"
     "abort): re-run to resume; 2 bad input (grid, options, output: nothing written);\n"
-    "1 the file could not be written.\n";
+    "1 the file could not be written; 130/143 interrupted (SIGINT/SIGTERM): every case\n"
+    "finished is saved, re-run to resume.\n";
 
 std::optional<std::string> parse_options(const std::vector<std::string>& args, Options& o, bool& help,
                                          std::string& help_text) {
@@ -103,6 +107,74 @@ std::optional<std::string> parse_options(const std::vector<std::string>& args, O
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// Interrupts (rank 0). The handler only records the signal; the coordinator's loop acts on
+// it (leave_interrupted), or, when rank 0 is elsewhere (start-up, the final rewrite, a wait
+// on other ranks), the watchdog thread after kInterruptGrace unless rows are being written.
+std::atomic<int> g_signal{0};          // the first SIGINT or SIGTERM
+std::atomic<int> g_writing{0};         // > 0 while rows are appended to the study file
+std::atomic<bool> g_leaving{false};    // one thread prints the line and ends the process
+std::atomic<std::size_t> g_saved{0};   // rows on disk, for the line
+std::atomic<std::size_t> g_total{0};
+std::atomic<bool> g_have_file{false};  // g_file and g_lock_file are set (once, before g_have_file)
+const std::string* g_file = nullptr;       // never freed: the watchdog may read them at exit
+const std::string* g_lock_file = nullptr;
+constexpr auto kInterruptGrace = std::chrono::milliseconds(500);
+constexpr auto kWorkerGrace = std::chrono::milliseconds(800);  // < mpirun's 1 s before SIGKILL
+
+static_assert(std::atomic<int>::is_always_lock_free, "the signal handler stores into an atomic int");
+
+extern "C" void on_interrupt(int sig) {
+  int none = 0;
+  g_signal.compare_exchange_strong(none, sig);
+}
+
+/// Rows are being written: the watchdog does not end the process meanwhile.
+struct WritingRows {
+  WritingRows() { ++g_writing; }
+  ~WritingRows() { --g_writing; }
+  WritingRows(const WritingRows&) = delete;
+  WritingRows& operator=(const WritingRows&) = delete;
+};
+
+/// Prints the interrupt line, removes the lock file (still held) and ends the process with
+/// 128 + the signal, without waiting for a case that runs (no destructors, no MPI_Finalize:
+/// the launcher ends the other ranks).
+[[noreturn]] void leave_interrupted(int sig) {
+  if (g_leaving.exchange(true))
+    for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));  // the other thread leaves
+  if (g_have_file) {
+    std::fprintf(stderr, "lubsweep: interrupted: %zu of %zu cases saved in %s; run the same command to resume\n",
+                 g_saved.load(), g_total.load(), g_file->c_str());
+    ::unlink(g_lock_file->c_str());
+  } else {
+    std::fprintf(stderr, "lubsweep: interrupted; nothing written\n");
+  }
+  std::fflush(stdout);
+  std::fflush(stderr);
+  std::_Exit(kExitInterrupted + sig);
+}
+
+/// Rank 0: leaves kInterruptGrace after a signal, unless rows are being written, if the
+/// coordinator's loop has not. A worker: leaves kWorkerGrace after a signal, silently. mpirun,
+/// signalled, sends SIGTERM to every rank at once and SIGKILL to all as soon as one has
+/// died: the workers' grace lets rank 0 write its rows and end first.
+void watchdog(int rank) {
+  while (g_signal.load() == 0) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  if (rank != 0) {
+    std::this_thread::sleep_for(kWorkerGrace);
+    std::_Exit(kExitInterrupted + g_signal.load());
+  }
+  std::this_thread::sleep_for(kInterruptGrace);
+  while (g_writing.load() > 0) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  leave_interrupted(g_signal.load());
+}
+
+bool under_launcher() {
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK"})
+    if (std::getenv(v)) return true;
+  return false;
+}
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
@@ -172,20 +244,14 @@ void list_cases(const Grid& g) {
   for (const Case& c : g.cases) std::printf("  %s %.12s  %s\n", c.name.c_str(), c.hash.c_str(), c.label.c_str());
 }
 
-/// Rank 0: hands out the cases (scheduler.hpp), computes some, writes the file.
-int coordinate(const Options& o, const Grid& grid, const ResumeState& resume, bool reuse_file,
-               CoordinatorTransport& transport) {
-  const auto t0 = Clock::now();
-  const std::deque<int> queue = cases_to_run(grid, resume.done);
-  std::size_t done_failed = 0;
-  for (const auto& [id, r] : resume.done) done_failed += !r.ok();
-  const int nranks = transport.workers() + 1;
-
+/// The opening lines on stderr: what runs, what the file holds.
+void print_start(const Options& o, const Grid& grid, const ResumeState& resume, bool reuse_file, int nranks,
+                 std::size_t to_run) {
   if (!o.quiet) {
     std::fprintf(stderr, "lubsweep: %s: %zu cases on %d rank%s", o.grid.c_str(), grid.cases.size(), nranks,
                  nranks > 1 ? "s" : "");
     if (reuse_file)
-      std::fprintf(stderr, "; %s holds %zu of them (%zu to run)", o.output.c_str(), resume.done.size(), queue.size());
+      std::fprintf(stderr, "; %s holds %zu of them (%zu to run)", o.output.c_str(), resume.done.size(), to_run);
     std::fprintf(stderr, "\n");
     if (resume.other_rows)
       std::fprintf(stderr, "lubsweep: dropping %zu rows of %s that are not cases of this grid\n", resume.other_rows,
@@ -197,6 +263,25 @@ int coordinate(const Options& o, const Grid& grid, const ResumeState& resume, bo
       std::fprintf(stderr, "lubsweep: %zu rows of %s were computed by another build revision: running them again\n",
                    resume.other_revision, o.output.c_str());
     if (resume.retried) std::fprintf(stderr, "lubsweep: running %zu failed cases again\n", resume.retried);
+  }
+}
+
+int finish(const Options& o, const Grid& grid, StudyWriter& writer, const Progress& progress, Clock::time_point t0);
+
+/// Rank 0: hands out the cases (scheduler.hpp), computes some, writes the file.
+int coordinate(const Options& o, const Grid& grid, const ResumeState& resume, bool reuse_file,
+               CoordinatorTransport& transport) {
+  const auto t0 = Clock::now();
+  const std::deque<int> queue = cases_to_run(grid, resume.done);
+  std::size_t done_failed = 0;
+  for (const auto& [id, r] : resume.done) done_failed += !r.ok();
+  print_start(o, grid, resume, reuse_file, transport.workers() + 1, queue.size());
+  if (!g_have_file) {  // for the interrupt line
+    g_file = new std::string(o.output);
+    g_lock_file = new std::string(OutputLock::lock_path(o.output));
+    g_total = grid.cases.size();
+    g_saved = resume.done.size();
+    g_have_file = true;
   }
 
   std::unique_ptr<StudyWriter> writer;
@@ -213,14 +298,34 @@ int coordinate(const Options& o, const Grid& grid, const ResumeState& resume, bo
   s.on_failure = grid.on_failure;
   // Rank 0 runs a case from its canonical JSON, as the other ranks do.
   s.local = [](const Case& c) { return run_case(c.id, c.scene, 0); };
-  s.record = [&](const CaseResult& r) {
-    const Case& c = grid.cases.at(static_cast<std::size_t>(r.case_id));
+  const auto write = [&](auto&& what) {
     try {
-      writer->append(r);
+      const WritingRows busy;
+      what();
+      g_saved = writer->rows() - writer->pending();
     } catch (const std::exception& e) {
       std::fprintf(stderr, "lubsweep: cannot write %s: %s\n", o.output.c_str(), e.what());
       transport.abort(kExitIoError);
     }
+  };
+  // Every turn of the scheduler's loop (~1 ms while it waits): the rows held are written
+  // once due, whatever runs next; on SIGINT/SIGTERM, every row held is written and the
+  // file closed, the workers are told to stop, and the process ends (leave_interrupted).
+  s.tick = [&] {
+    if (const int sig = g_signal.load()) {
+      write([&] { writer->flush(); });
+      {
+        const WritingRows busy;
+        writer.reset();  // closes the file
+      }
+      for (int w = 1; w <= transport.workers(); ++w) transport.send_stop(w);
+      leave_interrupted(sig);
+    }
+    write([&] { writer->flush_if_due(); });
+  };
+  s.record = [&](const CaseResult& r) {
+    const Case& c = grid.cases.at(static_cast<std::size_t>(r.case_id));
+    write([&] { writer->append(r); });
     const std::string line = progress.record(c, r, seconds_since(t0));
     if (!o.quiet) std::fprintf(stderr, "lubsweep: %s\n", line.c_str());
     if (o.kill_after >= 0 && ++new_rows >= o.kill_after) {  // tests only: killed with these rows on disk
@@ -239,9 +344,16 @@ int coordinate(const Options& o, const Grid& grid, const ResumeState& resume, bo
     transport.abort(kExitIoError);
   }
 
-  const bool complete = writer->complete();
+  return finish(o, grid, *writer, progress, t0);
+}
+
+/// Rank 0, every case run: the file rewritten canonically, the last lines and the summary.
+int finish(const Options& o, const Grid& grid, StudyWriter& writer, const Progress& progress, Clock::time_point t0) {
+  const bool complete = writer.complete();
   try {
-    writer->finalize();
+    const WritingRows busy;
+    writer.finalize();
+    g_saved = writer.rows();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "lubsweep: cannot write %s: %s\n", o.output.c_str(), e.what());
     return kExitIoError;
@@ -261,6 +373,30 @@ int coordinate(const Options& o, const Grid& grid, const ResumeState& resume, bo
 }
 
 }  // namespace
+
+void end_with_launcher() {
+  if (!under_launcher()) return;
+  const char* rank = std::getenv("OMPI_COMM_WORLD_RANK");
+  if (!rank) rank = std::getenv("PMIX_RANK");
+  if (!rank) rank = std::getenv("PMI_RANK");
+  // Rank 0 saves the rows it holds (on_interrupt, from setup_process on); the others hold
+  // nothing. A rank unknown here takes SIGTERM too (then it leaves after kWorkerGrace).
+  const int sig = rank == nullptr || std::string(rank) == "0" ? SIGTERM : SIGKILL;
+  const pid_t parent = ::getppid();
+  ::prctl(PR_SET_PDEATHSIG, sig);
+  if (::getppid() != parent) std::raise(sig);  // gone before prctl
+}
+
+void setup_process(int rank) {
+  struct sigaction sa{};
+  sa.sa_handler = on_interrupt;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = SA_RESTART;
+  ::sigaction(SIGINT, &sa, nullptr);
+  ::sigaction(SIGTERM, &sa, nullptr);
+  std::signal(SIGPIPE, SIG_IGN);  // stderr may be a pipe to a launcher that is gone
+  std::thread(watchdog, rank).detach();
+}
 
 int run_sweep(const Options& o) {
   int rank = 0;

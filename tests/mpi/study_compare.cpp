@@ -1,6 +1,7 @@
 // study_compare A.h5 B.h5: exit 0 if two study files hold the same cases in the same
 // order with bit-identical results (status, message, every metric and solver column but
 // wall_time_s, and every stored series); else print the first differences and exit 1.
+// study_compare --names STUDY.h5: the names of the cases it has rows for, one a line.
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -67,12 +68,21 @@ int compare(const std::string& pa, const std::string& pb) {
 
 }  // namespace
 
+/// The names of the cases a study file has rows for, one a line (the file as a killed or
+/// running sweep leaves it will do: rows in the order they were written).
+int names(const std::string& path) {
+  const auto t = lub::h5::File::open(path).open_table("cases");
+  for (const std::string& n : t.read_strings("name")) std::printf("%s\n", n.c_str());
+  return 0;
+}
+
 int main(int argc, char** argv) {
   if (argc != 3) {
-    std::fprintf(stderr, "usage: study_compare A.h5 B.h5\n");
+    std::fprintf(stderr, "usage: study_compare A.h5 B.h5\n       study_compare --names STUDY.h5\n");
     return 2;
   }
   try {
+    if (std::string(argv[1]) == "--names") return names(argv[2]);
     return compare(argv[1], argv[2]);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "study_compare: %s\n", e.what());

@@ -13,10 +13,14 @@ namespace lub::sweep {
 class OutputLock {
  public:
   OutputLock() = default;
-  /// Takes the lock of `study_path` (STUDY.h5.lock). Throws lub::InputError if another
-  /// process holds it ("-o STUDY.h5: the file is in use by another sweep (pid 123 on host
-  /// h, since ...)"), std::runtime_error if the lock file cannot be created.
-  explicit OutputLock(const std::string& study_path);
+  /// Takes the lock of `study_path` (STUDY.h5.lock), trying again for `patience_s` while
+  /// another process holds it (a killed sweep's rank 0 saving its last rows). Throws
+  /// lub::InputError if it is still held then ("-o STUDY.h5: the file is in use by another
+  /// sweep (pid 123 on host h, since ...)"), std::runtime_error if the lock file cannot be
+  /// created.
+  explicit OutputLock(const std::string& study_path, double patience_s = kPatienceS);
+  /// How long a held lock is tried again by default.
+  static constexpr double kPatienceS = 3.0;
   OutputLock(const OutputLock&) = delete;
   OutputLock& operator=(const OutputLock&) = delete;
   OutputLock(OutputLock&& other) noexcept;

@@ -33,6 +33,10 @@ struct Schedule {
   std::function<void(const CaseResult&)> record;
   /// Called once, before `record`, for the result that stops a sweep with on_failure = abort.
   std::function<void(const CaseResult&)> on_abort;
+  /// Called on the calling thread at every turn of the loop, so at least every ~1 ms while
+  /// it waits for results, whatever runs: the coordinator writes the results it holds when
+  /// they are due (StudyWriter::flush_if_due) and acts on an interrupt there.
+  std::function<void()> tick;
   /// Cases a remote worker holds at once while the queue is long (its running one and the
   /// next): 1 hands out one at a time. Always 1 with on_failure = abort.
   int prefetch = 2;

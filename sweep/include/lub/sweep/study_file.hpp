@@ -16,11 +16,14 @@
 //                     list of cases has the dimension `case` instead, and its axes as variables
 //   /series/<case>/<channel>  the channels the grid stores, on the dimension scale `t`
 //
-// While a sweep runs, rows are appended as results arrive, in batches flushed at most every
-// `flush_interval_s` (1 s by default): a killed sweep leaves a file that opens and resumes,
-// missing at most the results of its last second. One batch costs about what one row
-// costs (a write per column), so cheap cases do not wait for the writer (issue 16). At the end the file is rewritten canonically (rows
-// in case-id order, so the case id is also the row number) into PATH.partial and renamed.
+// While a sweep runs, rows are appended as results arrive, in batches: a result is written
+// at once if the last write is `flush_interval_s` (0.5 s by default) old, else held until
+// the coordinator's next look (flush_if_due, every ~1 ms while it waits) finds the interval
+// passed, whatever runs next. A killed sweep leaves a file that opens and resumes, missing
+// at most the results of its last half second. One batch costs about what one row costs (a
+// write per column), so cheap cases do not wait for the writer (issue 16). At the end the
+// file is rewritten canonically (rows in case-id order, so the case id is also the row
+// number) into PATH.partial and renamed.
 #pragma once
 
 #include <chrono>
@@ -62,6 +65,9 @@ struct ResumeState {
 ResumeState read_existing(const std::string& path, const Grid& grid, bool retry_failed,
                           const std::string& revision, bool drop_other_cases = false);
 
+/// The longest a result is held before it is written (StudyWriter's default).
+inline constexpr double kFlushIntervalS = 0.5;
+
 /// Writes the study file.
 class StudyWriter {
  public:
@@ -69,7 +75,7 @@ class StudyWriter {
   /// copied from `reuse_from` (the previous file at `path`; "" if none). Written to
   /// PATH.partial, then renamed: the previous file stays intact until then.
   StudyWriter(std::string path, const Grid& grid, const std::map<int, CaseResult>& reused,
-              const std::string& reuse_from, double flush_interval_s = 1.0);
+              const std::string& reuse_from, double flush_interval_s = kFlushIntervalS);
   /// Writes the results still held (a sweep that ends without finalize keeps them).
   ~StudyWriter();
   StudyWriter(const StudyWriter&) = delete;
@@ -80,6 +86,10 @@ class StudyWriter {
   void append(const CaseResult& result);
   /// Writes and flushes the results held now.
   void flush();
+  /// Writes the results held if `flush_interval_s` has passed since the last write at
+  /// `now`; true if it wrote. The caller looks often (the coordinator: every ~1 ms), so a
+  /// result is on disk at most `flush_interval_s` after it was taken.
+  bool flush_if_due(std::chrono::steady_clock::time_point now = std::chrono::steady_clock::now());
   /// Results taken but not yet on disk.
   std::size_t pending() const { return pending_.size(); }
   /// Rewrites the file canonically (rows in case-id order) and closes it. `complete`:

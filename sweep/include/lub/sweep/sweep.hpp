@@ -32,6 +32,28 @@ inline constexpr int kExitOk = 0;           ///< complete: every case has a row 
 inline constexpr int kExitIoError = 1;      ///< the study file could not be written
 inline constexpr int kExitBadInput = 2;     ///< bad grid, options or output: nothing written
 inline constexpr int kExitCaseFailed = 3;   ///< stopped early by on_failure = abort
+inline constexpr int kExitInterrupted = 128;  ///< + the signal: 130 SIGINT, 143 SIGTERM
+
+/// Under an MPI launcher (Open MPI, PMIx or PMI variables in the environment) the process
+/// ends with its parent (mpirun, or the daemon it started): a parent-death signal (Linux
+/// prctl), SIGTERM for rank 0 (it saves, setup_process), SIGKILL for the others (they hold
+/// nothing). Not without a launcher: `nohup lubsweep ... &` outlives its shell. Call it
+/// first in main, before MPI_Init: a launcher killed during MPI_Init must end the rank too,
+/// and MPI_Init of a process started alone sets PMIX_RANK.
+void end_with_launcher();
+
+/// A rank's signal handling, right after MPI_Init:
+/// - Rank 0: SIGINT and SIGTERM only record the signal. The coordinator's loop acts on it
+///   within ~1 ms: it writes the rows it holds, closes the file, tells the workers to stop,
+///   prints "lubsweep: interrupted: k of N cases saved in FILE; run the same command to
+///   resume" and exits 128 + the signal without waiting for the case it computes. Outside
+///   that loop (start-up, the final rewrite) a watchdog thread does it 0.5 s after the
+///   signal, never while rows are being written.
+/// - The other ranks leave 0.8 s after SIGINT or SIGTERM. mpirun (Open MPI 4.1), signalled,
+///   sends SIGTERM to every rank 1 s later, SIGKILLs them all as soon as one has died (and
+///   1 s later in any case), and exits 1: rank 0 must end first.
+void setup_process(int rank);
+
 
 extern const char* const kUsage;
 
