@@ -16,7 +16,9 @@ size_t orbit_channels(const Model& m) { return std::max<size_t>(1, m.films.size(
 
 CycleRecorder::CycleRecorder(const Scene& scene, const Model& m, double t0, std::optional<double> period)
     : scene_(scene), m_(m), t0_(t0), period_(period),
-      orbit_cur_(static_cast<size_t>(kPhasePoints) * orbit_channels(m) * 2, 0.0), orbit_prev_(orbit_cur_) {}
+      orbit_cur_(static_cast<size_t>(kPhasePoints) * orbit_channels(m) * 2, 0.0), orbit_prev_(orbit_cur_) {
+  cur_.t_start_s = t0;  // a segment from a given state starts its first cycle there, not at 0
+}
 
 double CycleRecorder::phase_angle(double t) const {
   if (!period_) return 0.0;

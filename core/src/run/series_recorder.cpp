@@ -1,5 +1,7 @@
 #include "run/series_recorder.hpp"
 
+#include <algorithm>
+
 #include "lub/mechanism/film_element.hpp"
 
 namespace lub::detail {
@@ -56,6 +58,22 @@ double channel_value(const Scene& scene, const Model& m, const Workspace& ws, co
 }
 
 }  // namespace
+
+void append_series(Series& to, const Series& from, const std::vector<CycleMetrics>& cycles, int keep) {
+  if (to.data.empty() || from.data.empty()) return;
+  const std::vector<double>& t_from = from.data[0];
+  size_t skip = 0;
+  if (!to.data[0].empty())
+    while (skip < t_from.size() && t_from[skip] <= to.data[0].back()) ++skip;
+  for (size_t c = 0; c < to.data.size() && c < from.data.size(); ++c)
+    to.data[c].insert(to.data[c].end(), from.data[c].begin() + static_cast<std::ptrdiff_t>(skip), from.data[c].end());
+  if (keep <= 0 || cycles.size() <= static_cast<size_t>(keep)) return;
+  // The last `keep` cycles start where the cycle before them ended.
+  const double cut = cycles[cycles.size() - 1 - static_cast<size_t>(keep)].t_end_s;
+  const std::vector<double>& t = to.data[0];
+  const auto drop = static_cast<std::ptrdiff_t>(std::lower_bound(t.begin(), t.end(), cut) - t.begin());
+  for (auto& ch : to.data) ch.erase(ch.begin(), ch.begin() + drop);
+}
 
 SeriesRecorder::SeriesRecorder(const Scene& scene, const Model& m, bool enabled) : scene_(scene), m_(m) {
   if (!enabled || scene.output.channels.empty()) return;

@@ -19,6 +19,13 @@ struct Probe {
   const double* a = nullptr;
 };
 
+/// Appends a later segment's series to `to` (same channels): samples at or before the last
+/// time `to` holds (the boundary both segments sampled) are not repeated. Then, with
+/// keep > 0, only the samples of the last `keep` of `cycles` are kept (outputs.last_cycles
+/// across segments: a transient continued after shooting keeps the last cycles, not the
+/// first segment's last cycles and the continuation's).
+void append_series(Series& to, const Series& from, const std::vector<CycleMetrics>& cycles, int keep);
+
 class SeriesRecorder {
  public:
   /// Records the scene's channels if `enabled` and the scene lists any.

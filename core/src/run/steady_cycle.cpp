@@ -20,6 +20,7 @@
 #include "run/metrics.hpp"
 #include "run/period_map.hpp"
 #include "run/segment.hpp"
+#include "run/series_recorder.hpp"
 
 namespace lub {
 
@@ -211,9 +212,7 @@ bool SteadyRun::transient(int cycles, std::function<bool(const std::vector<Cycle
     res_.cycles.insert(res_.cycles.end(), seg.res.cycles.begin(), seg.res.cycles.end());
     // The metrics describe the transient's last cycles: now the continuation's.
     res_.metrics = detail::steady_cycle_metrics(scene_, res_.cycles, static_cast<int>(res_.cycles.size()));
-    for (size_t c = 0; c < res_.series.data.size() && c < seg.res.series.data.size(); ++c)
-      res_.series.data[c].insert(res_.series.data[c].end(), seg.res.series.data[c].begin(),
-                                 seg.res.series.data[c].end());
+    detail::append_series(res_.series, seg.res.series, res_.cycles, scene_.output.last_cycles);
   }
   res_.steady.periods_integrated += static_cast<long long>(res_.cycles.size() - before);
   // A continuation's first boundary is where the transient ended: already there.
