@@ -84,20 +84,9 @@ class Figures:
         return self.c.at[cid, column]
 
     def series(self, cid):
-        """A case's channels as numpy arrays, or None. A transient continued after shooting
-        stores two windows of cycles (the first segment's last cycles, then the
-        continuation's): only the last window is drawn, the cycles the metrics describe."""
+        """A case's channels as numpy arrays, or None."""
         ds = study_reader.series(self.path, self.value("name", cid))
-        if ds is None:
-            return None
-        s = {k: np.asarray(v.values) for k, v in ds.variables.items()}
-        t = s.get("t")
-        if t is None or len(t) < 3:
-            return s
-        dt = np.diff(t)
-        gaps = np.flatnonzero(dt > 1.5 * np.median(dt))
-        first = gaps[-1] + 1 if len(gaps) else 0
-        return {k: v[first:] if v.shape == t.shape else v for k, v in s.items()}
+        return None if ds is None else {k: v.values for k, v in ds.variables.items()}
 
     def ideal_for(self, cid):
         speed = self.value("speed_rpm", cid) if "speed_rpm" in self.c.columns else None
