@@ -18,6 +18,7 @@ PACKAGES=(
   python3-dev pybind11-dev
   python3-jsonschema python3-jsonpatch
   clang libclang-rt-14-dev clang-tidy
+  help2man
 )
 
 missing=()

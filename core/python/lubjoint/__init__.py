@@ -33,6 +33,7 @@ Build and import (README, "Python"):
 """
 
 import importlib
+import sys
 
 from .study import Study, StudyFormatError, load_study, study_format
 
@@ -49,16 +50,32 @@ _FROM_SUBMODULE = {
 
 def __getattr__(name):
     """A name that needs the compiled extension, imported on first use (PEP 562)."""
-    if name in _FROM_SUBMODULE:
-        value = getattr(importlib.import_module(f"{__name__}.{_FROM_SUBMODULE[name]}"), name)
-    elif name in ("__version__", "__revision__"):
-        from . import _lubjoint
-
-        value = _lubjoint.version() if name == "__version__" else _lubjoint.revision()
-    else:
+    if name not in _FROM_SUBMODULE and name not in ("__version__", "__revision__"):
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    try:
+        if name in _FROM_SUBMODULE:
+            value = getattr(importlib.import_module(f"{__name__}.{_FROM_SUBMODULE[name]}"), name)
+        else:
+            from . import _lubjoint
+
+            value = _lubjoint.version() if name == "__version__" else _lubjoint.revision()
+    except ImportError as e:
+        raise ImportError(_wrong_python(e)) from e
     globals()[name] = value
     return value
+
+
+def _wrong_python(error):
+    """The message when the compiled extension or NumPy cannot be imported: the Python
+    lubjoint was built for (written by the build into _built_for.py) against this one."""
+    try:
+        from ._built_for import PYTHON, VERSION
+    except ImportError:
+        PYTHON, VERSION = "/usr/bin/python3", "?"
+    this = f"{sys.executable} (Python {sys.version_info[0]}.{sys.version_info[1]})"
+    return (f"lubjoint: {error}. lubjoint's compiled part was built for {PYTHON} (Python {VERSION}), "
+            f"with Debian's python3-numpy and python3-xarray; this is {this}. "
+            f"Run it with {PYTHON}, e.g. PYTHONPATH=<dir of lubjoint> {PYTHON} ...")
 
 
 def __dir__():
