@@ -112,6 +112,9 @@ TEST(Lubbearing, BadArgumentsExitTwoNamingArgumentValueAndRule) {
     const Result r = run(c.args);
     EXPECT_EQ(r.status, 2) << c.args << "\n" << r.out;
     EXPECT_NE(r.out.find(c.expect), std::string::npos) << c.args << "\n" << r.out;
+    // One format (tests/test_core_programs_cli.cpp): "lubbearing: message", then the hint.
+    EXPECT_EQ(r.out.rfind("lubbearing: ", 0), 0u) << c.args << "\n" << r.out;
+    EXPECT_NE(r.out.find("\nrun 'lubbearing"), std::string::npos) << c.args << "\n" << r.out;
   }
 }
 
