@@ -224,7 +224,8 @@ struct Command {
 
   void value(const std::string& name, const std::string& type, const std::string& help,
              const std::string& group = "Options") {
-    given[name] = app->add_option(name, text[name], help)->type_name(type)->group(group);
+    // One value per occurrence; a second occurrence is refused by args() ("given twice").
+    given[name] = app->add_option(name, text[name], help)->type_name(type)->take_last()->group(group);
   }
   void option_flag(const std::string& name, const std::string& help, const std::string& group = "Options") {
     app->add_flag(name, flag[name], help)->group(group);
@@ -232,7 +233,10 @@ struct Command {
   Args args() const {
     std::map<std::string, std::string> values;
     for (const auto& [name, opt] : given)
-      if (opt->count() > 0) values[name] = text.at(name);
+      if (opt->count() > 1)
+        throw UsageError(name + " given twice");
+      else if (opt->count() == 1)
+        values[name] = text.at(name);
     std::set<std::string> bare;
     for (const auto& [name, on] : flag)
       if (on) bare.insert(name);

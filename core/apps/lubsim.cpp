@@ -52,7 +52,7 @@ int parse_options(int argc, char** argv, Options& o) {
   app.footer(kFooter);
   app.allow_extras();
   app.add_option("scene", o.scene_path, "the scene file (required)")->type_name("SCENE.json");
-  app.add_option("-o,--output", o.out_path, "the run file to write (required)")->type_name("RUN.h5");
+  app.add_option("-o,--output", o.out_path, "the run file to write (required)")->type_name("RUN.h5")->take_last();
   app.add_option("--set", o.sets,
                  "override one scene value by JSON Pointer (RFC 6901), repeatable, applied in order; VALUE is "
                  "parsed as JSON, a bare word is a string, e.g. --set /joints/3/viscosity_Pa_s=0.04 "
