@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
       if (help)
         std::fputs(help_text.c_str(), stdout);
       else
-        std::fprintf(stderr, "lubsweep: %s\n\n%s", error->c_str(), lub::sweep::kUsage);
+        std::fprintf(stderr, "lubsweep: %s\nrun 'lubsweep --help' for usage\n", error->c_str());
     }
     status = help ? 0 : lub::sweep::kExitBadInput;
   } else if (provided < MPI_THREAD_FUNNELED) {

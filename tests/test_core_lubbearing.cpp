@@ -107,11 +107,16 @@ TEST(Lubbearing, BadArgumentsExitTwoNamingArgumentValueAndRule) {
       {"steady --model gumbel_short --load-N 5 --speed-rpm 3000 --radius-m 0.01 --clearance-m 0 --length-m 0.04"
        " --viscosity-Pa-s 0.4", "--clearance-m = 0: must be > 0 m"},
       {"steady --model gumbel_short --load-N 5 --speed-rpm 3000 --bogus 1" + kGeom, "unknown argument --bogus"},
+      {"steady --model gumbel_short --load-N 5 --load-N 6 --speed-rpm 3000" + kGeom, "--load-N given twice"},
+      {"steady --model gumbel_short --load-N 5 6 --speed-rpm 3000" + kGeom, "unknown argument 6"},
   };
   for (const auto& c : cases) {
     const Result r = run(c.args);
     EXPECT_EQ(r.status, 2) << c.args << "\n" << r.out;
     EXPECT_NE(r.out.find(c.expect), std::string::npos) << c.args << "\n" << r.out;
+    // One format (tests/test_core_programs_cli.cpp): "lubbearing: message", then the hint.
+    EXPECT_EQ(r.out.rfind("lubbearing: ", 0), 0u) << c.args << "\n" << r.out;
+    EXPECT_NE(r.out.find("\nrun 'lubbearing"), std::string::npos) << c.args << "\n" << r.out;
   }
 }
 

@@ -6,11 +6,13 @@
 //   lubbearing steady --model M --load-N W --speed-rpm N
 //                     --radius-m R --clearance-m C --length-m L --viscosity-Pa-s MU
 //                     [finite_reynolds options] [--strict]
+//   lubbearing --version;  lubbearing [force|steady] --help
 //
 // Prints one JSON object on stdout, with the plausibility warnings (lub/bearing/plausibility.hpp)
 // in "warnings" (also printed on stderr). Exit status: 0 done, 2 bad arguments (message on
 // stderr naming the argument, its value and the rule; or an implausible one under --strict), 3 a steady state that does not exist (the
 // JSON says why).
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -34,85 +36,21 @@ namespace {
 
 using lub::kPi;
 
-const char* kUsage =
-    "usage: lubbearing force  --model M --eps E --eps-dot ED --omega W --gamma-dot GD\n"
-    "                         --radius-m R --clearance-m C --length-m L --viscosity-Pa-s MU\n"
-    "                         [--gamma G] [finite_reynolds options] [--strict]\n"
-    "       lubbearing steady --model M --load-N W --speed-rpm N\n"
-    "                         --radius-m R --clearance-m C --length-m L --viscosity-Pa-s MU\n"
-    "                         [finite_reynolds options] [--strict]\n"
-    "\n"
-    "force:  film force on the journal (SI units) at eccentricity ratio E (0 <= E < 1), its rate\n"
-    "        ED [1/s], journal angular velocity W relative to the bearing [rad/s] and rate GD of\n"
-    "        the line of centres relative to the bearing [rad/s] (wedge speed w = W - 2 GD).\n"
-    "        Prints radial_N (along the line of centres, outward) and tangential_N (+90 deg);\n"
-    "        with --gamma G [rad] (line of centres from the x axis) also x_N, y_N (Eqs. 15-16).\n"
-    "steady: equilibrium of a journal turning at N rpm under a constant load W [N]: prints eps,\n"
-    "        attitude_angle_deg (load line to line of centres), min_film_thickness_m,\n"
-    "        sommerfeld_number (R/c)^2 mu N_s/P, P = W/(L D).\n"
-    "\n"
-    "  --model M                one of: %MODELS%\n"
-    "  --radius-m R             journal radius R > 0 [m]\n"
-    "  --clearance-m C          radial clearance C > 0 [m]\n"
-    "  --length-m L             bearing length L > 0 [m]\n"
-    "  --viscosity-Pa-s MU      dynamic viscosity > 0 [Pa s]\n"
-    "finite_reynolds options (only with --model finite_reynolds):\n"
-    "  --cavitation C           gumbel, reynolds (default) or sommerfeld\n"
-    "  --n-theta N              cells around the circumference (default 48, >= 8)\n"
-    "  --n-z N                  axial nodes over half the length (default 8, >= 1)\n"
-    "  --groove                 ambient pressure along the line of maximum film thickness\n"
-    "                           (Raimondi & Boyd's supply condition)\n"
-    "  --strict                 an implausible value (viscosity outside 1e-4 - 5 Pa s,\n"
-    "                           clearance/radius outside 1e-4 - 0.3, speed above 50000 rpm:\n"
-    "                           probably a unit slip) is an error, not a warning\n"
-    "\n"
-    "Plausibility warnings go to stderr and into the JSON's \"warnings\" (a list).\n"
-    "\n"
-    "Exit status: 0 done, 2 bad arguments, 3 no steady state (reason in the JSON).\n";
-
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
-
-std::string usage() {
-  std::string u = kUsage;
-  const std::string key = "%MODELS%";
-  u.replace(u.find(key), key.size(), lub::names_list<lub::ForceLaw>());
-  return u;
-}
 
 // "--name = value: rule", the house style for bad input.
 [[noreturn]] void bad(const std::string& name, const std::string& value, const std::string& rule) {
   throw UsageError(name + " = " + value + ": " + rule);
 }
 
+// The values given on the command line (parsed by CLI11 as text), checked here so that a
+// message names the argument, its value and the rule.
 class Args {
  public:
-  Args(int argc, char** argv, int first, const std::set<std::string>& flags_with_value,
-       const std::set<std::string>& bare_flags) {
-    for (int i = first; i < argc; ++i) {
-      std::string a = argv[i];
-      std::string value;
-      bool has_value = false;
-      if (const auto eq = a.find('='); a.rfind("--", 0) == 0 && eq != std::string::npos) {
-        value = a.substr(eq + 1);
-        a = a.substr(0, eq);
-        has_value = true;
-      }
-      if (bare_flags.count(a)) {
-        if (has_value) bad(a, value, "takes no value");
-        bare_.insert(a);
-        continue;
-      }
-      if (!flags_with_value.count(a)) throw UsageError("unknown argument " + a);
-      if (values_.count(a)) throw UsageError(a + " given twice");
-      if (!has_value) {
-        if (++i >= argc) throw UsageError(a + " needs a value");
-        value = argv[i];
-      }
-      values_[a] = value;
-    }
-  }
+  Args(std::map<std::string, std::string> values, std::set<std::string> bare)
+      : values_(std::move(values)), bare_(std::move(bare)) {}
   bool has(const std::string& name) const { return values_.count(name) || bare_.count(name); }
   std::string text(const std::string& name) const {
     const auto it = values_.find(name);
@@ -218,14 +156,7 @@ nlohmann::json describe(const Common& c) {
   return j;
 }
 
-const std::set<std::string> kCommonFlags = {"--model",          "--radius-m",   "--clearance-m",
-                                            "--length-m",       "--viscosity-Pa-s", "--cavitation",
-                                            "--n-theta",        "--n-z"};
-
-int run_force(int argc, char** argv) {
-  std::set<std::string> flags = kCommonFlags;
-  flags.insert({"--eps", "--eps-dot", "--omega", "--gamma-dot", "--gamma"});
-  const Args a(argc, argv, 2, flags, {"--groove", "--strict"});
+int run_force(const Args& a) {
   const Common c = read_common(a);
   lub::BearingState s;
   s.eps = a.number("--eps", lub::is_film_eccentricity_ratio, std::string(lub::kFilmEccentricityRatioRule));
@@ -263,10 +194,7 @@ int run_force(int argc, char** argv) {
   return 0;
 }
 
-int run_steady(int argc, char** argv) {
-  std::set<std::string> flags = kCommonFlags;
-  flags.insert({"--load-N", "--speed-rpm"});
-  const Args a(argc, argv, 2, flags, {"--groove", "--strict"});
+int run_steady(const Args& a) {
   const Common c = read_common(a);
   lub::SteadyBearingInput in;
   in.law = c.law;
@@ -287,25 +215,139 @@ int run_steady(int argc, char** argv) {
   return r.converged ? 0 : 3;
 }
 
+// One subcommand's command line: every value kept as text (Args checks it), every flag a bool.
+struct Command {
+  CLI::App* app = nullptr;
+  std::map<std::string, std::string> text;  // CLI11 writes here (std::map: stable addresses)
+  std::map<std::string, CLI::Option*> given;
+  std::map<std::string, bool> flag;
+
+  void value(const std::string& name, const std::string& type, const std::string& help,
+             const std::string& group = "Options") {
+    // One value per occurrence; a second occurrence is refused by args() ("given twice").
+    given[name] = app->add_option(name, text[name], help)->type_name(type)->take_last()->group(group);
+  }
+  void option_flag(const std::string& name, const std::string& help, const std::string& group = "Options") {
+    app->add_flag(name, flag[name], help)->group(group);
+  }
+  Args args() const {
+    std::map<std::string, std::string> values;
+    for (const auto& [name, opt] : given)
+      if (opt->count() > 1)
+        throw UsageError(name + " given twice");
+      else if (opt->count() == 1)
+        values[name] = text.at(name);
+    std::set<std::string> bare;
+    for (const auto& [name, on] : flag)
+      if (on) bare.insert(name);
+    return Args(values, bare);
+  }
+};
+
+const char* const kFooter =
+    "Prints one JSON object on stdout. Plausibility warnings go to stderr and into the JSON's\n"
+    "\"warnings\" (a list). Exit status: 0 done, 2 bad arguments (nothing printed on stdout),\n"
+    "3 no steady state (reason in the JSON).";
+
+// The options both commands take: the bearing, the force law and its finite_reynolds options.
+void add_common(Command& c) {
+  c.value("--model", "M", "force law, one of: " + lub::names_list<lub::ForceLaw>() + " (required)");
+  c.value("--radius-m", "R", "journal radius R > 0 [m] (required)");
+  c.value("--clearance-m", "C", "radial clearance C > 0 [m] (required)");
+  c.value("--length-m", "L", "bearing length L > 0 [m] (required)");
+  c.value("--viscosity-Pa-s", "MU", "dynamic viscosity > 0 [Pa s] (required)");
+  const std::string fr = "finite_reynolds options (only with --model finite_reynolds)";
+  c.value("--cavitation", "C", "one of: " + lub::names_list<lub::Cavitation>() + " (default reynolds)", fr);
+  c.value("--n-theta", "N", "cells around the circumference (default 48, " + lub::kReynoldsNThetaRange.rule() + ")", fr);
+  c.value("--n-z", "N", "axial nodes over half the length (default 8, " + lub::kReynoldsNZRange.rule() + ")", fr);
+  c.option_flag("--groove",
+                "ambient pressure along the line of maximum film thickness (Raimondi & Boyd's supply condition)",
+                fr);
+  c.option_flag("--strict",
+                "an implausible value (viscosity outside 1e-4 - 5 Pa s, clearance/radius outside 1e-4 - 0.3, "
+                "speed above 50000 rpm: probably a unit slip) is an error (exit 2), not a warning");
+  c.app->footer(kFooter);
+}
+
+Command force_command(CLI::App& app) {
+  Command c;
+  c.app = app.add_subcommand(
+      "force",
+      "Film force on the journal (SI units) at eccentricity ratio E, its rate ED, the journal's angular "
+      "velocity W and the rate GD of the line of centres, both relative to the bearing (wedge speed "
+      "w = W - 2 GD). Prints radial_N (along the line of centres, outward) and tangential_N (+90 deg); "
+      "with --gamma G also x_N, y_N (paper Eqs. 15-16).");
+  c.value("--eps", "E", "eccentricity ratio, " + std::string(lub::kFilmEccentricityRatioRule) + " (required)");
+  c.value("--eps-dot", "ED", "its rate [1/s] (required)");
+  c.value("--omega", "W", "journal angular velocity relative to the bearing [rad/s] (required)");
+  c.value("--gamma-dot", "GD", "rate of the line of centres relative to the bearing [rad/s] (required)");
+  c.value("--gamma", "G", "line of centres from the x axis [rad]: adds x_N, y_N");
+  add_common(c);
+  return c;
+}
+
+Command steady_command(CLI::App& app) {
+  Command c;
+  c.app = app.add_subcommand(
+      "steady",
+      "Equilibrium of a journal turning at N rpm under a constant load W: prints eps, attitude_angle_deg "
+      "(load line to line of centres), min_film_thickness_m, sommerfeld_number (R/c)^2 mu N_s/P, "
+      "P = W/(L D).");
+  c.value("--load-N", "W", "constant load > 0 [N] (required)");
+  c.value("--speed-rpm", "N", "journal speed [rpm], " + std::string(lub::kJournalSpeedRule) + " (required)");
+  add_common(c);
+  return c;
+}
+
+// The one error format of the three programs: "PROGRAM: message" on stderr and, for a usage
+// error, where the usage is.
+int usage_error(const std::string& message, const std::string& command) {
+  std::cerr << "lubbearing: " << message << "\nrun 'lubbearing" << (command.empty() ? "" : " " + command)
+            << " --help' for usage\n";
+  return 2;
+}
+
+std::string version_line() {
+  return std::string("lubbearing ") + LUB_VERSION + " (revision " + LUB_GIT_REVISION + ", " + LUB_BUILD_TYPE +
+         " build)";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::cerr << "lubbearing: a command is required (force or steady)\n\n" << usage();
-    return 2;
+  CLI::App app("lubbearing: the bearing alone, for designers and for checking a force law.", "lubbearing");
+  app.footer(kFooter);
+  app.require_subcommand(0, 1);
+  app.allow_extras();
+  bool version = false;
+  app.add_flag("--version", version, "print the version, revision and build type and exit");
+  Command force = force_command(app);
+  Command steady = steady_command(app);
+  force.app->allow_extras();
+  steady.app->allow_extras();
+  const auto command = [&]() -> std::string { return app.get_subcommands().empty() ? "" : app.get_subcommands()[0]->get_name(); };
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();  // the selected command's help, if one is
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    return usage_error(e.what(), command());
   }
-  const std::string cmd = argv[1];
-  if (cmd == "-h" || cmd == "--help") {
-    std::cout << usage();
+  if (version) {
+    std::cout << version_line() << "\n";
     return 0;
   }
+  if (const auto extra = app.remaining(true); !extra.empty()) {
+    if (command().empty() && extra.front().rfind('-', 0) != 0)
+      return usage_error("unknown command " + extra.front() + " (must be force or steady)", "");
+    return usage_error("unknown argument " + extra.front(), command());
+  }
+  if (command().empty()) return usage_error("a command is required (force or steady)", "");
   try {
-    if (cmd == "force") return run_force(argc, argv);
-    if (cmd == "steady") return run_steady(argc, argv);
-    throw UsageError("unknown command " + cmd + " (must be force or steady)");
+    return force.app->parsed() ? run_force(force.args()) : run_steady(steady.args());
   } catch (const UsageError& e) {
-    std::cerr << "lubbearing: " << e.what() << "\n\n" << usage();
-    return 2;
+    return usage_error(e.what(), command());
   } catch (const std::exception& e) {  // e.g. a solver option rejected by the library
     std::cerr << "lubbearing: " << e.what() << "\n";
     return 2;

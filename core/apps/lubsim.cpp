@@ -1,10 +1,13 @@
 // lubsim: runs one scene and writes its run file.
 //
 //   lubsim SCENE.json -o RUN.h5 [--set POINTER=VALUE ...] [--strict] [--quiet]
+//   lubsim --help;  lubsim --version
 //
 // Exit status: 0 run completed; 2 bad input, or implausible input under --strict (nothing
 // written); 3 the run could not be
 // completed (film collapse, solver failure, budget): the file is written with its status.
+#include <CLI/CLI.hpp>
+
 #include <cstdio>
 #include <exception>
 #include <fstream>
@@ -19,71 +22,79 @@
 
 namespace {
 
-const char* kUsage =
-    "usage: lubsim SCENE.json -o RUN.h5 [--set POINTER=VALUE ...] [--strict] [--quiet]\n"
-    "\n"
-    "Runs one scene (see README, \"Scene format\") and writes RUN.h5: /series (the\n"
-    "scene's channels, each with a units attribute), /metrics, /solver, /cycles, and\n"
-    "the scene, version and status as root attributes.\n"
-    "\n"
-    "  -o, --output RUN.h5     the run file to write (required)\n"
-    "  --set POINTER=VALUE     override one scene value by JSON Pointer (RFC 6901);\n"
-    "                          VALUE is parsed as JSON, a bare word is a string, e.g.\n"
-    "                          --set /joints/3/viscosity_Pa_s=0.04\n"
-    "                          --set /joints/3/force_law=frene_long\n"
-    "  --strict                an implausible value (README \"Scene format\", plausible\n"
-    "                          ranges: a viscosity, clearance or speed that looks like a\n"
-    "                          unit slip) is an error, not a warning\n"
-    "  -q, --quiet             no summary on stdout\n"
-    "  --version               print the version and exit\n"
-    "\n"
-    "Plausibility warnings go to stderr, once, and into the run file's root attribute\n"
-    "`warnings`.\n"
-    "\n"
-    "Exit status: 0 completed, 2 bad input (no file written), 3 run not completed\n"
-    "(file written with its status and message).\n";
+const char* const kDescription =
+    "lubsim: runs one scene (format: configs/scene.schema.json) and writes RUN.h5: /series (the\n"
+    "scene's channels, each with a units attribute), /orbit (the periodic orbit, when found by\n"
+    "shooting), /metrics, /solver, /cycles (per-cycle extremes), and the scene, version, revision,\n"
+    "status and warnings as root attributes.";
 
+const char* const kFooter =
+    "Plausibility warnings go to stderr, once, and into the run file's root attribute `warnings`.\n"
+    "Exit status: 0 completed, 2 bad input (no file written), 3 run not completed (file written\n"
+    "with its status and message).";
+
+// The one error format of the three programs: "PROGRAM: message" on stderr and, for a usage
+// error, where the usage is.
 int usage_error(const std::string& msg) {
-  std::cerr << "lubsim: " << msg << "\n\n" << kUsage;
+  std::cerr << "lubsim: " << msg << "\nrun 'lubsim --help' for usage\n";
   return 2;
+}
+
+struct Options {
+  std::string scene_path, out_path;
+  std::vector<std::string> sets;
+  bool quiet = false, strict = false, version = false;
+};
+
+// Parses argv into `o`. Returns -1 to go on, or the exit status (help, version, usage error).
+int parse_options(int argc, char** argv, Options& o) {
+  CLI::App app(kDescription, "lubsim");
+  app.footer(kFooter);
+  app.allow_extras();
+  app.add_option("scene", o.scene_path, "the scene file (required)")->type_name("SCENE.json");
+  app.add_option("-o,--output", o.out_path, "the run file to write (required)")->type_name("RUN.h5")->take_last();
+  app.add_option("--set", o.sets,
+                 "override one scene value by JSON Pointer (RFC 6901), repeatable, applied in order; VALUE is "
+                 "parsed as JSON, a bare word is a string, e.g. --set /joints/3/viscosity_Pa_s=0.04 "
+                 "--set /joints/3/force_law=frene_long")
+      ->type_name("POINTER=VALUE")
+      ->allow_extra_args(false);
+  app.add_flag("--strict", o.strict,
+               "an implausible value (a viscosity, clearance or speed that looks like a unit slip) is an "
+               "error (exit 2, nothing written), not a warning");
+  app.add_flag("-q,--quiet", o.quiet, "no summary on stdout");
+  app.add_flag("--version", o.version, "print the version, revision and build type and exit");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    return usage_error(e.what());
+  }
+  if (o.version) {
+    std::cout << "lubsim " << lub::program_version() << " (revision " << lub::build_revision() << ", "
+              << LUB_BUILD_TYPE << " build)\n";
+    return 0;
+  }
+  if (const auto extra = app.remaining(); !extra.empty()) {
+    if (extra.front().rfind('-', 0) == 0) return usage_error("unknown option " + extra.front());
+    return usage_error("more than one scene given (" + o.scene_path + ", " + extra.front() + ")");
+  }
+  if (o.scene_path.empty()) return usage_error("no scene given");
+  if (o.out_path.empty()) return usage_error("no output file given (-o RUN.h5)");
+  return -1;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string scene_path, out_path;
-  std::vector<std::string> sets;
-  bool quiet = false, strict = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "-h" || a == "--help") {
-      std::cout << kUsage;
-      return 0;
-    } else if (a == "--version") {
-      std::cout << "lubsim " << lub::program_version() << " (" << lub::build_revision() << ")\n";
-      return 0;
-    } else if (a == "-o" || a == "--output") {
-      if (++i >= argc) return usage_error(a + " needs a file name");
-      out_path = argv[i];
-    } else if (a == "--set") {
-      if (++i >= argc) return usage_error("--set needs POINTER=VALUE");
-      sets.push_back(argv[i]);
-    } else if (a.rfind("--set=", 0) == 0) {
-      sets.push_back(a.substr(6));
-    } else if (a == "-q" || a == "--quiet") {
-      quiet = true;
-    } else if (a == "--strict") {
-      strict = true;
-    } else if (!a.empty() && a[0] == '-') {
-      return usage_error("unknown option " + a);
-    } else if (scene_path.empty()) {
-      scene_path = a;
-    } else {
-      return usage_error("more than one scene given (" + scene_path + ", " + a + ")");
-    }
-  }
-  if (scene_path.empty()) return usage_error("no scene given");
-  if (out_path.empty()) return usage_error("no output file given (-o RUN.h5)");
+  Options o;
+  if (const int status = parse_options(argc, argv, o); status >= 0) return status;
+  const std::string& scene_path = o.scene_path;
+  const std::string& out_path = o.out_path;
+  const std::vector<std::string>& sets = o.sets;
+  const bool quiet = o.quiet, strict = o.strict;
   // The output path first: a run that could not be written is refused before any work.
   if (const auto problem = lub::output_path_problem(out_path)) {
     std::cerr << "lubsim: " << *problem << "\n";

@@ -36,7 +36,9 @@ const char* const kUsage =
     "\n"
     "Runs every case of GRID.json (see README, \"Writing a grid\") and writes STUDY.h5:\n"
     "/cases (one row per case: axis values, status, metrics, solver statistics), /grids\n"
-    "(case ids over each sub-grid's axes, with dimension scales), /scenes, /series.\n"
+    "(case ids over each sub-grid's axes, with dimension scales, and the results over them),\n"
+    "/scene and /scene_patches (each case's scene as a JSON Patch of the root attribute\n"
+    "reference_scene), /series (the channels a case keeps).\n"
     "Every rank computes, rank 0 included; rank 0 alone writes the file.\n"
     "\n"
     "  -o, --output STUDY.h5   the study file (required). If it exists and is a study\n"
@@ -53,7 +55,8 @@ const char* const kUsage =
     "  --summary STUDY.h5      print the study's table and exit\n"
     "  --no-summary            no table at the end\n"
     "  -q, --quiet             no progress lines on stderr\n"
-    "  --version               print the version and exit\n"
+    "  --version               print the version, revision and build type and exit\n"
+    "  -h, --help              print this text and exit\n"
     "\n"
     "Exit status: 0 the study is complete (a case that could not be integrated is a\n"
     "result: recorded with its status and message); 3 it stopped early (on_failure =\n"
@@ -90,7 +93,9 @@ std::optional<std::string> parse_options(const std::vector<std::string>& args, O
   }
   if (help || version) {
     help = true;
-    help_text = version ? "lubsweep " + program_version() + " (" + build_revision() + ")\n" : kUsage;
+    help_text = version ? "lubsweep " + program_version() + " (revision " + build_revision() + ", " +
+                             LUB_BUILD_TYPE + " build)\n"
+                       : kUsage;
     return std::nullopt;
   }
   if (!o.summary_of.empty()) {

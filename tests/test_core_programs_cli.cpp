@@ -1,0 +1,110 @@
+// One command-line style for the three programs (lubsim, lubbearing, lubsweep; CLI11): every
+// program and subcommand answers --help (exit 0, its options on stdout) and --version (exit 0,
+// "PROGRAM VERSION (revision REV, TYPE build)"), and a usage error is "PROGRAM: message" then
+// "run 'PROGRAM --help' for usage" on stderr, exit 2. Runs the built executables.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <regex>
+#include <string>
+#include <vector>
+
+namespace {
+
+struct Result {
+  int status = -1;
+  std::string out;  // stdout (stderr with `merge`)
+};
+
+Result run(const std::string& program, const std::string& args, bool merge = false) {
+  // lubsweep outside mpirun: a singleton MPI process (as root in containers: Open MPI's consent).
+  const std::string cmd = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " + std::string(LUB_BINARY_DIR) +
+                          program + " " + args + (merge ? " 2>&1" : " 2>/dev/null");
+  Result r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf{};
+  while (std::fgets(buf.data(), buf.size(), p)) r.out += buf.data();
+  const int st = pclose(p);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+const struct Program {
+  std::string name, path;
+} kPrograms[] = {{"lubsim", "/core/lubsim"}, {"lubbearing", "/core/lubbearing"}, {"lubsweep", "/sweep/lubsweep"}};
+
+TEST(ProgramsCli, EveryProgramAnswersVersionWithRevisionAndBuildType) {
+  for (const Program& p : kPrograms) {
+    const Result r = run(p.path, "--version");
+    EXPECT_EQ(r.status, 0) << p.name << "\n" << r.out;
+    const std::regex line(p.name + R"( \d+\.\d+\.\d+ \(revision ([0-9a-f]{12}|unknown), [A-Za-z]+ build\)\n)");
+    EXPECT_TRUE(std::regex_match(r.out, line)) << p.name << ": " << r.out;
+  }
+}
+
+TEST(ProgramsCli, EveryProgramAndSubcommandAnswersHelpWithItsOptions) {
+  const struct {
+    std::string path, args;
+    std::vector<std::string> mentions;  // options (and files) the help must name
+  } cases[] = {
+      {"/core/lubsim", "--help",
+       {"SCENE.json", "-o,--output", "--set", "--strict", "-q,--quiet", "--version", "/series", "/metrics",
+        "/solver", "/cycles", "Exit status"}},
+      {"/core/lubsim", "-h", {"--output"}},
+      {"/core/lubbearing", "--help", {"force", "steady", "--version", "Exit status"}},
+      {"/core/lubbearing", "force --help",
+       {"--model", "--eps", "--eps-dot", "--omega", "--gamma-dot", "--gamma", "--radius-m", "--clearance-m",
+        "--length-m", "--viscosity-Pa-s", "--cavitation", "--n-theta", "--n-z", "--groove", "--strict",
+        "gumbel_short", "finite_reynolds"}},
+      {"/core/lubbearing", "steady --help",
+       {"--model", "--load-N", "--speed-rpm", "--radius-m", "--clearance-m", "--length-m", "--viscosity-Pa-s",
+        "--cavitation", "--n-theta", "--n-z", "--groove", "--strict"}},
+      {"/core/lubbearing", "steady -h", {"--load-N"}},
+      {"/sweep/lubsweep", "--help",
+       {"GRID.json", "--output", "--restart", "--drop-other-cases", "--retry-failed", "--check", "--strict",
+        "--summary", "--no-summary", "--quiet", "--version", "/cases", "/grids", "/scene_patches", "/series"}},
+  };
+  for (const auto& c : cases) {
+    const Result r = run(c.path, c.args);
+    EXPECT_EQ(r.status, 0) << c.path << " " << c.args << "\n" << r.out;
+    for (const std::string& m : c.mentions)
+      EXPECT_NE(r.out.find(m), std::string::npos) << c.path << " " << c.args << " does not name " << m << "\n" << r.out;
+  }
+  // The help describes the files as they are: the study file has no /scenes group.
+  EXPECT_EQ(run("/sweep/lubsweep", "--help").out.find("/scenes"), std::string::npos);
+  // A subcommand's help is its own: force's does not offer steady's options.
+  EXPECT_EQ(run("/core/lubbearing", "force --help").out.find("--load-N"), std::string::npos);
+}
+
+TEST(ProgramsCli, UsageErrorsHaveOneFormat) {
+  const struct {
+    std::string name, path, args, message, hint;
+  } cases[] = {
+      {"lubsim", "/core/lubsim", "--bogus", "unknown option --bogus", "lubsim"},
+      {"lubsim", "/core/lubsim", "-o x.h5", "no scene given", "lubsim"},
+      {"lubsim", "/core/lubsim", "a.json", "no output file given (-o RUN.h5)", "lubsim"},
+      {"lubsim", "/core/lubsim", "a.json b.json -o x.h5", "more than one scene given (a.json, b.json)", "lubsim"},
+      {"lubbearing", "/core/lubbearing", "", "a command is required (force or steady)", "lubbearing"},
+      {"lubbearing", "/core/lubbearing", "spin", "unknown command spin (must be force or steady)", "lubbearing"},
+      {"lubbearing", "/core/lubbearing", "force --bogus 1", "unknown argument --bogus", "lubbearing force"},
+      {"lubbearing", "/core/lubbearing", "steady --load-N", "--load-N", "lubbearing steady"},
+      {"lubsweep", "/sweep/lubsweep", "--bogus", "unknown option --bogus", "lubsweep"},
+      {"lubsweep", "/sweep/lubsweep", "g.json", "no output file given (-o STUDY.h5)", "lubsweep"},
+  };
+  for (const auto& c : cases) {
+    const Result r = run(c.path, c.args, true);
+    EXPECT_EQ(r.status, 2) << c.name << " " << c.args << "\n" << r.out;
+    const std::string hint = "\nrun '" + c.hint + " --help' for usage\n";
+    EXPECT_EQ(r.out.rfind(c.name + ": ", 0), 0u) << c.args << "\n" << r.out;
+    EXPECT_NE(r.out.find(c.message), std::string::npos) << c.args << "\n" << r.out;
+    ASSERT_GE(r.out.size(), hint.size()) << r.out;
+    EXPECT_EQ(r.out.substr(r.out.size() - hint.size()), hint) << c.args << "\n" << r.out;
+    EXPECT_EQ(r.out.find("usage:"), std::string::npos) << "the whole usage is not repeated: " << r.out;
+  }
+}
+
+}  // namespace
