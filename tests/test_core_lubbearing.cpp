@@ -3,32 +3,19 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <sys/wait.h>
-
-#include <array>
 #include <cmath>
-#include <cstdio>
 #include <string>
 
+#include "fixtures/run_command.hpp"
 #include "lub/bearing/film_force.hpp"
 
 namespace {
 
-struct Result {
-  int status = -1;
-  std::string out;  // stdout and stderr
-};
+using Result = lub_test::CommandResult;
 
+// lubbearing ARGS, stdout and stderr together.
 Result run(const std::string& args) {
-  const std::string cmd = std::string(LUB_BINARY_DIR) + "/core/lubbearing " + args + " 2>&1";
-  Result r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), p)) r.out += buf.data();
-  const int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
+  return lub_test::run_command(std::string(LUB_BINARY_DIR) + "/core/lubbearing " + args + " 2>&1");
 }
 
 const std::string kGeom = " --radius-m 0.0095 --clearance-m 0.0005 --length-m 0.04 --viscosity-Pa-s 0.4";

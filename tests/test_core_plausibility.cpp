@@ -6,8 +6,6 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <sys/wait.h>
-
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -18,6 +16,7 @@
 #include "lub/io/h5.hpp"
 #include "lub/io/json_reader.hpp"
 #include "lub/scene/scene.hpp"
+#include "fixtures/run_command.hpp"
 #include "fixtures/temp_dir_test.hpp"
 
 namespace {
@@ -36,13 +35,9 @@ struct Result {
 
 // Runs `cmd` (a shell command line) with stderr sent to `err_file`.
 Result run(const std::string& cmd, const std::string& err_file) {
-  Result r;
-  FILE* p = popen((cmd + " 2>" + err_file).c_str(), "r");
-  if (!p) return r;
+  const lub_test::CommandResult c = lub_test::run_command(cmd + " 2>" + err_file);
+  Result r{c.status, c.out, ""};
   std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), p)) r.out += buf.data();
-  const int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
   if (FILE* e = std::fopen(err_file.c_str(), "r")) {
     while (std::fgets(buf.data(), buf.size(), e)) r.err += buf.data();
     std::fclose(e);

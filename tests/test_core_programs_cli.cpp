@@ -4,33 +4,21 @@
 // "run 'PROGRAM --help' for usage" on stderr, exit 2. Runs the built executables.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
-#include <array>
-#include <cstdio>
 #include <regex>
 #include <string>
 #include <vector>
 
+#include "fixtures/run_command.hpp"
+
 namespace {
 
-struct Result {
-  int status = -1;
-  std::string out;  // stdout (stderr with `merge`)
-};
+using Result = lub_test::CommandResult;
 
+// stdout (stderr too with `merge`).
 Result run(const std::string& program, const std::string& args, bool merge = false) {
   // lubsweep outside mpirun: a singleton MPI process (as root in containers: Open MPI's consent).
-  const std::string cmd = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " + std::string(LUB_BINARY_DIR) +
-                          program + " " + args + (merge ? " 2>&1" : " 2>/dev/null");
-  Result r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), p)) r.out += buf.data();
-  const int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
+  return lub_test::run_command("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " +
+                               std::string(LUB_BINARY_DIR) + program + " " + args + (merge ? " 2>&1" : " 2>/dev/null"));
 }
 
 const struct Program {
