@@ -15,7 +15,7 @@ Workspace& reset_chart_workspace(RunModel& rm) {
 }  // namespace
 
 Chart::Chart(RunModel& rm, const StartState& x)
-    : sys_(rm.model, reset_chart_workspace(rm), stabilisation(rm.scene), rm.scene.simulation.eps_limit, false,
+    : sys_(rm.model, reset_chart_workspace(rm), rm.stab, rm.scene.simulation.eps_limit, false,
            Formulation::partitioned) {
   sys_.partition(x.t, x.qv.data());
   n_ = sys_.size();

@@ -21,7 +21,7 @@
 namespace lub::detail {
 
 RunModel::RunModel(const Scene& s)
-    : scene(s), model(build_model(s)), integrator_ws(model), observer_ws(model), chart_ws(model) {}
+    : scene(s), model(build_model(s)), stab(stabilisation(s)), integrator_ws(model), observer_ws(model), chart_ws(model) {}
 
 namespace {
 
@@ -40,6 +40,7 @@ class Runner {
   const Scene& scene_;
   const SegmentOptions& opt_;
   const Model& m_;
+  const Stabilisation& stab_;
   Workspace& ws_;
   Workspace& obs_ws_;
   std::optional<double> period_;
@@ -93,7 +94,7 @@ class Runner {
 };
 
 Runner::Runner(RunModel& rm, const SegmentOptions& opt)
-    : scene_(rm.scene), opt_(opt), m_(rm.model), ws_(rm.integrator_ws), obs_ws_(rm.observer_ws),
+    : scene_(rm.scene), opt_(opt), m_(rm.model), stab_(rm.stab), ws_(rm.integrator_ws), obs_ws_(rm.observer_ws),
       period_(rm.scene.cycle_period_s()), plan_(plan_integration(rm.scene, rm.model, opt.rtol_factor)),
       tol_(rm.scene, rm.model, opt.rtol_factor), cycles_(rm.scene, rm.model, opt.start ? opt.start->t : 0.0, period_),
       series_(rm.scene, rm.model, opt.observe && opt.series) {
@@ -150,7 +151,7 @@ bool Runner::start_integrator() {
   res_.stats.formulation = name_of(plan_.formulation);
   res_.stats.jacobian = plan_.jacobian_name();
   const bool energy = scene_.output.energy_balance;
-  sys_ = std::make_unique<MultibodySystem>(m_, ws_, stabilisation(scene_), scene_.simulation.eps_limit, energy,
+  sys_ = std::make_unique<MultibodySystem>(m_, ws_, stab_, scene_.simulation.eps_limit, energy,
                                            plan_.formulation);
   sys_->set_projection_tolerance(0.01 * tol_.reported_atol());  // Newton on Φ = 0 well inside the error test
   try {
@@ -177,7 +178,7 @@ void Runner::observe(double t, const double* y, bool record, bool measure) {
   const double* v = y + m_.nq;
   std::copy(ws_.film_mode.begin(), ws_.film_mode.end(), obs_ws_.film_mode.begin());
   std::copy(ws_.slide_radius.begin(), ws_.slide_radius.end(), obs_ws_.slide_radius.begin());
-  if (evaluate(m_, obs_ws_, stabilisation(scene_), t, q, v, qdd_.data()) != EvalStatus::ok) return;
+  if (evaluate(m_, obs_ws_, stab_, t, q, v, qdd_.data()) != EvalStatus::ok) return;
   ++res_.stats.observer_evals;
   if (record) series_.record(Probe{t, q, v, qdd_.data()}, obs_ws_);
   if (!measure) return;

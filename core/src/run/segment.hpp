@@ -39,6 +39,7 @@ struct RunModel {
   explicit RunModel(const Scene& scene);
   const Scene& scene;
   Model model;
+  Stabilisation stab;       ///< the constraints' stabilisation the scene's solver asks for
   Workspace integrator_ws;  ///< the integrator's
   /// The observers' own: what they evaluate (a finite-Reynolds solver's warm start, the
   /// counters) must not reach the integrator's workspace, or how often a run samples
