@@ -6,10 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <map>
 #include <stdexcept>
 
+#include "lub/common/constants.hpp"
 #include "lub/io/json_reader.hpp"
 #include "lub/run/run_io.hpp"
 #include "study_parts.hpp"
@@ -85,13 +85,13 @@ void write_root_attributes(h5::File& f, const Grid& g, bool complete) {
 /// (`_FillValue`), an integer result column its sentinel (`missing_value` = -1).
 void declare_missing_values(h5::Table& t, const Grid& g) {
   for (const Axis& a : g.axes)
-    if (a.numeric) t.column(a.name).set_attribute("_FillValue", std::numeric_limits<double>::quiet_NaN());
+    if (a.numeric) t.column(a.name).set_attribute("_FillValue", kNaN);
   for (const auto& fld : result_fields()) {
     h5::Dataset d = t.column(fld.name);
     if (fld.integer)
       d.set_attribute_int64("missing_value", kMissingInteger);
     else
-      d.set_attribute("_FillValue", std::numeric_limits<double>::quiet_NaN());
+      d.set_attribute("_FillValue", kNaN);
   }
 }
 
@@ -153,7 +153,7 @@ void write_block_index(h5::Group& grids, const Grid& g, const Block& b) {
       std::vector<json> v;
       for (int id : b.case_ids) v.push_back(g.cases.at(static_cast<std::size_t>(id)).axis_values[k]);
       h5::Dataset d = write_axis(bg, g.axes[k], v);
-      if (g.axes[k].numeric) d.set_attribute("_FillValue", std::numeric_limits<double>::quiet_NaN());  // unset
+      if (g.axes[k].numeric) d.set_attribute("_FillValue", kNaN);  // unset
       d.attach_scale(scale, 0);
     }
   }
@@ -188,7 +188,6 @@ void attach_like_index(h5::Group& bg, const Block& b, const Grid& g, h5::Dataset
 void write_grid_results(h5::File& f, const Grid& g, const std::map<int, CaseResult>& results) {
   const auto fields = result_fields();
   const std::size_t n_metrics = metric_fields().size();
-  const double nan = std::numeric_limits<double>::quiet_NaN();
   for (const Block& b : g.blocks) {
     h5::Group bg = f.open_group("grids/" + b.name);
     const std::vector<std::size_t> shape = b.shape.empty() ? std::vector<std::size_t>{b.case_ids.size()} : b.shape;
@@ -201,10 +200,10 @@ void write_grid_results(h5::File& f, const Grid& g, const std::map<int, CaseResu
       std::vector<double> v;
       for (const CaseResult* r : rs) {
         const bool have = r != nullptr && k < r->values.size() && (k >= n_metrics || r->ok());
-        v.push_back(have ? r->values[k] : nan);
+        v.push_back(have ? r->values[k] : kNaN);
       }
       h5::Dataset d = bg.write_dataset(fields[k].name, v, shape, fields[k].unit, h5::WriteOptions{0});
-      d.set_attribute("_FillValue", nan);  // float64 here, integer fields included
+      d.set_attribute("_FillValue", kNaN);  // float64 here, integer fields included
       d.set_attribute("long_name", std::string(fields[k].long_name) +
                                        (fields[k].steady_metric ? " (NaN: no steady cycle, see classification)"
                                         : k < n_metrics      ? " (NaN: the case is not ok, see status)"

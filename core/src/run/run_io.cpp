@@ -2,12 +2,13 @@
 
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <map>
 #include <stdexcept>
 #include <utility>
 
 #include <nlohmann/json.hpp>
+
+#include "lub/common/constants.hpp"
 
 #ifndef LUB_VERSION
 #define LUB_VERSION "unknown"
@@ -19,7 +20,6 @@
 namespace lub {
 
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// A value whose negative stands for "unknown" in the run's structs (periodicity of the
 /// first cycle, cycles_to_steady of a run that never settled): NaN in every output.
@@ -27,7 +27,7 @@ double known(double v) { return v < 0 ? kNaN : v; }
 
 // The k-th Floquet multiplier's modulus or angle (NaN when there is none).
 double multiplier(const RunResult& r, size_t k, bool angle) {
-  if (k >= r.steady.multipliers.size()) return std::numeric_limits<double>::quiet_NaN();
+  if (k >= r.steady.multipliers.size()) return kNaN;
   return angle ? std::arg(r.steady.multipliers[k]) : std::abs(r.steady.multipliers[k]);
 }
 }  // namespace
