@@ -88,7 +88,7 @@ Outcome run(const Grid& grid, std::deque<int> queue, int workers, FakeRunner& ru
   Outcome out;
   Schedule s;
   s.on_failure = grid.on_failure;
-  if (local) s.local = [&](const Case& c) { return runner.run(c.id, c.scene, 0); };
+  if (local) s.local = [&](const Task& t) { return runner.run(t.case_id, t.scene, 0); };
   const auto coordinator = std::this_thread::get_id();
   s.record = [&](const CaseResult& r) {
     EXPECT_EQ(std::this_thread::get_id(), coordinator) << "results are recorded on the calling thread";
@@ -286,4 +286,59 @@ TEST(SweepScheduler, RemoteWorkersHoldTheirNextCaseWhileTheQueueIsLong) {
   for (std::size_t held : wa.held_when_given) EXPECT_EQ(held, 1u);
   EXPECT_EQ(recorded, (std::vector<int>{0, 1, 2, 3, 4}));
   EXPECT_EQ(wa.stopped_with, 0u);
+}
+
+// Continuation: a case is handed out only after its parent's result is in, with the orbit
+// of its nearest ancestor that found one; whatever the number of workers, nothing waits
+// forever.
+TEST(SweepScheduler, AContinuedCaseStartsAfterItsParentFromItsNearestAncestorsOrbit) {
+  // A tree over 30 cases: case i's parent is (i - 1) / 2 (case 0 the seed).
+  const int n = 30;
+  std::vector<int> parents(n);
+  for (int i = 0; i < n; ++i) parents[static_cast<std::size_t>(i)] = i == 0 ? -1 : (i - 1) / 2;
+  const std::set<int> no_orbit = {1, 4};  // cases that find none: their children continue from higher up
+  for (int workers : {0, 1, 3}) {
+    const Grid g = fake_grid(n);
+    std::mutex m;
+    std::set<int> done;
+    std::map<int, int> started_from;
+    auto run_task = [&](const Task& t, int rank) {
+      {
+        std::lock_guard<std::mutex> l(m);
+        const int p = parents[static_cast<std::size_t>(t.case_id)];
+        EXPECT_TRUE(p < 0 || done.count(p)) << "case " << t.case_id << " started before its parent " << p;
+        started_from[t.case_id] = t.from_case;
+        if (t.from_case >= 0) {
+          EXPECT_EQ(t.from_orbit, std::vector<double>{static_cast<double>(t.from_case)});
+          EXPECT_EQ(t.from_scene, g.cases[static_cast<std::size_t>(t.from_case)].scene);
+        }
+      }
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+      CaseResult r;
+      r.case_id = t.case_id;
+      r.rank = rank;
+      r.status = "ok";
+      if (!no_orbit.count(t.case_id)) r.orbit_seed = {static_cast<double>(t.case_id)};
+      std::lock_guard<std::mutex> l(m);
+      done.insert(t.case_id);
+      return r;
+    };
+    InProcessTransport transport(workers);
+    std::vector<std::thread> threads;
+    for (int w = 1; w <= workers; ++w)
+      threads.emplace_back([&, w] { serve(transport.worker(w), [&, w](const Task& t) { return run_task(t, w); }); });
+    Schedule s;
+    s.local = [&](const Task& t) { return run_task(t, 0); };
+    s.parents = parents;
+    int recorded = 0;
+    s.record = [&](const CaseResult&) { ++recorded; };
+    schedule(g, cases_to_run(g, {}), transport.coordinator(), s);
+    for (auto& t : threads) t.join();
+    EXPECT_EQ(recorded, n) << workers << " workers";
+    ASSERT_EQ(started_from.size(), static_cast<std::size_t>(n));
+    EXPECT_EQ(started_from[0], -1);
+    EXPECT_EQ(started_from[3], 0) << "its parent 1 found no orbit: from 1's parent";
+    EXPECT_EQ(started_from[9], 0) << "4 and 1 found none: from 0";
+    EXPECT_EQ(started_from[5], 2);
+  }
 }

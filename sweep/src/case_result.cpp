@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lub/scene/scene.hpp"
+#include "lub/sweep/transport.hpp"
 
 namespace lub::sweep {
 
@@ -21,10 +22,12 @@ std::vector<ResultField> result_fields() {
 
 namespace {
 
+using nlohmann::json;
+
 /// Runs the scene `scene()` gives. Never throws: an InputError (the scene refused) is the
 /// status "invalid_scene", any other exception "error"; values are NaN where not computed.
-template <class SceneOf>
-CaseResult run_guarded(int case_id, int rank, const SceneOf& scene) {
+template <class SceneOf, class Run>
+CaseResult run_guarded(int case_id, int rank, const SceneOf& scene, const Run& run) {
   CaseResult out;
   out.case_id = case_id;
   out.rank = rank;
@@ -32,7 +35,7 @@ CaseResult run_guarded(int case_id, int rank, const SceneOf& scene) {
   const auto fields = result_fields();
   out.values.assign(fields.size(), std::numeric_limits<double>::quiet_NaN());
   try {
-    RunResult r = run_scene(scene());
+    RunResult r = run(scene());
     out.status = to_string(r.status);
     out.message = r.message;
     out.classification = classification(r);
@@ -41,6 +44,7 @@ CaseResult run_guarded(int case_id, int rank, const SceneOf& scene) {
     for (std::size_t i = 0; i < fields.size(); ++i)
       if (steady || !fields[i].steady_metric) out.values[i] = fields[i].get(r);
     out.series = std::move(r.series);
+    if (r.orbit_seed.valid()) out.orbit_seed = pack_seed(r.orbit_seed);
   } catch (const InputError& e) {
     out.status = "invalid_scene";
     out.classification = out.status;
@@ -53,14 +57,50 @@ CaseResult run_guarded(int case_id, int rank, const SceneOf& scene) {
   return out;
 }
 
+const auto kAlone = [](const Scene& s) { return run_scene(s); };
+
+/// The scene at λ on the path from `from` (λ = 0) to `to` (λ = 1): every number that
+/// differs interpolated, in its logarithm where both ends are positive (viscosities,
+/// speeds, radii), linearly otherwise; anything else as `to` has it.
+json between(const json& from, const json& to, double lambda) {
+  if (from.is_object() && to.is_object()) {
+    json out = to;
+    for (auto it = out.begin(); it != out.end(); ++it)
+      if (from.contains(it.key())) *it = between(from.at(it.key()), *it, lambda);
+    return out;
+  }
+  if (from.is_array() && to.is_array() && from.size() == to.size()) {
+    json out = to;
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = between(from[i], to[i], lambda);
+    return out;
+  }
+  if (from.is_number() && to.is_number() && !to.is_number_integer() && from != to) {
+    const double a = from.get<double>(), b = to.get<double>();
+    return a > 0.0 && b > 0.0 ? std::exp((1.0 - lambda) * std::log(a) + lambda * std::log(b))
+                              : (1.0 - lambda) * a + lambda * b;
+  }
+  return to;
+}
+
 }  // namespace
 
 CaseResult run_case(int case_id, const Scene& scene, int rank) {
-  return run_guarded(case_id, rank, [&]() -> const Scene& { return scene; });
+  return run_guarded(case_id, rank, [&]() -> const Scene& { return scene; }, kAlone);
+}
+
+CaseResult run_task(const Task& task, int rank) {
+  if (task.from_scene.empty() || task.from_orbit.empty()) return run_case(task.case_id, task.scene, rank);
+  const json from = json::parse(task.from_scene), to = json::parse(task.scene);
+  auto path = [from, to](double lambda) { return parse_scene(between(from, to, lambda)); };
+  CaseResult r = run_guarded(
+      task.case_id, rank, [&] { return parse_scene(to); },
+      [&](const Scene& s) { return run_scene(s, ContinuationStart{unpack_seed(task.from_orbit), path}); });
+  r.continued_from = task.from_case;
+  return r;
 }
 
 CaseResult run_case(int case_id, const std::string& scene_json, int rank) {
-  return run_guarded(case_id, rank, [&] { return parse_scene(nlohmann::json::parse(scene_json)); });
+  return run_guarded(case_id, rank, [&] { return parse_scene(nlohmann::json::parse(scene_json)); }, kAlone);
 }
 
 // Messages are MessagePack maps (nlohmann-json's binary format): self-describing, so a
@@ -92,7 +132,8 @@ std::string encode(const CaseResult& r) {
   const json m = {{"format", kResultFormat}, {"case_id", r.case_id}, {"rank", r.rank},
                   {"status", r.status},      {"message", r.message}, {"values", r.values},
                   {"classification", r.classification},
-                  {"revision", r.revision},  {"series", std::move(series)}};
+                  {"revision", r.revision},  {"series", std::move(series)},
+                  {"orbit_seed", r.orbit_seed}, {"continued_from", r.continued_from}};
   const std::vector<std::uint8_t> bytes = json::to_msgpack(m);
   return std::string(bytes.begin(), bytes.end());
 }
@@ -115,6 +156,8 @@ CaseResult decode(const std::string& bytes) {
     r.classification = field<std::string>(m, "classification", &json::is_string, "a string");
     r.values = field<std::vector<double>>(m, "values", &json::is_array, "an array");
     r.revision = field<std::string>(m, "revision", &json::is_string, "a string");
+    r.orbit_seed = field<std::vector<double>>(m, "orbit_seed", &json::is_array, "an array");
+    r.continued_from = field<int>(m, "continued_from", &json::is_number_integer, "an integer");
     for (const json& c : field<json>(m, "series", &json::is_array, "an array")) {
       if (!c.is_object()) throw std::runtime_error("malformed result message: a series is not a map");
       r.series.names.push_back(field<std::string>(c, "name", &json::is_string, "a string"));

@@ -7,6 +7,7 @@
 #include <mutex>
 #include <optional>
 #include <stdexcept>
+#include <set>
 #include <thread>
 
 namespace lub::sweep {
@@ -17,7 +18,7 @@ namespace {
 /// thread stays free to serve the other workers and to record results.
 class LocalWorker {
  public:
-  explicit LocalWorker(std::function<CaseResult(const Case&)> run)
+  explicit LocalWorker(std::function<CaseResult(const Task&)> run)
       : run_(std::move(run)), thread_([this] { loop(); }) {}
   LocalWorker(const LocalWorker&) = delete;
   LocalWorker& operator=(const LocalWorker&) = delete;
@@ -30,10 +31,10 @@ class LocalWorker {
     thread_.join();
   }
   bool busy() const { return busy_; }
-  void give(const Case& c) {
+  void give(Task t) {
     {
       std::lock_guard<std::mutex> l(m_);
-      task_ = &c;
+      task_ = std::move(t);
     }
     busy_ = true;
     cv_.notify_one();
@@ -57,23 +58,23 @@ class LocalWorker {
   void loop() {
     std::unique_lock<std::mutex> l(m_);
     for (;;) {
-      cv_.wait(l, [this] { return task_ != nullptr || quit_; });
-      if (task_ == nullptr) return;
-      const Case* c = task_;
-      task_ = nullptr;
+      cv_.wait(l, [this] { return task_.has_value() || quit_; });
+      if (!task_) return;
+      const Task t = std::move(*task_);
+      task_.reset();
       l.unlock();
-      CaseResult r = run_(*c);
+      CaseResult r = run_(t);
       l.lock();
       result_ = std::move(r);
       done_cv_.notify_one();
     }
   }
 
-  std::function<CaseResult(const Case&)> run_;
+  std::function<CaseResult(const Task&)> run_;
   std::mutex m_;
   std::condition_variable cv_, done_cv_;
   bool quit_ = false, busy_ = false;
-  const Case* task_ = nullptr;
+  std::optional<Task> task_;
   std::optional<CaseResult> result_;
   std::thread thread_;  // last: starts after the members it uses
 };
@@ -99,11 +100,41 @@ bool schedule(const Grid& grid, std::deque<int> queue, CoordinatorTransport& tra
       if (s.on_abort) s.on_abort(r);
     }
   };
-  auto next = [&]() -> const Case* {
-    if (aborting || queue.empty()) return nullptr;
-    const int id = queue.front();
-    queue.pop_front();
-    return &grid.cases.at(static_cast<std::size_t>(id));
+  // Continuation: the orbits of the cases done so far; a case waits for its parent's.
+  std::map<int, std::vector<double>> orbits = s.finished;
+  const auto parent_of = [&](int id) { return s.parents.empty() ? -1 : s.parents.at(static_cast<std::size_t>(id)); };
+  const auto ready = [&](int id) { return parent_of(id) < 0 || orbits.count(parent_of(id)) > 0; };
+  const auto task_of = [&](int id) {
+    const Case& c = grid.cases.at(static_cast<std::size_t>(id));
+    Task t{c.id, c.scene, -1, "", {}};
+    // The nearest ancestor with an orbit (a parent that found none passes on its own start).
+    for (int p = parent_of(id); p >= 0; p = parent_of(p)) {
+      const auto it = orbits.find(p);
+      if (it != orbits.end() && !it->second.empty()) {
+        t.from_case = p;
+        t.from_scene = grid.cases.at(static_cast<std::size_t>(p)).scene;
+        t.from_orbit = it->second;
+        break;
+      }
+    }
+    return t;
+  };
+  int running = 0;  // cases handed out and not yet returned
+  auto next = [&]() -> std::optional<Task> {
+    if (aborting || queue.empty()) return std::nullopt;
+    auto it = std::find_if(queue.begin(), queue.end(), ready);
+    // Nothing ready and nothing running: no result will make one ready (a parent outside
+    // the queue): the first case goes without its parent.
+    if (it == queue.end() && running == 0) it = queue.begin();
+    if (it == queue.end()) return std::nullopt;
+    const int id = *it;
+    queue.erase(it);
+    ++running;
+    return task_of(id);
+  };
+  const auto note = [&](const CaseResult& r) {
+    --running;
+    orbits[r.case_id] = r.orbit_seed;
   };
 
   std::optional<LocalWorker> local;
@@ -119,19 +150,26 @@ bool schedule(const Grid& grid, std::deque<int> queue, CoordinatorTransport& tra
   // queued case could start before the stop reaches its worker.
   const int depth = s.on_failure == FailurePolicy::abort_on_failure ? 1 : s.prefetch;
   std::vector<int> outstanding(static_cast<std::size_t>(transport.workers()) + 1, 0);  // by worker id
+  std::set<int> ready_workers;  // workers that have said they are ready
   const auto top_up = [&](int worker) {
     int& held = outstanding.at(static_cast<std::size_t>(worker));
     const auto long_queue = [&] { return queue.size() >= 2 * static_cast<std::size_t>(transport.workers()); };
     while (held < 1 || (held < depth && long_queue())) {
-      const Case* c = next();
-      if (!c) break;
-      transport.send_task(worker, Task{c->id, c->scene});
+      std::optional<Task> t = next();
+      if (!t) break;
+      transport.send_task(worker, *t);
       ++held;
     }
-    if (held == 0) {
+    if (held == 0 && (queue.empty() || aborting)) {
       transport.send_stop(worker);
       --remote_active;
+      outstanding.at(static_cast<std::size_t>(worker)) = -1;  // stopped
     }
+  };
+  // Workers waiting for a case whose parent is still running: topped up after each result.
+  const auto top_up_waiting = [&] {
+    for (int w = 1; w < static_cast<int>(outstanding.size()); ++w)
+      if (outstanding[static_cast<std::size_t>(w)] == 0 && ready_workers.count(w)) top_up(w);
   };
   // Idle waits grow from 50 µs to 1 ms: a worker waiting for its next case waits at most
   // ~1 ms, and the polling costs the coordinator's core ~1 % (Open MPI would spin at 100 %).
@@ -142,9 +180,10 @@ bool schedule(const Grid& grid, std::deque<int> queue, CoordinatorTransport& tra
     bool progressed = false;
     if (local) {
       std::optional<CaseResult> r = local->take();
-      if (r) judge(*r), progressed = true;
+      if (r) judge(*r), note(*r), progressed = true;
+      if (r && remote_active > 0) top_up_waiting();
       if (!local->busy())
-        if (const Case* c = next()) local->give(*c), progressed = true;
+        if (std::optional<Task> t = next()) local->give(std::move(*t)), progressed = true;
       if (r) s.record(*r);
     }
     if (remote_active > 0) {
@@ -152,15 +191,21 @@ bool schedule(const Grid& grid, std::deque<int> queue, CoordinatorTransport& tra
       const auto wait = progressed || local_busy() ? std::chrono::microseconds(0) : idle;
       if (auto m = transport.poll(wait)) {
         progressed = true;
+        ready_workers.insert(m->worker);
         if (m->result) {
           judge(*m->result);
+          note(*m->result);
           --outstanding.at(static_cast<std::size_t>(m->worker));
         }
         top_up(m->worker);
+        if (m->result) top_up_waiting();
         if (m->result) s.record(*m->result);
       }
     }
     if (remote_active == 0 && !local_busy() && (queue.empty() || aborting)) break;
+    // Every remote worker idle, waiting for parents that the local worker runs: once the
+    // queue is empty (or aborting) they are told to stop.
+    if (remote_active > 0 && (queue.empty() || aborting)) top_up_waiting();
     if (progressed) {
       idle = std::chrono::microseconds(50);
     } else {

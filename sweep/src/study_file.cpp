@@ -276,6 +276,11 @@ std::vector<h5::Column> case_columns(const Grid& g) {
   c.push_back({"classification", ColumnType::String, "", kClassificationLongName});
   for (const auto& f : result_fields())
     c.push_back({f.name, f.integer ? ColumnType::Int64 : ColumnType::Float64, f.unit, f.long_name});
+  c.push_back({"continued_from", ColumnType::Int64, "1",
+               "case whose periodic orbit this case's Newton started from (simulation.steady = continuation); -1: none"});
+  c.push_back({"orbit_seed", ColumnType::String, "",
+               "the periodic orbit found, as a JSON array (lubjoint.study.orbit_seed; layout: lub::pack_seed): "
+               "its state at crank angle 0 and its monodromy, each coordinate in its own unit; \"\": none"});
   c.push_back({"rank", ColumnType::Int64, "1", "MPI rank that computed the case"});
   c.push_back({"revision", ColumnType::String, "", "build revision that computed the case"});
   return c;
@@ -296,6 +301,8 @@ h5::Row case_row(const Grid& g, const CaseResult& r) {
     else
       row.push_back(v);
   }
+  row.push_back(static_cast<std::int64_t>(r.continued_from));
+  row.push_back(r.orbit_seed.empty() ? std::string() : nlohmann::json(r.orbit_seed).dump());
   row.push_back(static_cast<std::int64_t>(r.rank));
   row.push_back(r.revision);
   return row;

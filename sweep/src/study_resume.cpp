@@ -112,6 +112,9 @@ struct EarlierRows {
         classification(t.read_strings("classification")),
         revision(t.read_strings("revision")),
         rank(t.read_int64s("rank")) {
+    // Files of an earlier format have no orbits: their cases are continued from by none.
+    if (t.has_column("orbit_seed")) orbit_seed = t.read_strings("orbit_seed");
+    if (t.has_column("continued_from")) continued_from = t.read_int64s("continued_from");
     for (const auto& fld : result_fields()) {
       values.push_back(t.read_doubles(fld.name));
       if (fld.integer)  // the sentinel back to NaN, as run_case gives it
@@ -130,11 +133,14 @@ struct EarlierRows {
     r.classification = classification[i];
     r.revision = revision[i];
     for (const auto& column : values) r.values.push_back(column[i]);
+    if (i < orbit_seed.size() && !orbit_seed[i].empty())
+      r.orbit_seed = nlohmann::json::parse(orbit_seed[i]).get<std::vector<double>>();
+    if (i < continued_from.size()) r.continued_from = static_cast<int>(continued_from[i]);
     return r;
   }
 
-  std::vector<std::string> hashes, status, message, classification, revision;
-  std::vector<std::int64_t> rank;
+  std::vector<std::string> hashes, status, message, classification, revision, orbit_seed;
+  std::vector<std::int64_t> rank, continued_from;
   std::vector<std::vector<double>> values;  ///< per result field
 };
 

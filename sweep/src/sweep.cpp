@@ -1,3 +1,4 @@
+#include "lub/sweep/continuation_tree.hpp"
 #include "lub/sweep/sweep.hpp"
 
 #include <mpi.h>
@@ -302,7 +303,10 @@ int coordinate(const Options& o, const Grid& grid, const ResumeState& resume, bo
   Schedule s;
   s.on_failure = grid.on_failure;
   // Rank 0 runs a case from its canonical JSON, as the other ranks do.
-  s.local = [](const Case& c) { return run_case(c.id, c.scene, 0); };
+  s.local = [](const Task& t) { return run_task(t, 0); };
+  // Continuation (simulation.steady = continuation): each case waits for its parent's orbit.
+  s.parents = continuation_parents(grid);
+  for (const auto& [id, r] : resume.done) s.finished[id] = r.orbit_seed;
   const auto write = [&](auto&& what) {
     try {
       const WritingRows busy;
@@ -437,7 +441,7 @@ int run_sweep(const Options& o) {
   } else {
     MpiWorker transport(MPI_COMM_WORLD);
     // Each rank parses a case's scene once, from the task's canonical JSON.
-    serve(transport, [rank](const Task& t) { return run_case(t.case_id, t.scene, rank); });
+    serve(transport, [rank](const Task& t) { return run_task(t, rank); });
   }
   polite_barrier(MPI_COMM_WORLD);
   return status;

@@ -12,7 +12,8 @@ namespace lub::sweep {
 using nlohmann::json;
 
 std::string encode(const Task& t) {
-  const std::vector<std::uint8_t> bytes = json::to_msgpack({{"case_id", t.case_id}, {"scene", t.scene}});
+  const std::vector<std::uint8_t> bytes = json::to_msgpack(
+      {{"case_id", t.case_id}, {"scene", t.scene}, {"from_case", t.from_case}, {"from_scene", t.from_scene}, {"from_orbit", t.from_orbit}});
   return std::string(bytes.begin(), bytes.end());
 }
 
@@ -22,7 +23,11 @@ Task decode_task(const std::string& bytes) {
     if (!m.is_object() || !m.contains("case_id") || !m["case_id"].is_number_integer() || !m.contains("scene") ||
         !m["scene"].is_string())
       throw std::runtime_error("malformed task message: needs an integer case_id and a string scene");
-    return Task{m["case_id"].get<int>(), m["scene"].get<std::string>()};
+    Task t{m["case_id"].get<int>(), m["scene"].get<std::string>(), -1, "", {}};
+    if (m.contains("from_case")) t.from_case = m["from_case"].get<int>();
+    if (m.contains("from_scene")) t.from_scene = m["from_scene"].get<std::string>();
+    if (m.contains("from_orbit")) t.from_orbit = m["from_orbit"].get<std::vector<double>>();
+    return t;
   } catch (const json::exception& e) {
     throw std::runtime_error(std::string("malformed task message: ") + e.what());
   }

@@ -28,6 +28,8 @@ class Chart {
   /// The consistent state at time t with independent part z (the observer context: its
   /// Newton starts from the partition's state every time, so the map is a function of z).
   bool expand(double t, const double* z, std::vector<double>& qv);
+  /// The independent coordinates (indices of q) the chart was partitioned with.
+  const std::vector<int>& independent() const { return sys_.independent(); }
 
  private:
   MultibodySystem sys_;

@@ -12,12 +12,14 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "lub/run/run.hpp"
 #include "lub/steady/contraction.hpp"
 #include "lub/steady/periodic_orbit.hpp"
 #include "run/metrics.hpp"
+#include "run/orbit_seed.hpp"
 #include "run/period_map.hpp"
 #include "run/segment.hpp"
 #include "run/series_recorder.hpp"
@@ -52,6 +54,12 @@ constexpr int kWindow = 10;
 constexpr double kDifferenceStep = 1e-2;
 /// Error bars re-integrate at rtol × this.
 constexpr double kTightFactor = 0.01;
+/// Newton iterations of one continuation step before it counts as failed (and the step is
+/// halved): quick convergence takes 1–3 from a neighbour's orbit.
+constexpr int kContinuationIterations = 8;
+/// Newton iterations of the error bars' re-solve at rtol/100 (from the orbit at rtol, with
+/// its monodromy: 1–3 where the map is smooth).
+constexpr int kErrorBarIterations = 6;
 
 /// The orbit distance between two cycles' phase points is measured in the clearance; below
 /// this it is noise (the contraction estimate's floor). The phase points come from the
@@ -135,6 +143,13 @@ class SteadyRun {
  public:
   explicit SteadyRun(const Scene& scene) : scene_(scene), sim_(scene.simulation), rm_(scene) {}
   RunResult run();
+  /// One step of a continuation: Newton from a neighbour's orbit placed into this scene;
+  /// `final`: this is the run's own scene (metrics, error bars). False if it failed.
+  bool continue_from(const OrbitSeed& seed, bool final);
+  /// Newton iterations of the last solve.
+  int last_iterations() const { return last_iterations_; }
+  /// The result so far (after continue_from), closed like run()'s.
+  RunResult take_result(std::chrono::steady_clock::time_point wall0);
 
  private:
   const Scene& scene_;
@@ -157,16 +172,23 @@ class SteadyRun {
   void transient_error_bars();
   void shoot();
   void shoot_from_transient();
+  /// Newton on the period map from `base`, then the monodromy and the multipliers; if
+  /// `final`, the classification, the metrics and error bars on the orbit. Sets the
+  /// orbit's seed. False if no orbit was found (the message says why).
+  bool solve_orbit(Chart& chart, const StartState& base, const std::vector<double>& winding, long long budget,
+                   steady::ShootingOptions options, bool final);
+  int last_iterations_ = 0;
+  double seed_max_eps_ = kNaN, seed_steps_per_period_ = 0.0;
   /// Shooting's options at the transient's end: difference and Newton steps within the gap.
   steady::ShootingOptions shooting_options(const Chart& chart) const;
   /// Shooting found no orbit: drifting or not converged, and why.
   void shooting_failed(const steady::ShootingResult& found, const PeriodMap& period);
   /// The metrics and channels of the orbit at chart coordinates z; false if it fails.
   bool measure_orbit(Chart& chart, const StartState& base, const Eigen::VectorXd& z);
-  /// Error bars: the orbit re-found at rtol/100 by one Newton step with the monodromy M,
-  /// z_tight = z* − (M − I)⁻¹ (P_tight(z*) − z*), and measured there.
+  /// Error bars: the orbit re-solved at rtol/100 (Newton from z*, chord iterations on the
+  /// monodromy's M − I) and measured there.
   void orbit_error_bars(Chart& chart, const StartState& base, PeriodMap& tight_period, const Eigen::VectorXd& z,
-                        const Eigen::MatrixXd& monodromy);
+                        const Eigen::MatrixXd& monodromy, const steady::ShootingOptions& options);
   bool transient_drifts() const;
   /// The metric cycles (or `cycles`) from a state (rtol × factor): their metrics and channels.
   SegmentResult measure(const StartState& s, double factor, bool series, int cycles = 0);
@@ -322,14 +344,32 @@ bool SteadyRun::measure_orbit(Chart& chart, const StartState& base, const Eigen:
 }
 
 void SteadyRun::orbit_error_bars(Chart& chart, const StartState& base, PeriodMap& tight_period,
-                                 const Eigen::VectorXd& z, const Eigen::MatrixXd& monodromy) {
-  Eigen::VectorXd tight_end(chart.size());
-  if (tight_period.apply(z.data(), tight_end.data()) != 0) return;
+                                 const Eigen::VectorXd& z, const Eigen::MatrixXd& monodromy,
+                                 const steady::ShootingOptions& options) {
+  // The orbit re-solved at rtol/100 by Newton from z*, on chord iterations with the
+  // monodromy's M − I: near a multiplier close to 1 the orbit moves by the map's error
+  // divided by 1 − |μ|, which one Newton step estimates only to first order.
   const Eigen::MatrixXd M_minus_I = monodromy - Eigen::MatrixXd::Identity(chart.size(), chart.size());
-  const Eigen::VectorXd z_tight = z - M_minus_I.fullPivLu().solve(tight_end - z);
-  StartState tight = base;
-  if (!chart.expand(base.t, z_tight.data(), tight.qv)) return;
-  const SegmentResult measured = measure(tight, kTightFactor, false);
+  steady::ShootingOptions tight = options;
+  tight.jacobian_map = nullptr;
+  tight.initial_jacobian = &M_minus_I;
+  tight.max_iterations = kErrorBarIterations;
+  // Its residual tolerance scaled with the map's error, like its rtol: at the loose
+  // tolerance z* would pass at once, however far the tight orbit lies.
+  tight.tolerance = options.tolerance * kTightFactor;
+  const steady::ShootingResult resolved = steady::solve_periodic_orbit(tight_period, z, tight);
+  Eigen::VectorXd z_tight;
+  if (resolved.outcome == steady::ShootingOutcome::converged) {
+    z_tight = resolved.z;
+  } else {
+    // Not converged within its iterations: one Newton step, as the first-order estimate.
+    Eigen::VectorXd tight_end(chart.size());
+    if (tight_period.apply(z.data(), tight_end.data()) != 0) return;
+    z_tight = z - M_minus_I.fullPivLu().solve(tight_end - z);
+  }
+  StartState tight_start = base;
+  if (!chart.expand(base.t, z_tight.data(), tight_start.qv)) return;
+  const SegmentResult measured = measure(tight_start, kTightFactor, false);
   if (measured.res.status == RunStatus::ok) set_errors(res_.metrics, measured.res.metrics);
 }
 
@@ -347,12 +387,17 @@ void SteadyRun::shoot_from_transient() {
   }
   const std::vector<double> winding =
       detail::winding_per_period(rm_.model, boundaries_[boundaries_.size() - 2], boundaries_.back());
-  PeriodMap period(rm_, chart, base, winding, 1.0, res_.stats, steady.periods_integrated);
   // 20 times the transient's steps per cycle (its first cycles, from rest, included).
   const long long budget =
       20 * res_.stats.steps / std::max<long long>(1, static_cast<long long>(res_.cycles.size())) + 1000;
+  solve_orbit(chart, base, winding, budget, shooting_options(chart), true);
+}
+
+bool SteadyRun::solve_orbit(Chart& chart, const StartState& base, const std::vector<double>& winding,
+                            long long budget, steady::ShootingOptions options, bool final) {
+  SteadyCycle& steady = res_.steady;
+  PeriodMap period(rm_, chart, base, winding, 1.0, res_.stats, steady.periods_integrated);
   period.set_step_budget(budget);
-  steady::ShootingOptions options = shooting_options(chart);
   // Periods at rtol/100: the Newton Jacobians' and the monodromy's central differences
   // (the map's noise at rtol, ~1e-5 c at 1e-8, over a step of ~1e-2 c would be ~1e-3 in
   // them: Frêne long's |μ|max 0.9973 or 0.9990 with steps 1e-2 and 8.8e-3 at rtol 1e-8,
@@ -363,21 +408,78 @@ void SteadyRun::shoot_from_transient() {
   const steady::ShootingResult found = steady::solve_periodic_orbit(period, chart.reduce(base.qv), options);
   steady.newton_iterations += static_cast<int>(found.iterations);
   steady.orbit_residual = found.residual;
-  if (found.outcome != steady::ShootingOutcome::converged) return shooting_failed(found, period);
-  // Floquet multipliers: central differences at the orbit (error O(h²)).
-  const steady::Monodromy monodromy = steady::monodromy_by_differences(
-      tight_period, found.z, found.Pz, steady::MonodromyOptions{chart.units(), options.step, true});
+  last_iterations_ = static_cast<int>(found.iterations);
+  if (found.outcome != steady::ShootingOutcome::converged) {
+    shooting_failed(found, period);
+    return false;
+  }
+  // Floquet multipliers: central differences at the orbit (error O(h²)). A step of a
+  // continuation's path needs only a Jacobian for the next step: forward differences.
+  const steady::Monodromy monodromy =
+      final ? steady::monodromy_by_differences(tight_period, found.z, found.Pz,
+                                               steady::MonodromyOptions{chart.units(), options.step, true})
+            : steady::monodromy_by_differences(period, found.z, found.Pz,
+                                               steady::MonodromyOptions{chart.units(), options.step, false});
   if (monodromy.failed) {
     steady.kind = SteadyClass::not_converged;
-    res_.message = "shooting converged, but a perturbed period failed: " + tight_period.last_failure();
-    return;
+    res_.message = "shooting converged, but a perturbed period failed: " +
+                   (final ? tight_period.last_failure() : period.last_failure());
+    return false;
   }
+  double max_eps = std::isfinite(seed_max_eps_) ? seed_max_eps_ : kNaN;
+  double steps_per_period = seed_steps_per_period_;
   steady.multipliers = steady::floquet_multipliers(monodromy.M);
-  const double dominant = steady.multipliers.empty() ? 0.0 : std::abs(steady.multipliers.front());
-  steady.kind = dominant < 1.0 ? SteadyClass::periodic : SteadyClass::periodic_unstable;
-  steady.method = "shooting";
-  if (!measure_orbit(chart, base, found.z)) return;
-  if (sim_.error_bars) orbit_error_bars(chart, base, tight_period, found.z, monodromy.M);
+  if (final) {
+    const double dominant = steady.multipliers.empty() ? 0.0 : std::abs(steady.multipliers.front());
+    steady.kind = dominant < 1.0 ? SteadyClass::periodic : SteadyClass::periodic_unstable;
+    steady.method = "shooting";
+    const long long steps0 = res_.stats.steps;
+    if (!measure_orbit(chart, base, found.z)) return false;
+    max_eps = res_.metrics.max_eps;
+    steps_per_period = static_cast<double>(res_.stats.steps - steps0) / std::max(1, sim_.metric_cycles);
+    if (sim_.error_bars) orbit_error_bars(chart, base, tight_period, found.z, monodromy.M, options);
+  }
+  StartState orbit = base;
+  if (!chart.expand(base.t, found.z.data(), orbit.qv)) return final;
+  res_.orbit_seed = detail::make_seed(rm_, chart, orbit, monodromy.M, winding, max_eps, steps_per_period);
+  return true;
+}
+
+bool SteadyRun::continue_from(const OrbitSeed& seed, bool final) {
+  try {
+    const std::optional<StartState> base = detail::place_seed(rm_, seed);
+    if (!base) {
+      res_.message = "the neighbour's orbit is of another mechanism";
+      return false;
+    }
+    Chart chart(rm_, *base);
+    if (chart.size() == 0) {
+      res_.steady.kind = SteadyClass::periodic;
+      return true;
+    }
+    seed_max_eps_ = seed.max_eps;
+    seed_steps_per_period_ = seed.steps_per_period;
+    steady::ShootingOptions options;
+    options.scales = chart.units();
+    options.tolerance = sim_.shooting_tolerance;
+    // Within the neighbour's gap, as from a transient (shooting_options).
+    const double gap = seed.max_eps > 0.0 && seed.max_eps < 1.0 ? 1.0 - seed.max_eps : 1.0;
+    options.step = std::min(kDifferenceStep, 0.1 * gap);
+    options.max_newton_step = std::min(options.max_newton_step, gap);
+    options.max_iterations = kContinuationIterations;
+    Eigen::MatrixXd J0;
+    if (const std::optional<Eigen::MatrixXd> M0 = detail::seed_monodromy(seed, chart)) {
+      J0 = *M0 - Eigen::MatrixXd::Identity(chart.size(), chart.size());
+      options.initial_jacobian = &J0;
+    }
+    // The neighbour's steps per period, with room for a thinner film's smaller steps.
+    const long long budget = static_cast<long long>(50.0 * seed.steps_per_period) + 1000;
+    return solve_orbit(chart, *base, seed.winding, budget, options, final);
+  } catch (const std::exception& e) {
+    res_.steady.kind = SteadyClass::not_converged;
+    res_.message = std::string("continuation: ") + e.what();
+    return false;
+  }
 }
 
 void SteadyRun::transient_error_bars() {
@@ -471,6 +573,11 @@ RunResult SteadyRun::run() {
       finish_transient();
     }
   }
+  return take_result(wall0);
+}
+
+RunResult SteadyRun::take_result(std::chrono::steady_clock::time_point wall0) {
+  const SteadyCycle& steady = res_.steady;
   res_.metrics.steady = res_.status == RunStatus::ok && steady.kind == SteadyClass::periodic;
   res_.metrics.cycles_to_steady = res_.metrics.steady ? static_cast<int>(steady.periods_integrated) : -1;
   res_.metrics.cycles_run = static_cast<int>(res_.cycles.size());
@@ -502,9 +609,120 @@ void accumulate(SolverStats& t, const SolverStats& s) {
 
 }  // namespace detail
 
+namespace {
+/// The smallest step along a continuation's path before it is given up (five halvings).
+constexpr double kMinPathStep = 1.0 / 32.0;
+/// A scene's thick-film version: its lubricated joints' viscosity × this (the Sommerfeld
+/// number × 16: the journal well inside the clearance, where shooting converges from the
+/// transient).
+constexpr double kThickFilm = 16.0;
+
+bool found_orbit(const RunResult& r) {
+  return r.status == RunStatus::ok &&
+         (r.steady.kind == SteadyClass::periodic || r.steady.kind == SteadyClass::periodic_unstable);
+}
+
+/// Adds what `part` cost to `total`.
+void add_costs(RunResult& total, const RunResult& part) {
+  detail::accumulate(total.stats, part.stats);
+  total.steady.periods_integrated += part.steady.periods_integrated;
+  total.steady.newton_iterations += part.steady.newton_iterations;
+}
+
+/// Follows the path from the seed to the scene (λ = 1); the run's result there, or nullopt
+/// with `why` and what the tries cost in `spent`.
+std::optional<RunResult> follow_path(const Scene& scene, const ContinuationStart& from, RunResult& spent,
+                                     std::string& why) {
+  OrbitSeed seed = from.seed;
+  double lambda = 0.0, step = 1.0;
+  int steps = 0;
+  why = seed.valid() ? "" : "the neighbour has no orbit";
+  while (seed.valid() && step >= kMinPathStep) {
+    const double next = std::min(1.0, lambda + step);
+    const bool final = next >= 1.0;
+    const Scene between = final ? Scene{} : from.path(next);
+    SteadyRun r(final ? scene : between);
+    const bool ok = r.continue_from(seed, final);
+    ++steps;
+    const int used = r.last_iterations();
+    RunResult part = r.take_result(std::chrono::steady_clock::now());
+    if (ok && final) {
+      add_costs(part, spent);
+      part.steady.method = "continuation";
+      part.steady.continuation_steps = steps;
+      return part;
+    }
+    add_costs(spent, part);
+    if (ok) {
+      seed = std::move(part.orbit_seed);
+      lambda = next;
+      if (used <= 2) step *= 2.0;  // quick: a longer step next
+    } else {
+      step *= 0.5;
+      why = part.message;
+    }
+  }
+  std::ostringstream msg;
+  msg << "continuation stopped at λ = " << lambda << " after " << steps << " steps (" << why << ")";
+  why = msg.str();
+  return std::nullopt;
+}
+
+RunResult finish_wall(RunResult r, std::chrono::steady_clock::time_point wall0) {
+  r.stats.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  r.metrics.cycles_to_steady = r.metrics.steady ? static_cast<int>(r.steady.periods_integrated) : -1;
+  return r;
+}
+
+/// simulation.steady = continuation without a neighbour: auto; where it finds no orbit,
+/// the thick-film version's orbit continued back to the scene's viscosity.
+RunResult run_alone(const Scene& scene) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  RunResult own = SteadyRun(scene).run();
+  if (own.status != RunStatus::ok || found_orbit(own)) return own;
+  auto thick_version = [&scene](double factor) {
+    Scene s = scene;
+    for (JointSpec& j : s.joints)
+      if (j.type == JointType::lubricated_revolute) j.viscosity_Pa_s *= factor;
+    return s;
+  };
+  const Scene thick = thick_version(kThickFilm);
+  const RunResult seeded = SteadyRun(thick).run();
+  add_costs(own, seeded);
+  if (!seeded.orbit_seed.valid()) {
+    own.message = "no orbit at 16 × the viscosity either (" + classification(seeded) + "); " + own.message;
+    return finish_wall(std::move(own), wall0);
+  }
+  const ContinuationStart from{seeded.orbit_seed,
+                               [&](double lambda) { return thick_version(std::pow(kThickFilm, 1.0 - lambda)); }};
+  std::string why;
+  std::optional<RunResult> r = follow_path(scene, from, own, why);
+  if (!r) {
+    own.message = "from 16 × the viscosity: " + why + "; " + own.message;
+    return finish_wall(std::move(own), wall0);
+  }
+  r->message = "continued from 16 × the viscosity";
+  return finish_wall(std::move(*r), wall0);
+}
+
+}  // namespace
+
 RunResult run_scene(const Scene& scene) {
+  if (scene.simulation.steady == SteadyMethod::continuation) return run_alone(scene);
   SteadyRun r(scene);
   return r.run();
+}
+
+RunResult run_scene(const Scene& scene, const ContinuationStart& from) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  RunResult spent;
+  std::string why;
+  if (std::optional<RunResult> r = follow_path(scene, from, spent, why)) return finish_wall(std::move(*r), wall0);
+  // The path could not be followed: the scene alone.
+  RunResult r = run_alone(scene);
+  add_costs(r, spent);
+  r.message = why + "; " + r.message;
+  return finish_wall(std::move(r), wall0);
 }
 
 }  // namespace lub

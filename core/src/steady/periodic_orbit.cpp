@@ -87,6 +87,8 @@ struct Problem {
   Eigen::VectorXd z, Pz;       // scratch
   Eigen::VectorXd best_z, best_Pz;
   double best = std::numeric_limits<double>::infinity();
+  const Eigen::MatrixXd* initial = nullptr;  // ShootingOptions::initial_jacobian, until used
+  int jacobians = 0;
 };
 
 int residual_cb(N_Vector u, N_Vector f, void* data) {
@@ -115,6 +117,13 @@ int residual_cb(N_Vector u, N_Vector f, void* data) {
 // J = ∂(P(z) − z)/∂z = M − I by differences (forward ones from P(u) = fu + u).
 int jacobian_cb(N_Vector u, N_Vector fu, SUNMatrix J, void* data, N_Vector, N_Vector) {
   auto& pb = *static_cast<Problem*>(data);
+  if (pb.initial) {
+    for (int j = 0; j < pb.n; ++j)
+      for (int i = 0; i < pb.n; ++i) SM_ELEMENT_D(J, i, j) = (*pb.initial)(i, j);
+    pb.initial = nullptr;
+    return 0;
+  }
+  ++pb.jacobians;
   const double* ud = N_VGetArrayPointer(u);
   const double* fd = N_VGetArrayPointer(fu);
   Eigen::VectorXd z(pb.n), Pz(pb.n);
@@ -146,6 +155,9 @@ ShootingResult solve_periodic_orbit(CycleMap& P, const Eigen::VectorXd& z0, cons
   pb.n = n;
   pb.z.resize(n);
   pb.Pz.resize(n);
+  if (opt.initial_jacobian && (opt.initial_jacobian->rows() != n || opt.initial_jacobian->cols() != n))
+    throw std::invalid_argument("solve_periodic_orbit: the initial Jacobian must be n x n");
+  pb.initial = opt.initial_jacobian;
 
   // Destroyed in reverse order of declaration: KINSOL's memory first, the context last.
   OwnedContext ctx;
@@ -179,9 +191,10 @@ ShootingResult solve_periodic_orbit(CycleMap& P, const Eigen::VectorXd& z0, cons
   check(KINSetFuncNormTol(m, opt.tolerance), "KINSetFuncNormTol");
   check(KINSetScaledStepTol(m, 1e-3 * opt.tolerance), "KINSetScaledStepTol");
   check(KINSetNumMaxIters(m, opt.max_iterations), "KINSetNumMaxIters");
-  // A fresh Jacobian every iteration: a slowly contracting cycle has M − I nearly
-  // singular, where a stale one points the step the wrong way.
-  check(KINSetMaxSetupCalls(m, 1), "KINSetMaxSetupCalls");
+  // From the transient: a fresh Jacobian every iteration (a slowly contracting cycle has
+  // M − I nearly singular, where a stale one points the step the wrong way). From a
+  // neighbour's orbit: chord iterations on its Jacobian, refreshed when they stall.
+  check(KINSetMaxSetupCalls(m, opt.initial_jacobian ? std::max(1, opt.chord_iterations) : 1), "KINSetMaxSetupCalls");
   check(KINSetMaxNewtonStep(m, opt.max_newton_step), "KINSetMaxNewtonStep");
   const int flag = KINSol(m, u.get(), KIN_LINESEARCH, us.get(), fs.get());
 
@@ -190,6 +203,7 @@ ShootingResult solve_periodic_orbit(CycleMap& P, const Eigen::VectorXd& z0, cons
   KINGetNumNonlinSolvIters(m, &nni);
   out.iterations = nni;
   out.maps = pb.maps;
+  out.jacobians = pb.jacobians;
   if (std::isfinite(pb.best)) {
     out.z = pb.best_z;
     out.Pz = pb.best_Pz;
@@ -204,7 +218,10 @@ ShootingResult solve_periodic_orbit(CycleMap& P, const Eigen::VectorXd& z0, cons
   // Stalled at the map's own noise: the line search finds no decrease where the map is
   // not smooth (an integration's step sequence changes with z), within noise_factor of
   // the tolerance.
-  if ((flag == KIN_LINESEARCH_NONCONV || flag == KIN_STEP_LT_STPTOL) && out.residual >= 0 &&
+  // So has one that ran out of iterations there: near a multiplier close to 1 the
+  // difference Jacobian's noise slows Newton to a crawl at that level.
+  if ((flag == KIN_LINESEARCH_NONCONV || flag == KIN_STEP_LT_STPTOL || flag == KIN_MAXITER_REACHED) &&
+      out.residual >= 0 &&
       out.residual <= opt.noise_factor * opt.tolerance) {
     out.outcome = ShootingOutcome::converged;
     out.at_noise_floor = true;

@@ -86,6 +86,9 @@ class MultibodySystem final : public OdeSystem {
   /// Whether the dependent block has become ill-conditioned (partitioned): re-partition.
   bool partition_degraded() const { return degraded_; }
   Formulation formulation() const { return form_; }
+  /// The independent coordinates chosen by partition() (indices into q; all of q for the
+  /// formulations that integrate every coordinate).
+  const std::vector<int>& independent() const { return ind_; }
 
   /// The radial force of switching film k at ε̇ = 0⁺ and at ε̇ = 0⁻ (F_out <= F_in for
   /// the printed law: the jump pushes back towards ε̇ = 0); a sliding motion holds while

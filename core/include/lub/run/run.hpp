@@ -5,12 +5,14 @@
 
 #include <array>
 #include <complex>
+#include <functional>
 #include <limits>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
+#include "lub/common/constants.hpp"
 #include "lub/integrators/integrator.hpp"
 #include "lub/scene/scene.hpp"
 
@@ -94,7 +96,10 @@ struct NameTable<SteadyClass> {
 /// How the steady cycle was found, what it is and what it cost.
 struct SteadyCycle {
   SteadyClass kind = SteadyClass::not_converged;
-  std::string method = "transient";  ///< what the metrics come from: "transient" or "shooting"
+  /// what the metrics come from: "transient", "shooting", or "continuation" (shooting from
+  /// a neighbour's orbit)
+  std::string method = "transient";
+  int continuation_steps = 0;      ///< steps along the path from the neighbour (0: not continued)
   /// ρ: successive cycles' orbit distances shrink as δ_{k+1} ≈ ρ δ_k (least squares over
   /// the transient's last cycles); NaN: not enough cycles.
   double contraction_rate = std::numeric_limits<double>::quiet_NaN();
@@ -173,6 +178,28 @@ struct Series {
   std::vector<std::vector<double>> data;
 };
 
+/// A periodic orbit as the start of a neighbouring scene's Newton (continuation, see
+/// docs/theory/continuation.md). Its state at crank angle 0 is kept as the deviation from
+/// the scene's initial state, each coordinate in its own unit (lengths in clearances,
+/// angles in clearances over the body's size, rates in those times the driver's speed), so
+/// that it carries over to a scene of another clearance, speed or viscosity; the
+/// monodromy is kept in the same units, on the shooting chart it was computed in.
+struct OrbitSeed {
+  std::vector<double> deviation;  ///< (q, v) − initial (q, v), in units (2 nq, dimensionless)
+  std::vector<int> modes;         ///< each film's mode (FilmMode) at crank angle 0
+  std::vector<int> chart;         ///< the chart's independent coordinates (indices of q)
+  std::vector<double> monodromy;  ///< ∂P/∂z in units, column-major (chart² entries); empty: none
+  std::vector<double> winding;    ///< how far each coordinate turns in a period [rad or 0] (2 nq)
+  double max_eps = kNaN;      ///< the largest eccentricity ratio on the orbit
+  double steps_per_period = 0.0;  ///< the integrator's steps per period on the orbit
+  bool valid() const { return !deviation.empty(); }
+};
+/// A seed as one flat row of numbers (the study file's /cases/orbit_seed) and back: a
+/// header of sizes, then the fields in declaration order. unpack_seed gives an invalid
+/// seed for a row of NaN (no orbit) and throws std::invalid_argument on a malformed one.
+std::vector<double> pack_seed(const OrbitSeed& s);
+OrbitSeed unpack_seed(const std::vector<double>& row);
+
 struct RunResult {
   RunStatus status = RunStatus::ok;
   std::string message;
@@ -182,6 +209,7 @@ struct RunResult {
   std::vector<CycleMetrics> cycles;  ///< the transient's cycles
   Series series;                     ///< the transient's channels
   Series orbit;                      ///< the periodic orbit's channels (shooting), over metric_cycles
+  OrbitSeed orbit_seed;              ///< the periodic orbit found (shooting), to continue from
 };
 
 /// The run's classification: its SteadyClass if it ended ok, else its status.
@@ -189,5 +217,19 @@ std::string classification(const RunResult& r);
 
 /// Runs a validated scene. Never throws for a case that cannot be integrated.
 RunResult run_scene(const Scene& scene);
+
+/// Where a continued run starts: a neighbouring scene's periodic orbit, and the path of
+/// scenes from that neighbour (λ = 0) to this scene (λ = 1), e.g. each differing value
+/// interpolated in its logarithm.
+struct ContinuationStart {
+  OrbitSeed seed;
+  std::function<Scene(double lambda)> path;
+};
+/// Runs a validated scene from a neighbour's orbit: Newton on the period map from the
+/// seed (its monodromy the first Jacobian), stepping along the path when a step fails
+/// (halved on failure, doubled on quick convergence), then the orbit's multipliers,
+/// metrics and error bars as shooting gives them. If the path cannot be followed, the
+/// scene runs as run_scene(scene) would, and the message says where the path ended.
+RunResult run_scene(const Scene& scene, const ContinuationStart& from);
 
 }  // namespace lub

@@ -118,13 +118,18 @@ enum class SteadyMethod {
   transient,  ///< integrate cycle after cycle; stop when the contraction estimate says steady
   shooting,   ///< after simulation.transient_cycles, Newton on z = P(z), the period map
   automatic,  ///< transient until its contraction rate is known, then shooting if that is cheaper
+  /// Newton from a neighbour's orbit (a study's cell next to it) followed along a path of
+  /// scenes; without a neighbour, auto, and where that finds no orbit, the scene's own
+  /// thick-film version (viscosity × 16) brought back step by step
+  continuation,
 };
 template <>
 struct NameTable<SteadyMethod> {
-  static constexpr std::array<std::pair<SteadyMethod, std::string_view>, 3> entries{{
+  static constexpr std::array<std::pair<SteadyMethod, std::string_view>, 4> entries{{
       {SteadyMethod::transient, "transient"},
       {SteadyMethod::shooting, "shooting"},
       {SteadyMethod::automatic, "auto"},
+      {SteadyMethod::continuation, "continuation"},
   }};
 };
 

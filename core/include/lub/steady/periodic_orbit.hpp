@@ -69,6 +69,13 @@ struct ShootingOptions {
   /// The map the Jacobians difference (nullptr: P itself), e.g. P integrated at a tighter
   /// tolerance: less noise over the difference step.
   CycleMap* jacobian_map = nullptr;
+  /// A first Jacobian M₀ − I to start from (continuation: a neighbouring orbit's
+  /// monodromy; nullptr: differences from the start). With it Newton runs chord
+  /// iterations, reusing a Jacobian for up to `chord_iterations` iterations, and takes a
+  /// fresh difference Jacobian only when the line search fails with a stale one (KINSOL's
+  /// own rule) or the reuse count runs out: one period an iteration instead of 2 n + 1.
+  const Eigen::MatrixXd* initial_jacobian = nullptr;
+  int chord_iterations = 2;
 };
 
 enum class ShootingOutcome {
@@ -84,6 +91,7 @@ struct ShootingResult {
   double residual = -1.0;   ///< max_i |P(z)_i − z_i| / s_i at z (−1: not evaluated)
   long iterations = 0;      ///< Newton iterations
   long long maps = 0;       ///< map evaluations (including the Jacobians' differences)
+  int jacobians = 0;        ///< difference Jacobians computed (not counting an initial one)
   std::string message;      ///< KINSOL's verdict when not converged
   bool at_noise_floor = false;  ///< converged by stalling within noise_factor of the tolerance
 };

@@ -15,6 +15,8 @@ std::vector<ResultField> result_fields();
 
 /// One case's outcome. `values` follow result_fields(); NaN where a case that could not
 /// run has no value.
+struct Task;
+
 struct CaseResult {
   int case_id = -1;
   int rank = 0;                 ///< MPI rank that computed it
@@ -26,6 +28,10 @@ struct CaseResult {
   std::vector<double> values;
   std::string revision;         ///< build revision of the program that computed it
   Series series;                ///< the scene's channels ("t" first); empty if none
+  /// The periodic orbit found, packed (pack_seed, lub/run/run.hpp): what a neighbouring
+  /// case continues from. Empty: none.
+  std::vector<double> orbit_seed;
+  int continued_from = -1;      ///< the case whose orbit it started from (-1: none)
 
   bool ok() const { return status == "ok"; }
 };
@@ -36,6 +42,9 @@ CaseResult run_case(int case_id, const Scene& scene, int rank);
 /// The same from the case's scene as canonical JSON (a task from the coordinator), parsed
 /// here once.
 CaseResult run_case(int case_id, const std::string& scene_json, int rank);
+/// A task: its case, continued from the task's orbit along the path from its from_scene
+/// when it has one.
+CaseResult run_task(const Task& task, int rank);
 
 /// Byte encoding for messages between processes (MessagePack, nlohmann-json's binary format).
 std::string encode(const CaseResult& r);

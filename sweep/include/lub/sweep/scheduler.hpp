@@ -6,7 +6,8 @@
 // its calling thread serves the others and records results, and stops handing out work
 // after the first failure when the grid says on_failure = abort. Every case is computed
 // from its own scene, so the results do not depend on how many workers there are or on
-// which one ran a case.
+// which one ran a case. A continued case starts from its fixed parent's orbit, handed out
+// only once that is in (Schedule::parents): the same start whatever the worker count.
 #pragma once
 
 #include <deque>
@@ -27,7 +28,7 @@ struct Schedule {
   FailurePolicy on_failure = FailurePolicy::continue_on_failure;
   /// Runs a case on the coordinator's own worker thread; empty: the coordinator computes
   /// nothing itself (then the transport must have workers).
-  std::function<CaseResult(const Case&)> local;
+  std::function<CaseResult(const Task&)> local;
   /// Called on the calling thread for every result, in the order they arrive, after the
   /// worker that returned it has been given its next case.
   std::function<void(const CaseResult&)> record;
@@ -40,6 +41,11 @@ struct Schedule {
   /// Cases a remote worker holds at once while the queue is long (its running one and the
   /// next): 1 hands out one at a time. Always 1 with on_failure = abort.
   int prefetch = 2;
+  /// Each case's parent (continuation_parents; empty: none): a case is handed out once
+  /// its parent's result is in, with the orbit of its nearest ancestor that found one.
+  std::vector<int> parents;
+  /// The orbits (packed seeds, possibly empty) of the cases the study file already holds.
+  std::map<int, std::vector<double>> finished;
 };
 
 /// Runs the cases `queue` names (ids into grid.cases) on the transport's workers and the

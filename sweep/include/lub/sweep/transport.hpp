@@ -22,10 +22,15 @@
 
 namespace lub::sweep {
 
-/// A case handed to a worker: its id and its effective scene (canonical JSON).
+/// A case handed to a worker: its id and its effective scene (canonical JSON); for a
+/// continued case, the scene of the case it continues from and that case's orbit
+/// (pack_seed, lub/run/run.hpp).
 struct Task {
   int case_id = -1;
   std::string scene;
+  int from_case = -1;               ///< the case it continues from (-1: none)
+  std::string from_scene;           ///< "" : not continued
+  std::vector<double> from_orbit;   ///< the packed seed of the case it continues from
 };
 
 /// Byte encoding of a task between processes (MessagePack, like a result). decode_task

@@ -1,0 +1,88 @@
+// The continuation tree of a study (lub/sweep/continuation_tree.hpp): fixed by the grid
+// alone, it reaches every continued cell of a force law from that law's thickest-film
+// cell, through lattice neighbours only, and never across a force law.
+#include "lub/sweep/continuation_tree.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "lub/sweep/grid.hpp"
+
+namespace {
+
+using lub::sweep::Grid;
+using nlohmann::json;
+
+const std::string kScenes = std::string(LUB_SOURCE_DIR) + "/configs/scenes";
+
+Grid grid(const std::string& steady) {
+  const json g = {
+      {"scene", "slider_crank.json"},
+      {"joint", "rod_slider"},
+      {"driver", "crank_speed"},
+      {"set", {{"/simulation/steady", steady}, {"/simulation/max_cycles", 40}}},
+      {"axes",
+       {{{"name", "clearance_m"}, {"values", {0.0005, 0.0002, 0.0001}}},
+        {{"name", "viscosity_Pa_s"}, {"values", {0.4, 0.1}}},
+        {{"name", "speed_rpm"}, {"values", {5000, 500, 50}}},
+        {{"name", "force_law"}, {"values", {"pinkus_sternlicht", "frene_long"}}}}}};
+  return lub::sweep::parse_grid(g.dump(), kScenes, "test.json");
+}
+
+/// The number of numeric axes on which two cases differ, and by how many steps in all.
+int lattice_steps(const Grid& g, int a, int b) {
+  int steps = 0;
+  for (std::size_t k = 0; k < g.axes.size(); ++k) {
+    const json& x = g.cases[static_cast<std::size_t>(a)].axis_values[k];
+    const json& y = g.cases[static_cast<std::size_t>(b)].axis_values[k];
+    if (x == y) continue;
+    if (!x.is_number()) return 1000;  // across a force law
+    std::vector<double> levels;
+    for (const auto& c : g.cases) levels.push_back(c.axis_values[k].get<double>());
+    std::sort(levels.begin(), levels.end());
+    levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
+    const auto at = [&](double v) { return std::lower_bound(levels.begin(), levels.end(), v) - levels.begin(); };
+    steps += static_cast<int>(std::abs(at(x.get<double>()) - at(y.get<double>())));
+  }
+  return steps;
+}
+
+TEST(ContinuationTree, SpansEachForceLawFromItsThickestFilmThroughNeighbours) {
+  const Grid g = grid("continuation");
+  ASSERT_EQ(g.cases.size(), 36u);
+  const std::vector<int> parent = lub::sweep::continuation_parents(g);
+  int seeds = 0;
+  for (const auto& c : g.cases) {
+    const int p = parent[static_cast<std::size_t>(c.id)];
+    if (p < 0) {
+      ++seeds;
+      // The seed: smallest clearance, largest viscosity and speed (μ ω / c² largest).
+      EXPECT_EQ(c.axis_values[0], 0.0001);
+      EXPECT_EQ(c.axis_values[1], 0.4);
+      EXPECT_EQ(c.axis_values[2], 5000);
+      continue;
+    }
+    EXPECT_EQ(lattice_steps(g, c.id, p), 1) << c.label << " from " << g.cases[static_cast<std::size_t>(p)].label;
+    // Every cell reaches its seed: no cycle.
+    int hops = 0;
+    for (int q = p; q >= 0 && hops < 100; q = parent[static_cast<std::size_t>(q)]) ++hops;
+    EXPECT_LT(hops, 100);
+    EXPECT_LE(hops, 2 + 1 + 2) << "a breadth-first tree: as many hops as lattice steps from the seed";
+  }
+  EXPECT_EQ(seeds, 2) << "one seed per force law";
+  // Fixed by the grid: the same tree every time.
+  EXPECT_EQ(lub::sweep::continuation_parents(g), parent);
+}
+
+TEST(ContinuationTree, CasesThatDoNotAskForContinuationHaveNoParent) {
+  const Grid g = grid("auto");
+  for (int p : lub::sweep::continuation_parents(g)) EXPECT_EQ(p, -1);
+}
+
+}  // namespace
