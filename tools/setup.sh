@@ -20,7 +20,7 @@ PACKAGES=(
   clang libclang-rt-14-dev clang-tidy
   help2man
   python3-sphinx python3-myst-parser
-  python3-nbconvert python3-ipykernel python3-nbformat
+  python3-nbconvert python3-ipykernel python3-nbformat jupyter-core jupyter-nbconvert
 )
 
 missing=()
