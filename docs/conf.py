@@ -13,7 +13,7 @@ project = "lubjoint"
 author = "the lubjoint developers"
 copyright = "the lubjoint developers"
 
-extensions = ["myst_parser", "sphinx.ext.autodoc"]
+extensions = ["myst_parser", "sphinx.ext.autodoc", "sphinx.ext.napoleon"]
 source_suffix = {".md": "markdown"}
 root_doc = "index"
 exclude_patterns = ["_build", "**/.ipynb_checkpoints", "**/*.ipynb"]
