@@ -4,7 +4,7 @@
 // again here directly from the paper (Eqs. 3 and 5) so that a slip in the library's
 // pressure functions cannot hide a slip in the forces. The printed Pinkus–Sternlicht law
 // has no full pressure field to integrate; its limits and its known defects
-// (/work/shared/paper/NOTES.md) are pinned down numerically instead.
+// (docs/theory/force-laws.md) are pinned down numerically instead.
 //
 // Tolerances are relative to a force scale and each carries its reason.
 

@@ -197,8 +197,8 @@ TEST(IdaGgl, PrintedLawAtTightToleranceDoesNotStall) {
     EXPECT_NEAR(r.stats.final_time_s, 0.036, 1e-12);
     EXPECT_LT(r.stats.steps, rtol < 1e-11 ? 40000 : 20000);
     EXPECT_LT(r.stats.error_test_fails, r.stats.steps / 20);
-    // The same film as CVODE's reference (1.20181e-5 m at rtol 1e-12, 4 cycles; README
-    // "Work-precision"): within 1e-4 relative.
+    // The same film as CVODE's reference (1.20181e-5 m at rtol 1e-12, 4 cycles;
+    // docs/validation/work-precision.md): within 1e-4 relative.
     EXPECT_NEAR(r.metrics.min_film_thickness_m, 1.2018e-5, 1.2e-9);
   }
 }

@@ -307,8 +307,8 @@ lub::RunResult run(const std::string& method, const std::string& jacobian, const
 // Same answer as with SUNDIALS' difference quotients, to within the integration
 // tolerance (the Newton matrix only changes how the corrector converges, not what it
 // converges to): at rtol 1e-8 the film metrics of the two runs differ by ~1e-6 c, within
-// the bound 2e-5 c, the size of their own integration error at this tolerance (README:
-// "metrics within ~5e-6 of converged"). The peaks (reaction, acceleration) are sampled
+// the bound 2e-5 c, the size of their own integration error at this tolerance (docs/validation/work-precision.md:
+// metrics within ~5e-6 of converged). The peaks (reaction, acceleration) are sampled
 // at step ends and 120 crank angles and carry a sampling error of a few 1e-4 (cvode_bdf
 // and arkode_dirk, both with difference quotients, differ by 4e-4 on frene_long): 1e-3.
 // The printed law's peak acceleration peaks at the ε̇ = 0 switches, located only to the

@@ -1,6 +1,6 @@
 // How far each force law is from the finite-length bearing at the paper's geometry
 // (R_J = 9.5 mm, c = 0.5 mm, L = 40 mm: L/D = 40/19), over ε ∈ [0, 0.95]: the numbers of the
-// README table ("Force laws and the film element"), printed by this test so that they can be
+// table in docs/theory/force-laws.md, printed by this test so that they can be
 // regenerated: `build/tests/test_core_law_deviation`.
 //
 // Reference: finite_reynolds on a fine grid (128 × 16, within ~0.2 % of the converged

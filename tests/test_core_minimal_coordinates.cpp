@@ -42,8 +42,8 @@ void compare(const std::string& law, lub::ForceLaw flaw, const std::string& form
     // adds a pair twice: at a grazing sliding exit (the force leaves the jump
     // tangentially) ε̇ turns positive from its exact 0 on the inward branch, the resync
     // puts the film outward 8 ns later, and the next ε̇ = 0 root sends it inward (28
-    // against the floor's 24 in 4 cycles, README "An independent route for the
-    // switching"; the orbits still agree to 2.3e-9 c at the cycle ends).
+    // against the floor's 24 in 4 cycles, docs/theory/switching.md, an independent
+    // route; the orbits still agree to 2.3e-9 c at the cycle ends).
     EXPECT_EQ(f.switches, r.stats.mode_switches) << formulation;
     EXPECT_GT(f.switches, 0);
   }

@@ -166,7 +166,7 @@ json lubricated(const std::string& law, double rtol, int cycles) {
   return doc;
 }
 
-// A scene that gives no solver.rtol runs at the default, chosen in README "Work-precision"
+// A scene that gives no solver.rtol runs at the default, chosen in docs/validation/work-precision.md
 // (1e-8 since issue 12; 1e-6 before). The paper's scene without its rtol, four cycles
 // from the centred start, against the study's reference (CVODE BDF partitioned, rtol
 // 1e-12: h_min 1.20181e-5 m, peak reaction 9718.32 N). What rtol 1e-8 delivers on this

@@ -1,4 +1,4 @@
-// Steady cycles of the slider-crank (README "Steady cycles"): shooting against the
+// Steady cycles of the slider-crank (docs/theory/steady-cycles.md): shooting against the
 // transient, the Floquet multipliers against the transient's own cycle map, and the cases
 // without a steady cycle never called periodic.
 #include <gtest/gtest.h>
@@ -111,7 +111,7 @@ TEST(SteadyCycle, FreneLongConvergesAndItsMultipliersMatchTheTransientsOwnCycleM
 }
 
 TEST(SteadyCycle, SinkingAndDriftingCasesAreNeverPeriodic) {
-  // The printed law at 50 rpm: the journal sinks a little every cycle (D7).
+  // The printed law at 50 rpm: the journal sinks a little every cycle (docs/validation/hard-cases.md).
   json slow = reference("pinkus_sternlicht", "auto", 100);
   slow["drivers"][0]["speed_rpm"] = 50;
   const RunResult a = run(slow);

@@ -1,5 +1,5 @@
 // Hard cases stay numerically stable (issue 6). Every scene under configs/scenes/hard/ is a
-// case the paper warns about or that breaks naive integration (README "Hard cases"): starts
+// case the paper warns about or that breaks naive integration (docs/validation/hard-cases.md): starts
 // at ε = 0 and at the wall, film collapse at low viscosity, high and low speed, tiny and huge
 // clearances, each force law, a reversing crank, gravity alone. For every case the suite
 // checks what "stable" means:
@@ -9,8 +9,8 @@
 //   - for a run marked ok: constraint drift and the energy balance within stated bounds;
 //   - the same run twice is bit-identical;
 //   - a second tolerance, a decade away, agrees on the metrics (or on the collapse time).
-// Engine defects found on the way are named D1, D2, ... in the README section; each is
-// fixed and the tests that found it stay.
+// Engine defects found on the way are fixed (CHANGELOG.md) and the tests that found them
+// stay.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -153,8 +153,9 @@ inline constexpr double kVelocityDriftPerClearanceSpeed = 0.01;
 /// exchanges (|W| + |D| + |ΔE| + the largest kinetic energy, ~200 J at 5000 rpm). The
 /// residual is the integration error of the trajectory and the quadratures plus the work
 /// of the ideal joints' reactions on the drift. Measured at rtol 1e-8: <= 1e-6 of that
-/// scale with the continuous laws, <= 8.5e-6 with the printed law (with defect D1, now
-/// fixed, 8e-4 to 9e-3). 1e-4 leaves a margin of 10 and would catch D1.
+/// scale with the continuous laws, <= 8.5e-6 with the printed law (with the quadratures
+/// restarted at a step end instead of the root, 8e-4 to 9e-3). 1e-4 leaves a margin of 10
+/// and would catch that.
 inline constexpr double kEnergyResidualFraction = 1e-4;
 
 void expect_drift_within_bounds(const lub::Scene& s, const RunResult& r, const std::string& what) {
@@ -232,15 +233,15 @@ void expect_bit_identical(const RunResult& a, const RunResult& b, const std::str
 
 // --- The hard cases ----------------------------------------------------------------------
 
-// Engine defects this suite found (README "Hard cases"), all fixed in core; the tests
-// that pinned them stay:
-// D1: the energy quadratures restarted at the wrong time after each ε̇ = 0 mode switch
+// Engine defects this suite found (CHANGELOG.md), all fixed in core; the tests that
+// pinned them stay:
+// - the energy quadratures restarted at the wrong time after each ε̇ = 0 mode switch
 //     (now taken at the root time) — the energy-balance tests of the printed law.
-// D2: Baumgarte-only drift could exceed the clearance in a run marked ok (now
+// - Baumgarte-only drift could exceed the clearance in a run marked ok (now
 //     simulation.drift_limit_m, 10 % of the smallest clearance by default, ends such a
 //     run as solver_failure) — TinyClearanceAtDefaultToleranceIsNotMarkedOkWithLargeDrift.
-// D3: the contact hand-over never took over (eps_limit ended the run) — the *_contact cases.
-// D4: a collapse after the first cycle was missing from the metrics (the partial cycle of
+// - the contact hand-over never took over (eps_limit ended the run) — the *_contact cases.
+// - a collapse after the first cycle was missing from the metrics (the partial cycle of
 //     a run that ends early now counts) — CollapseAfterTheFirstCycleShowsInTheMetrics.
 
 struct HardCase {
@@ -471,7 +472,7 @@ TEST(HardStarts, WallStartLiftsOffAndReachesTheSameSteadyCycle) {
 }
 
 TEST(HardFilmCollapse, CollapseTimesAsDocumented) {
-  // The times the README and the scenes state for ε = 0.999 (the scenes' eps_limit),
+  // The times docs/validation/hard-cases.md and the scenes state for ε = 0.999 (the scenes' eps_limit),
   // converged to ~2e-4 relative (see AgreesAtAnotherTolerance); pinned to 1e-3.
   // They were measured on the baumgarte formulation with atol = rtol × c on every state:
   // the same times on today's defaults are a third route to them.
@@ -681,7 +682,7 @@ TEST(HardBudget, WallTimeBudgetEndsARun) {
 TEST(HardBudget, TinyClearancePrintedLawEndsWithinItsBudget) {
   // The printed Pinkus–Sternlicht law at 5 µm: its inward branch (ε̇ < 0, little wedge)
   // pulls the journal inwards with a negative radial damping that grows as 1/c², and the
-  // cost of a run is erratic (README "Hard cases": 4.6e4 to 3.9e6 steps for two or three
+  // cost of a run is erratic (docs/validation/hard-cases.md: 4.6e4 to 3.9e6 steps for two or three
   // cycles at rtol 1e-10, depending on the end time alone). Whatever the cost, the budget
   // ends it: ok or budget_exceeded, never a NaN, never a spurious collapse (at a tolerance
   // that resolves the clearance, ε stays below 0.01: the film holds the journal).

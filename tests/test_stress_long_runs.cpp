@@ -1,17 +1,18 @@
 // Long runs on default settings: the paper's 16 cases and the full factorial's hardest
 // corners, for LUB_LONG_RUN_CYCLES crank cycles (60 in the default suite; 300 in the slow
-// one, `LUB_SLOW=1 bash tools/test.sh`, README "Tests"). A study runs cases for hundreds
-// of cycles; before the per-state tolerances and the partitioned default, 9 of the paper's
-// 27 cases ended solver_failure at the drift limit within 14 to 249 cycles, and a
-// partitioned run died at exactly 1301.5 cycles. What must hold for every case, however
+// one, `LUB_SLOW=1 bash tools/test.sh`, docs/validation/test-suite.md). A study runs cases for hundreds
+// of cycles; with one absolute tolerance for all states and the baumgarte formulation, 9 of
+// the paper's 27 cases end solver_failure at the drift limit within 14 to 249 cycles, and a
+// partitioned run dies at exactly 1301.5 cycles. What must hold for every case, however
 // long: the run ends ok; everything finite; no drift. The exception, named and checked: a
 // journal that sinks cycle after cycle at 50 rpm with the printed law (no steady cycle: its
 // film thins every cycle, 2.3 µm at cycle 17, 0.2 µm at 60) may end before the last cycle,
 // by film_collapse or, once ε is past 0.99, by solver_failure: the printed law
 // is not smooth where both ε̇ and the wedge speed vanish (q = hypot(εw/2, ε̇) in Eq. 14), the
 // sinking journal sits there, and near the wall its damping makes that kink a wall for the
-// corrector (README "Hard cases", D7). Issue "Steady cycles that are really steady" is to
-// classify such a case as drifting and stop it before the integrator gives up.
+// corrector (docs/validation/hard-cases.md, known limitations). simulation.steady = auto
+// classifies such a case as drifting and stops it before the integrator gives up
+// (SteadyCycle.SinkingAndDriftingCasesAreNeverPeriodic).
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -19,7 +19,7 @@ import argparse
 import math
 import sys
 
-from lubjoint import study as study_reader  # (PYTHONPATH=build/python: README "Post-processing")
+from lubjoint import study as study_reader  # (PYTHONPATH=build/python: docs/guide/post-processing.md)
 
 
 def tolerances(base, rtol, items):

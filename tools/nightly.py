@@ -5,7 +5,7 @@
                                       [--report DIR] [--accepted-study OLD.h5]
     PYTHONPATH=build/python /usr/bin/python3 tools/nightly.py accept STUDY.h5 [--baseline tests/baselines/paper.csv]
 
-`tools/nightly.sh` runs the paper grid and calls these; see README, "Nightly reproduction".
+`tools/nightly.sh` runs the paper grid and calls these; see docs/validation/nightly.md.
 
 The baseline is a CSV file, one row per case of configs/grids/paper.json, keyed by the
 case's axis values (clearance_m, viscosity_Pa_s, speed_rpm, force_law: every case has a
@@ -26,13 +26,13 @@ import math
 import os
 import sys
 
-from lubjoint import study as study_reader  # (PYTHONPATH=build/python: README "Post-processing")
+from lubjoint import study as study_reader  # (PYTHONPATH=build/python: docs/guide/post-processing.md)
 
 KEY = ["clearance_m", "viscosity_Pa_s", "speed_rpm", "force_law"]
 
 # Per-metric tolerances: |now - baseline| <= atol + rtol * scale, scale = |baseline| (for
 # max_eps: 1 - baseline, the film thickness h/c it stands for). How they were chosen
-# (README, "Nightly reproduction", has the numbers): the same build reruns the paper grid
+# (docs/validation/nightly.md has the numbers): the same build reruns the paper grid
 # bit for bit (any -np), so the nightly on an unchanged tree shows zero deviation. What a
 # tolerance must absorb is a change that moves the integrator's step sequence without
 # changing its accuracy target (a refactoring's round-off, another compiler or libm). That
@@ -219,8 +219,8 @@ def compare(study, baseline, report_dir, accepted):
             continue
         if b["status"] != "ok":  # a failed case's metrics describe the run up to its failure
             continue
-        # Whether a case has a steady cycle is behaviour: it must not change (README "Steady
-        # cycles"); the metrics of one that has none are NaN in the study.
+        # Whether a case has a steady cycle is behaviour: it must not change
+        # (docs/theory/steady-cycles.md); the metrics of one that has none are NaN in the study.
         if n["classification"] != b["classification"]:
             regressions.append(f"{name}: classification {n['classification']}, baseline {b['classification']}")
             changed.setdefault(k, []).append(("classification", b["classification"], n["classification"], "", ""))

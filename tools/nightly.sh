@@ -2,7 +2,7 @@
 # The nightly reproduction: build, run the paper's study (configs/grids/paper.json) on two
 # MPI ranks from scratch, compare it with the committed baseline tests/baselines/paper.csv
 # (tools/nightly.py: per-metric tolerances, keyed by the cases' axis values), write a
-# report. README, "Nightly reproduction".
+# report. docs/validation/nightly.md.
 #
 #   bash tools/nightly.sh              build, run, compare: exit 0 ok, 1 a regression
 #                                      (the lines name the case and the metric), 2 bad input

@@ -28,7 +28,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from lubjoint import study as study_reader  # noqa: E402  (PYTHONPATH=build/python: README "Post-processing")
+from lubjoint import study as study_reader  # noqa: E402  (PYTHONPATH=build/python: docs/guide/post-processing.md)
 
 # Paper figure numbers of the four studies (reaction, orbit, film, phase).
 FIRST_FIGURE = {"clearance": 6, "viscosity": 10, "speed": 14, "force_law": 18}

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Figures of steady cycles (README "Steady cycles").
+"""Figures of steady cycles (docs/theory/steady-cycles.md).
 
     PYTHONPATH=build/python /usr/bin/python3 tools/plot_steady.py STUDY.h5 -o DIR [--orbit]
 
@@ -21,7 +21,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 here = os.path.dirname(os.path.abspath(__file__))
-from lubjoint import study as study_reader  # noqa: E402  (PYTHONPATH=build/python: README "Post-processing")
+from lubjoint import study as study_reader  # noqa: E402  (PYTHONPATH=build/python: docs/guide/post-processing.md)
 
 CLASSES = ["periodic", "periodic_unstable", "drifting", "not_converged", "film_collapse", "solver_failure",
            "budget_exceeded"]

@@ -22,7 +22,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.colors import LogNorm  # noqa: E402
 
-from lubjoint import study as study_reader  # noqa: E402  (PYTHONPATH=build/python: README "Post-processing")
+from lubjoint import study as study_reader  # noqa: E402  (PYTHONPATH=build/python: docs/guide/post-processing.md)
 
 
 def select(cases, axes, x, y, items):

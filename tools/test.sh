@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The test command: set-up, build, and every test suite (ctest), slow ones excluded
-# unless LUB_SLOW=1 (see README).
+# unless LUB_SLOW=1 (see docs/validation/test-suite.md).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bash "$root/tools/build.sh"

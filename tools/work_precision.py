@@ -22,7 +22,7 @@ import sys
 
 import numpy as np
 
-from lubjoint import study as study_reader  # PYTHONPATH=build/python: README "Post-processing"
+from lubjoint import study as study_reader  # PYTHONPATH=build/python: docs/guide/post-processing.md
 
 
 def label(cases, i):

@@ -39,7 +39,7 @@ CaseResult run_guarded(int case_id, int rank, const SceneOf& scene, const Run& r
     out.status = to_string(r.status);
     out.message = r.message;
     out.classification = classification(r);
-    // A study reports steady metrics of steady cycles only (README "Steady cycles").
+    // A study reports steady metrics of steady cycles only (docs/theory/steady-cycles.md).
     const bool steady = out.classification == "periodic" || out.classification == "periodic_unstable";
     for (std::size_t i = 0; i < fields.size(); ++i)
       if (steady || !fields[i].steady_metric) out.values[i] = fields[i].get(r);

@@ -212,7 +212,7 @@ void apply_study(const json& study, Context& cx, FailurePolicy& policy) {
 void apply_study_settings(ObjectReader& r, Context& cx, FailurePolicy& policy) {
   apply_study(r.has("study") ? r.raw("study") : json::object(), cx, policy);
   // A study reports steady cycles: simulation.steady is "auto" unless the scene, `set` or
-  // an axis says otherwise (README "Steady cycles"); a run of fixed duration has no cycle.
+  // an axis says otherwise (docs/theory/steady-cycles.md); a run of fixed duration has no cycle.
   if (json& sim = cx.base["simulation"]; !sim.contains("steady") && !sim.contains("duration_s"))
     sim["steady"] = "auto";
   parse_case(cx.base, r.child("study"), r.has("study") ? r.raw("study") : json::object());

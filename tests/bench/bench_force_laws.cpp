@@ -1,4 +1,4 @@
-// Cost per evaluation of each force law (README, "Force laws and the film element").
+// Cost per evaluation of each force law (docs/theory/force-laws.md).
 //
 //   build/tests/bench/bench_force_laws --benchmark_min_time=0.5
 //

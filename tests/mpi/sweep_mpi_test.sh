@@ -62,7 +62,7 @@ bad_input)
   grep -q "grid.axes\[0\].values\[1\] = -0.0001: gives an invalid scene (joint rod_slider: journal_radius_m = bearing_radius_m - clearance = 0.01 m - -0.0001 m): joints\[3\].journal_radius_m = 0.0101: must be < bearing_radius_m = 0.01 m (the radial clearance must be > 0)" bad.log || { cat bad.log >&2; fail "message"; }
   [ ! -e bad.h5 ] || fail "a bad grid created its output file"
   # One message, from rank 0 only; every rank left MPI through MPI_Finalize (Open MPI 4
-  # still adds its own box after any non-zero exit status: README "Running a study").
+  # still adds its own box after any non-zero exit status: docs/guide/lubsweep.md).
   [ "$(grep -c '^lubsweep: ' bad.log)" = 1 ] || { cat bad.log >&2; fail "the message is not printed once"; }
   ! grep -q "without calling \"finalize\"\|MPI_ABORT\|exited on signal" bad.log || { cat bad.log >&2; fail "a rank did not leave MPI cleanly"; }
   # A study file of another grid is refused, untouched, naming the cases it would lose;

@@ -17,7 +17,7 @@ Bad input raises ``InputError`` (a ``ValueError``; alias ``SceneError``) with th
 the command line prints: the JSON path, the value and the rule. A run that cannot be
 completed (film collapse, solver failure, budget) is a result, not an exception: see
 ``ds.attrs["status"]`` and ``ds.attrs["message"]``; the steady cycle's classification
-(README "Steady cycles") in ``ds.attrs["classification"]``.
+(docs/theory/steady-cycles.md) in ``ds.attrs["classification"]``.
 
 By concern: ``lubjoint.run`` (``simulate``), ``lubjoint.bearing`` (``force``,
 ``steady_bearing``, ``FORCE_LAWS``), ``lubjoint.study`` (``load_study`` and the look-ups
@@ -28,7 +28,7 @@ needs it is first used (``simulate``, ``force``, ``InputError``, ``__version__``
 ``from lubjoint import study`` works in a build without the extension (``LUB_BUILD_PYTHON=OFF``
 still copies the Python files into build/python).
 
-Build and import (README, "Python"):
+Build and import (docs/guide/python.md):
 ``PYTHONPATH=build/python /usr/bin/python3 -c "import lubjoint"``.
 """
 

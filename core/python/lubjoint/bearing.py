@@ -39,7 +39,7 @@ def force(law, eps, eps_dot, wedge_rad_s, *, radius_m, clearance_m, length_m, vi
         ``frene_short``, ``gumbel_long``, ``gumbel_short``,
         ``pinkus_sternlicht_continuous``, ``finite_reynolds``.
     eps : array_like
-        Eccentricity ratio ε = |e|/c, dimensionless, 0 <= ε < 1.
+        Eccentricity ratio ε = ``|e|``/c, dimensionless, 0 <= ε < 1.
     eps_dot : array_like
         Its rate ε̇ [1/s], > 0 when the journal moves towards the wall.
     wedge_rad_s : array_like
@@ -94,7 +94,7 @@ def steady_bearing(law, *, load_N, speed_rpm, radius_m, clearance_m, length_m, v
         The keys of lubbearing's JSON: ``model``, the inputs, ``sommerfeld_number``
         (S = (R_J/c)² μ N/P, N [rev/s], P = W/(L D)), ``converged``; if converged ``eps``,
         ``attitude_angle_deg`` [deg] (load line to line of centres),
-        ``min_film_thickness_m`` [m], ``radial_N``, ``tangential_N`` [N] (|F| = W),
+        ``min_film_thickness_m`` [m], ``radial_N``, ``tangential_N`` [N] (``|F|`` = W),
         ``force_law_evaluations``; if not, ``message`` (lubbearing's exit status 3);
         ``warnings``: the plausibility warnings (a list of str; each also issued as a
         ``PlausibilityWarning``).

@@ -21,12 +21,12 @@ SceneError = InputError
 
 #: An integer metric or statistic that is unknown (e.g. ``cycles_to_steady`` of a run that
 #: never settled) holds this, and says so in its ``missing_value`` attribute; an unknown
-#: float is NaN (README, "Missing values").
+#: float is NaN (docs/reference/run-file.md, missing values).
 MISSING_INTEGER = -1
 
 
 class PlausibilityWarning(UserWarning):
-    """A value the rules accept but that is most likely a unit slip (README "Scene format",
+    """A value the rules accept but that is most likely a unit slip (docs/reference/plausible-ranges.md,
     plausible ranges): a viscosity outside 1e-4 – 5 Pa s, a clearance/radius outside 1e-4 –
     0.3, a driver speed above 50 000 rpm. The message is lubsim's warning line: the JSON
     Pointer, the value, the range and the likely slip."""
@@ -47,7 +47,7 @@ def simulate(scene, overrides=None, output=None, *, strict=False):
     Parameters
     ----------
     scene : dict or str or os.PathLike
-        The scene: a dict (the JSON object of README "Scene format") or the path of a scene
+        The scene: a dict (the JSON object of docs/reference/scene.md) or the path of a scene
         file.
     overrides : dict, optional
         ``{JSON Pointer: value}`` applied in order before validation, with the semantics of
@@ -81,7 +81,7 @@ def simulate(scene, overrides=None, output=None, *, strict=False):
           ``budget_exceeded``), ``message``, ``scene`` (the effective scene JSON),
           ``program``, ``version``, ``revision``, ``solver_method``,
           ``solver_formulation``, ``solver_jacobian``, ``solver_rtol``, ``solver_atol``
-          (the absolute tolerance of lengths [m]; README "Integration"), ``warnings`` (the
+          (the absolute tolerance of lengths [m]; docs/theory/formulations.md), ``warnings`` (the
           plausibility warnings, a list of str, empty if none; each also issued as a
           ``PlausibilityWarning``) and ``output`` (the run file, if written).
 
@@ -144,7 +144,7 @@ def simulate(scene, overrides=None, output=None, *, strict=False):
     for kind, fields in (("metric", r["metrics"]), ("solver", r["solver"])):  # _lubjoint.Scalar
         for f in fields:
             key = f.name if f.name not in data_vars and f.name not in coords else f"{kind}_{f.name}"
-            if f.integer:  # unknown (NaN from the engine): the sentinel, declared (README "Missing values")
+            if f.integer:  # unknown (NaN from the engine): the sentinel, declared (docs/reference/run-file.md)
                 value = np.int64(f.value) if np.isfinite(f.value) else np.int64(MISSING_INTEGER)
                 data_vars[key] = ((), value, attrs_of(f.units, f.long_name, kind=kind, missing_value=MISSING_INTEGER))
             else:

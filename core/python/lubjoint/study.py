@@ -2,7 +2,7 @@
 
 Pure Python (h5py, xarray with h5netcdf, pandas; ``scene`` needs jsonpatch): it does not load
 the compiled extension, so ``import lubjoint.study`` works in a build without it (see the
-package docstring). The study file is netCDF-4 style (README, "The study file"); this module
+package docstring). The study file is netCDF-4 style (docs/reference/study-file.md); this module
 adds the format check and the look-ups the tools share:
 
     from lubjoint import study
@@ -17,7 +17,7 @@ The formats read are ``ACCEPTED_FORMATS`` (one: ``STUDY_FORMAT``, what this buil
 writes); any other is refused with one message that says what to do (re-run the sweep with
 ``--restart``).
 
-Missing values (README, "Missing values"): a float that is unknown is NaN (``_FillValue`` =
+Missing values (docs/reference/run-file.md): a float that is unknown is NaN (``_FillValue`` =
 NaN); an integer column of ``/cases`` (counts, flags) holds -1 and says so in its
 ``missing_value`` attribute, so xarray and pandas (``cases``) show NaN there too.
 """

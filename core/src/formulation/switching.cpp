@@ -2,7 +2,7 @@
 // crossings, sliding exits), the sliding limits, the root directions, and the only code
 // that changes a film's mode (ws.film_mode, ws.slide_radius): at a root (switch_modes)
 // and when a mode no longer matches the state (resync_modes). The run loop only asks.
-// See README "Discontinuous force laws".
+// See docs/theory/switching.md.
 #include <cmath>
 #include <tuple>
 #include <utility>

@@ -74,8 +74,8 @@ class CvodeIntegrator final : public Integrator {
         // Φ̇ = 0, so the projections' corrections are not bounded by the tolerance; they
         // also move the journal in its bearing (the film is no constraint), and the stiff
         // squeeze film answers with a transient that fails the error test where a velocity
-        // crosses zero (README "Defects", D6: 2 of the 4 full-factorial failures remain
-        // without this, 1 without the Jacobian refresh of run.cpp, 0 with both).
+        // crosses zero (StiffNewton.ProjectionSlowCrankPassesCycleBoundaries: 2 of the 4
+        // full-factorial failures remain without this, 1 without the Jacobian refresh, 0 with both).
         check(CVodeSetProjErrEst(mem_, SUNFALSE), "CVodeSetProjErrEst");
       }
     }

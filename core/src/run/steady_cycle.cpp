@@ -203,7 +203,7 @@ bool SteadyRun::transient(int cycles, std::function<bool(const std::vector<Cycle
   // Continuations keep the cycle count going: the stop rule sees every cycle so far.
   const size_t before = res_.cycles.size();
   // A continuation that takes far more steps per cycle than the transient did is crawling
-  // (near the wall the printed law's corrector crawls at h ~ 1e-8 s, D7): it stops there,
+  // (near the wall the printed law's corrector crawls at h ~ 1e-8 s: docs/validation/hard-cases.md): it stops there,
   // and the run keeps what it has.
   if (before > 0)
     o.max_steps = 20 * res_.stats.steps / static_cast<long long>(before) * cycles + 1000;

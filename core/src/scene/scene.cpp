@@ -233,8 +233,8 @@ SolverSpec parse_solver(const json& j) {
          "solver.method = ida integrates the GGL index-2 DAE: the formulation must be ggl (or absent)");
   s.projection = r.boolean_or("projection", false);
   // Structured by default for ida (its iteration matrix) and for the partitioned
-  // formulation (its degrees of freedom); difference quotients for baumgarte (README
-  // "Integration", Jacobian).
+  // formulation (its degrees of freedom); difference quotients for baumgarte
+  // (docs/theory/formulations.md, Jacobians).
   s.jacobian = ida || partitioned ? JacobianKind::structured : JacobianKind::difference_quotients;
   if (const json* jac = r.raw_optional("jacobian")) {
     s.jacobian = r.choice_of<JacobianKind>("jacobian");
@@ -379,7 +379,7 @@ void check_whole_scene(const Scene& scene, const json& doc) {
     fail("simulation.steady", json(name_of(sim.steady)),
          "needs a cycle: simulation.cycle_period_s or a driver with non-zero speed");
   if (sim.stop_when_steady) {
-    // The contraction estimate needs the metric cycles and one before them (README "Steady cycles").
+    // The contraction estimate needs the metric cycles and one before them (docs/theory/steady-cycles.md).
     const json& value = doc.at("simulation").at("stop_when_steady");
     if (!period)
       fail("simulation.stop_when_steady", value,

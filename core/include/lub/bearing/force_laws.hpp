@@ -4,7 +4,7 @@
 // eccentricity ratio ε, its rate ε̇ and the wedge speed w. It knows nothing of any
 // mechanism, and is tested on its own against quadrature of its own pressure field.
 //
-// ## Conventions (shared by every law here; see README "Force laws")
+// ## Conventions (shared by every law here; see docs/theory/force-laws.md)
 //
 //  - Journal radius R_J, bearing radius R_B, radial clearance c = R_B − R_J > 0 [m],
 //    bearing length L [m], dynamic viscosity μ [Pa s].
@@ -134,7 +134,7 @@ struct FilmForce {
 ///  - ε̇ = 0 and w = 0: force 0 (and ε̇ = 0, ε = 0: force 0).
 ///  - ε = 0 with ε̇ ≠ 0 (k → ∞): F_r = −6 π C |ε̇|, F_t = 0, on both branches.
 ///
-/// Known defects of the printed law (see the paper notes, NOTES.md; pinned down by
+/// Known defects of the printed law (docs/theory/force-laws.md; pinned down by
 /// tests/test_core_force_laws.cpp):
 ///  1. F_t does not reach the half-Sommerfeld (Gümbel) long-bearing limit: as ε̇ → 0⁺ it is
 ///     larger than the integral of the positive part of Eq. (5) by exactly 1/(1 − ε²)
@@ -239,7 +239,7 @@ struct FilmForce {
 /// complementarity problem), or `sommerfeld` (full film, negative pressures kept: the
 /// reference for the Frêne laws). Finite volumes, second order; see lub/bearing/reynolds.hpp for the
 /// discretization, the solvers, the cost per evaluation and the measured convergence order.
-/// It is the reference the closed forms are measured against (README table), and a law for
+/// It is the reference the closed forms are measured against (docs/theory/force-laws.md, printed by build/tests/test_core_law_deviation), and a law for
 /// 0.25 <~ L/D <~ 2, where neither closed form holds.
 enum class ForceLaw {
   pinkus_sternlicht,             ///< Pinkus–Sternlicht long bearing as printed, Eqs. (10)–(14)

@@ -9,7 +9,7 @@
 // input under --strict. Each warning is one line naming the field, the value, the range and
 // the likely slip:
 //   /joints/3/viscosity_Pa_s = 400 Pa s is outside the plausible 1e-4 – 5 Pa s (400 cP is 0.4 Pa s)
-// README "Scene format", plausible ranges; configs/scene.schema.json.
+// docs/reference/plausible-ranges.md; configs/scene.schema.json.
 #pragma once
 
 #include <cmath>

@@ -50,7 +50,7 @@
 // Both give the same full-film force; the positive parts differ when ε̇ ≠ 0 (for pure wedge
 // the two gauges coincide, Eq. (5)'s wedge term being odd in θ).
 //
-// Measured (tests/bench/bench_force_laws.cpp, tests/test_core_reynolds.cpp; README table):
+// Measured (tests/bench/bench_force_laws.cpp, tests/test_core_reynolds.cpp; docs/theory/force-laws.md):
 //  - cost per evaluation on the default 48 × 8 grid: full film or Gümbel ≈ 6 µs; Reynolds
 //    ≈ 35–45 µs along a trajectory (warm start: ~1.2 factorizations per call), ≈ 220 µs from
 //    a cold start (~8); on 32 × 4: ≈ 3 µs and ≈ 10 µs;

@@ -64,7 +64,7 @@ struct FilmElement {
   bool switching = false;
 };
 
-/// How a switching film's law is evaluated (see README "Discontinuous force laws").
+/// How a switching film's law is evaluated (see docs/theory/switching.md).
 enum class FilmMode : int {
   natural = 0,   ///< the law at the actual ε̇ (continuous laws, or switching off)
   outward = 1,   ///< the ε̇ > 0 branch, continued at ε̇ = 0⁺ for ε̇ < 0

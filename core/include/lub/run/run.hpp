@@ -74,7 +74,7 @@ struct CycleMetrics {
   double end_eccentricity_rate_y = std::numeric_limits<double>::quiet_NaN();
 };
 
-/// What a run's steady cycle is (README "Steady cycles"). A run that did not end ok is
+/// What a run's steady cycle is (docs/theory/steady-cycles.md). A run that did not end ok is
 /// classified by its status instead (film_collapse, solver_failure, budget_exceeded).
 enum class SteadyClass {
   periodic,           ///< a converged periodic orbit (shooting) or transient, stable
@@ -131,7 +131,7 @@ struct Metrics {
   double periodicity = -1.0;         ///< the largest over the metric cycles (-1: unknown)
   // Error bars (simulation.error_bars; NaN: none): |metric − the same metric of the steady
   // cycle re-found and re-measured at a 100× tighter rtol| (+ a transient's remaining
-  // change, README "Steady cycles").
+  // change, docs/theory/steady-cycles.md).
   double min_film_thickness_m_error = std::numeric_limits<double>::quiet_NaN();
   double crank_angle_at_min_film_rad_error = std::numeric_limits<double>::quiet_NaN();
   double max_eps_error = std::numeric_limits<double>::quiet_NaN();

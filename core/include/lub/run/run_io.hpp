@@ -12,8 +12,8 @@
 
 namespace lub {
 
-/// The missing-value convention of every file and of the Python module (README, "Missing
-/// values"): a float value that is unknown is NaN (a float variable or column declares
+/// The missing-value convention of every file and of the Python module (docs/reference/run-file.md,
+/// missing values): a float value that is unknown is NaN (a float variable or column declares
 /// `_FillValue` = NaN, CF 2.5.1); an integer one (a count or flag) keeps this sentinel,
 /// declared by the attribute `missing_value` = -1. ResultField::get, CycleField::get return
 /// NaN for an unknown value, integer fields included: writers of integers store the sentinel.

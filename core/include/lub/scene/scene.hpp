@@ -1,5 +1,5 @@
 // A scene: the mechanism, its effects, the solver settings and what to record, parsed
-// and validated once from JSON into typed values in SI units. See README "Scene format".
+// and validated once from JSON into typed values in SI units. See docs/reference/scene.md.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -74,7 +74,7 @@ struct DriverSpec {
 
 struct SolverSpec {
   Method method = Method::cvode_bdf;
-  /// Relative tolerance. Default 1e-8, as every shipped scene sets (README "Work-precision"):
+  /// Relative tolerance. Default 1e-8, as every shipped scene sets (docs/validation/work-precision.md):
   /// at 1e-6 the default formulation's orbit error is 3e-4–1.2e-2 c over the six film laws
   /// and 0.31 c on the 40 cP contact case, its min-film error up to 4.9e-3; 1e-8 gives
   /// 2.5e-6–7e-4 c, 3.9e-3 c and ≤ 4.2e-5 for 1.9× the evaluations.
@@ -107,13 +107,13 @@ struct SolverSpec {
   /// baumgarte, 2 nq + 2 na residuals for ida). Default: structured for ida (2–5× faster)
   /// and for partitioned (a quarter fewer instructions a step, issue 16), difference
   /// quotients for baumgarte (structured saves the Jacobians' right-hand sides but no
-  /// clear wall time; README "Integration").
+  /// clear wall time; docs/theory/formulations.md).
   JacobianKind jacobian = JacobianKind::difference_quotients;
   long long max_steps = 20'000'000;  ///< budget: internal steps for the whole run
   double max_wall_time_s = 600.0;    ///< budget: wall time for the whole run
 };
 
-/// How a run finds its steady cycle (simulation.steady; README "Steady cycles").
+/// How a run finds its steady cycle (simulation.steady; docs/theory/steady-cycles.md).
 enum class SteadyMethod {
   transient,  ///< integrate cycle after cycle; stop when the contraction estimate says steady
   shooting,   ///< after simulation.transient_cycles, Newton on z = P(z), the period map
@@ -150,7 +150,7 @@ struct SimulationSpec {
   /// each state's unit (lengths in the clearance: 1e-9 is 0.5 pm at 0.5 mm).
   double shooting_tolerance = 1e-9;
   /// Error bars on the steady metrics (`<metric>_error`): the steady cycle re-found and
-  /// re-measured at a 100× tighter rtol (README "Steady cycles", error bars). Default:
+  /// re-measured at a 100× tighter rtol (docs/theory/steady-cycles.md, error bars). Default:
   /// on for shooting and auto, off for transient.
   bool error_bars = false;
   /// ε reaching it ends the run: film_collapse. Default 1 − 1e-5: h = 1e-5 c (5 nm at the

@@ -7,7 +7,7 @@
 //   monodromy matrix): |μ|max < 1 a stable cycle, a disturbance shrinking by |μ|max
 //   per period; > 1 an unstable one.
 //
-// Every state has its own unit s_i (README "Steady cycles": lengths in the clearance c,
+// Every state has its own unit s_i (docs/theory/steady-cycles.md: lengths in the clearance c,
 // angles in c over the body's size, rates in those times the driver's speed): residuals,
 // tolerances and difference steps are measured in them, max_i |r_i| / s_i.
 #pragma once
@@ -33,7 +33,7 @@ class CycleMap {
 /// Monodromy M = ∂P/∂z by differences of the flow map. Differences of the map itself
 /// (rather than variational equations) carry the saltation of every switching event and
 /// the rank drop of sliding motion, which forward sensitivities integrated through
-/// events would not (README "Steady cycles", monodromy).
+/// events would not (docs/theory/steady-cycles.md, monodromy).
 struct MonodromyOptions {
   std::vector<double> scales;  ///< s_i
   double step = 1e-4;          ///< difference step h_i = step × s_i

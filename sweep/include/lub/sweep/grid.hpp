@@ -1,4 +1,4 @@
-// A grid: which scenes a study runs. Read from JSON (README, "Writing a grid"), strictly
+// A grid: which scenes a study runs. Read from JSON (docs/guide/grids.md), strictly
 // validated, and expanded into cases before any work starts, so bad input never costs a
 // simulation and never touches an output file.
 //

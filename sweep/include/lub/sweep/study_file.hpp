@@ -1,4 +1,4 @@
-// The study file (HDF5), written by one rank. Layout (README, "The study file"), netCDF-4
+// The study file (HDF5), written by one rank. Layout (docs/reference/study-file.md), netCDF-4
 // style so that xarray (h5netcdf) and pandas read every group without custom code:
 //
 //   /                 attributes: program, format, version, revision, description, grid,

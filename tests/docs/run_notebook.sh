@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Executes a tutorial notebook with nbconvert, as a reader would run it: the Debian kernel
+# "python3" (/usr/bin/python3), this build's lubjoint on PYTHONPATH (set by ctest), the
+# notebook's own directory as the kernel's working directory. The executed copy goes to
+# OUT_DIR; the checked-in notebook is not modified. A cell that raises fails the test.
+#   bash tests/docs/run_notebook.sh SOURCE_DIR NOTEBOOK OUT_DIR
+set -euo pipefail
+source_dir="$1"
+notebook="$2"
+out_dir="$3"
+mkdir -p "$out_dir"
+export LUB_SOURCE_DIR="$source_dir"
+jupyter nbconvert --to notebook --execute \
+  --ExecutePreprocessor.kernel_name=python3 --ExecutePreprocessor.timeout=240 \
+  --output-dir "$out_dir" "$notebook"
+echo "run_notebook: $(basename "$notebook") ran; executed copy in $out_dir"

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Builds the documentation site: docs/ (Markdown, MyST) and the Python API from lubjoint's
+# docstrings (autodoc, the module built into BUILD/python) into BUILD/docs/html with Sphinx,
+# warnings as errors. ctest runs it (docs_site).
+#   bash tools/docs.sh [--build-dir BUILD] [--no-setup] [--no-build]
+# --no-setup skips tools/setup.sh (Debian packages); --no-build skips building the module.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="$root/build"
+setup=1
+compile=1
+while (($#)); do
+  case "$1" in
+    --build-dir) build="$(cd "$2" && pwd)"; shift 2 ;;
+    --no-setup) setup=0; shift ;;
+    --no-build) compile=0; shift ;;
+    -h|--help) sed -n '2,6p' "$0"; exit 0 ;;
+    *) echo "docs.sh: unknown argument $1 (see --help)" >&2; exit 2 ;;
+  esac
+done
+if ((setup)); then bash "$root/tools/setup.sh"; fi
+if ((compile)); then
+  if [ ! -f "$build/CMakeCache.txt" ]; then bash "$root/tools/build.sh"; fi
+  cmake --build "$build" -j2 --target _lubjoint
+fi
+export LUB_PYTHON_DIR="$build/python"
+export PYTHONPATH="$build/python${PYTHONPATH:+:$PYTHONPATH}"
+export PYTHONDONTWRITEBYTECODE=1
+rm -rf "$build/docs/html" "$build/docs/doctrees"
+/usr/bin/python3 -m sphinx -b html -W --keep-going -q -j 1 \
+  -d "$build/docs/doctrees" "$root/docs" "$build/docs/html"
+echo "docs.sh: $build/docs/html/index.html" >&2
