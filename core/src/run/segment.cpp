@@ -313,8 +313,9 @@ Stop Runner::integration_failed(double t) {
   // relaxes the offset, a jump of the same size at any step size, so every retry fails the
   // error test down to h ~ 1e-7 s (docs/theory/long-runs.md). A fresh start from that state
   // (order 1, its own initial step) resolves the relaxation in a few short steps. Once per
-  // accepted step: a failure again at the same t ends the segment.
-  const bool restart = opt_.restart_after_failure && t > t_restarted_ &&
+  // accepted step: a failure again at the same t ends the segment, and so does one at the
+  // segment's start (already a fresh start; e.g. a period map's perturbed state).
+  const bool restart = opt_.restart_after_failure && t > t_restarted_ && t > t0_ &&
                        sys_->expand(t, integ_->y(), yfull_.data()) == 0;
   if (restart) {
     try {
