@@ -144,6 +144,7 @@ class CvodeIntegrator final : public Integrator {
   }
 
   std::string error_message() const override { return data_.error; }
+  void clear_error() override { data_.error.clear(); }
 
   void root_flags(std::vector<int>& flags) override {
     flags.assign(static_cast<size_t>(data_.sys->num_roots()), 0);

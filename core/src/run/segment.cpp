@@ -61,6 +61,7 @@ class Runner {
   std::vector<StartState> boundaries_;
   std::vector<int> root_flags_;
   double E0_ = 0.0;
+  double t_restarted_ = -std::numeric_limits<double>::infinity();  // the last restart after a failure
   std::chrono::steady_clock::time_point wall0_;
 
   void initial_state();
@@ -73,6 +74,8 @@ class Runner {
   /// The dependent block is near-singular: choose the independent coordinates anew.
   void repartition(double t);
   Stop check_drift_and_budgets(double t);
+  /// The integrator gave up at t: restart it there once, or end the segment.
+  Stop integration_failed(double t);
   Stop fail(RunStatus status, const std::string& message);
   /// The next stop time: the next cycle boundary (never the end of the run, which would
   /// bound SUNDIALS' initial-step estimates at every restart and so make the steps depend
@@ -301,12 +304,40 @@ Stop Runner::check_drift_and_budgets(double t) {
   return Stop::none;
 }
 
+Stop Runner::integration_failed(double t) {
+  // SUNDIALS leaves (t, y) at the end of the last accepted step. Where the film is thin the
+  // squeeze film's radial mode is stiff (h λ ~ 1e4–1e8) and the state a step accepts lies
+  // off its slow manifold by what that step's error weights allowed, rtol |v| on the
+  // independent velocities. At a dead centre an independent velocity crosses zero and its
+  // weight tightens to atol within one step (by rtol |v| / atol ~ 1e2–1e3); the next step
+  // relaxes the offset, a jump of the same size at any step size, so every retry fails the
+  // error test down to h ~ 1e-7 s (docs/theory/long-runs.md). A fresh start from that state
+  // (order 1, its own initial step) resolves the relaxation in a few short steps. Once per
+  // accepted step: a failure again at the same t ends the segment, and so does one at the
+  // segment's start (already a fresh start; e.g. a period map's perturbed state).
+  const bool restart = opt_.restart_after_failure && t > t_restarted_ && t > t0_ &&
+                       sys_->expand(t, integ_->y(), yfull_.data()) == 0;
+  if (restart) {
+    try {
+      integ_->clear_error();
+      integ_->reinit(t, integ_->y());
+      integ_->set_root_directions(sys_->root_directions());
+      t_restarted_ = t;
+      return Stop::none;
+    } catch (const std::exception& e) {
+      return fail(RunStatus::solver_failure, "the integrator failed at t = " + std::to_string(t) +
+                                                 " s and could not be restarted: " + e.what());
+    }
+  }
+  const std::string again = t == t_restarted_ ? " (again after a restart there)" : "";
+  return fail(RunStatus::solver_failure,
+              "the integrator failed at t = " + std::to_string(t) + " s" + again + ": " + integ_->error_message());
+}
+
 Stop Runner::advance(double& t) {
   const double t_prev = t;
   const StepOutcome out = integ_->step(t);
-  if (out == StepOutcome::failure)
-    return fail(RunStatus::solver_failure,
-                "the integrator failed at t = " + std::to_string(t) + " s: " + integ_->error_message());
+  if (out == StepOutcome::failure) return integration_failed(t);
   // Dense output inside (t_prev, t], in time order: series samples, orbit phase points and
   // cycle ends; then the step end itself.
   const bool steady = opt_.observe && sample_step(t_prev, t);

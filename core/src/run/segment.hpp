@@ -28,6 +28,10 @@ struct SegmentOptions {
   bool observe = true;                ///< per-step extremes and phase points (cycle metrics)
   bool series = true;                 ///< record the scene's channels (needs observe)
   long long max_steps = 0;            ///< > 0: budget_exceeded after this many steps
+  /// When the integrator gives up, restart it once from its last accepted state before
+  /// ending the segment (segment.cpp, Runner::integration_failed). false: the first failure
+  /// ends it, as before issue 25 (the tests compare both).
+  bool restart_after_failure = true;
   /// Called after every completed cycle with the cycles so far: true stops the run there.
   std::function<bool(const std::vector<CycleMetrics>&)> stop_after_cycle;
 };

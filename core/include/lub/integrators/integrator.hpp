@@ -112,6 +112,9 @@ class Integrator {
   virtual void statistics(IntegratorStats& s) const = 0;
   /// SUNDIALS' message after a failure.
   virtual std::string error_message() const = 0;
+  /// Forgets the message of a failure the caller recovers from (a restart after it), so a
+  /// later failure reports its own.
+  virtual void clear_error() = 0;
   /// Which root functions fired at the last StepOutcome::root (±1 by direction, or 0).
   virtual void root_flags(std::vector<int>& flags) = 0;
   /// Only report roots crossing in this direction (−1 decreasing, +1 increasing, 0 both).
