@@ -480,3 +480,29 @@ def test_tools_read_study_files_only_through_lubjoint_study():
     for p in ("compare_study.py", "nightly.py", "plot_paper.py", "plot_steady.py", "sweep_map.py",
               "work_precision.py", "scaling_model.py"):
         assert "from lubjoint import study" in (tools / p).read_text(), p
+
+
+def test_a_continued_study_keeps_each_orbit_and_its_parent(tmp_path):
+    # Two speeds of the printed law with simulation.steady = continuation: the 2500 rpm
+    # case starts from the 5000 rpm case's orbit (the seed: largest mu omega / c^2), and
+    # each case's orbit is in /cases, readable by lubjoint.study.orbit_seed.
+    grid = {"scene": str(SCENE), "study": {"max_cycles": 40, "stop_when_steady": True, "channels": []},
+            "set": {"/simulation/steady": "continuation", "/solver/formulation": "partitioned"},
+            "driver": "crank_speed", "axes": [{"name": "speed_rpm", "values": [5000, 2500]}]}
+    (tmp_path / "grid.json").write_text(json.dumps(grid))
+    env = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"}
+    p = run([LUBSWEEP, tmp_path / "grid.json", "-o", tmp_path / "study.h5", "-q"], env=env, timeout=300)
+    assert p.returncode == 0, p.stderr
+    df = lubjoint.study.cases(tmp_path / "study.h5")
+    assert list(df["classification"].astype(str)) == ["periodic", "periodic"]
+    assert list(df["continued_from"]) == [-1, 0]
+    for case in (0, 1):
+        seed = lubjoint.study.orbit_seed(tmp_path / "study.h5", case)
+        n = len(seed["chart"])
+        assert seed["monodromy"].shape == (n, n) and len(seed["deviation"]) == len(seed["winding"])
+        # The seed's monodromy is the orbit's, in each state's unit (S^-1 M S): the same
+        # eigenvalues as the multipliers the file reports (4 of them, largest first).
+        mu = sorted(np.abs(np.linalg.eigvals(seed["monodromy"])), reverse=True)
+        reported = [df.loc[case, f"multiplier_{k}_modulus"] for k in range(1, 5)]
+        np.testing.assert_allclose(mu[:4], reported, rtol=1e-9, atol=1e-12)
+    assert lubjoint.study.orbit_seed(tmp_path / "study.h5", 0)["max_eps"] > 0

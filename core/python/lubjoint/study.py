@@ -127,6 +127,44 @@ def scene(path, case_id):
     return jsonpatch.apply_patch(json.loads(_text(reference)), json.loads(_text(patch)))
 
 
+def orbit_seed(path, case_id):
+    """The periodic orbit a case found (``simulation.steady`` continuation or shooting in a
+    study), decoded from /cases ``orbit_seed`` (layout ``lub::pack_seed``), or None.
+
+    A dict: ``deviation`` (the state (q, v) at crank angle 0 minus the scene's initial
+    state, each coordinate in its own unit: dimensionless), ``modes`` (film modes),
+    ``chart`` (the independent coordinates, indices of q), ``monodromy`` (n x n numpy array
+    in the same units; empty: none), ``winding`` [rad per period], ``max_eps`` [1] and
+    ``steps_per_period`` [1]. See docs/theory/continuation.md.
+    """
+    import numpy as np
+
+    df = cases(path)
+    if "orbit_seed" not in df.columns:
+        return None
+    text = _text(df.loc[int(case_id), "orbit_seed"])
+    if not text:
+        return None
+    row = json.loads(text)
+    if int(row[0]) != 1:
+        raise StudyFormatError(f"{path}: case {case_id}: an orbit seed of layout {row[0]}; this reader knows 1")
+    sizes = [int(x) for x in row[1:6]]
+    at, fields = 6, []
+    for n in sizes:
+        fields.append(row[at:at + n])
+        at += n
+    n = len(fields[2])
+    return {
+        "deviation": np.array(fields[0]),
+        "modes": [int(x) for x in fields[1]],
+        "chart": [int(x) for x in fields[2]],
+        "monodromy": np.array(fields[3]).reshape((n, n), order="F") if fields[3] else np.zeros((0, 0)),
+        "winding": np.array(fields[4]),
+        "max_eps": row[at],
+        "steps_per_period": row[at + 1],
+    }
+
+
 class Study(Mapping):
     """A lubsweep study: ``{grid name: xarray.Dataset}``, plus ``cases`` and ``attrs``.
 
