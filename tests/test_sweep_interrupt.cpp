@@ -106,12 +106,12 @@ TEST(InterruptSchedule, TheLoopLooksWhileACaseRuns) {
   bool running = false;
   InProcessTransport transport(0);
   Schedule s;
-  s.local = [&](const Case& k) {
+  s.local = [&](const Task& k) {
     std::unique_lock<std::mutex> l(m);
     running = true;
     const bool looked = cv.wait_for(l, std::chrono::seconds(60), [&] { return ticks_while_running >= 5; });
     CaseResult r;
-    r.case_id = k.id;
+    r.case_id = k.case_id;
     r.status = looked ? "ok" : "error";
     return r;
   };
