@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "common/small_dense.hpp"
 
@@ -30,7 +31,21 @@ MultibodySystem::MultibodySystem(const Model& m, Workspace& ws, const Stabilisat
     rc->piv.assign(static_cast<size_t>(m.nc), 0);
     rc->last_y.assign(static_cast<size_t>(2 * nz_), 0.0);
   }
-  if (f == Formulation::partitioned) {
+  if (f == Formulation::joint) {
+    std::string why;
+    tree_ = build_joint_tree(m, &why);
+    if (!tree_) throw std::runtime_error("solver.formulation = joint does not apply: " + why);
+    nz_ = tree_->ndof;
+    kin_.emplace(m, *tree_);
+    const int rows = m.n_switching;
+    Mt_ = Eigen::MatrixXd::Zero(nz_, nz_);
+    Qt_ = Eigen::VectorXd::Zero(nz_);
+    At_ = Eigen::MatrixXd::Zero(std::max(rows, 1), nz_);
+    Xt_ = Eigen::MatrixXd::Zero(nz_, std::max(rows, 1));
+    St_ = Eigen::MatrixXd::Zero(std::max(rows, 1), std::max(rows, 1));
+    bt_ = Eigen::VectorXd::Zero(std::max(rows, 1));
+  }
+  if (f == Formulation::partitioned || f == Formulation::joint) {
     r_.assign(static_cast<size_t>(m.nc), 0.0);
     dq_y_.assign(static_cast<size_t>(2 * nz_), 0.0);
     dq_f_ = dq_y_;
@@ -79,6 +94,12 @@ void MultibodySystem::factor_dependent_block(Recovery& rc) {
 
 int MultibodySystem::expand(double t, const double* y, double* qv, Context who) {
   const int nq = m_.nq;
+  if (form_ == Formulation::joint) {
+    forward_kinematics(m_, *tree_, t, y, y + nz_, *kin_, false);
+    std::copy(kin_->q.data(), kin_->q.data() + nq, qv);
+    std::copy(kin_->v.data(), kin_->v.data() + nq, qv + nq);
+    return 0;
+  }
   if (form_ != Formulation::partitioned) {
     std::copy(y, y + 2 * nq, qv);
     return 0;
@@ -168,6 +189,10 @@ int MultibodySystem::expand(double t, const double* y, double* qv, Context who) 
 }
 
 void MultibodySystem::reduce(const double* qv, double* y) const {
+  if (form_ == Formulation::joint) {
+    joint_coordinates(m_, *tree_, qv, y, y + nz_);
+    return;
+  }
   if (form_ != Formulation::partitioned) {
     std::copy(qv, qv + 2 * m_.nq, y);
     return;
@@ -179,8 +204,96 @@ void MultibodySystem::reduce(const double* qv, double* y) const {
   }
 }
 
+void MultibodySystem::reduce_units(const double* full, double* out) const {
+  if (form_ == Formulation::joint) {
+    joint_units(m_, *tree_, full, out);
+    return;
+  }
+  reduce(full, out);
+}
+
+// M_θ θ̈ = Q with M_θ = JᵀMJ, Q = Jᵀ(g − Mc) (in Mt_, Qt_); with sliding films, the rows
+// A θ̈ = b (At_, bt_) by their Schur complement, λ = (A M_θ⁻¹ Aᵀ)⁻¹ (A M_θ⁻¹ Q − b),
+// θ̈ = M_θ⁻¹ (Q − Aᵀλ). False if M_θ or the complement is singular.
+bool MultibodySystem::joint_accelerations(double* thdd) {
+  const int nd = nz_, ns = ws_.nc_active - m_.nc;
+  const int ld = static_cast<int>(Mt_.rows());
+  if (!dense::cholesky(Mt_.data(), ld, nd)) return false;
+  std::copy(Qt_.data(), Qt_.data() + nd, thdd);
+  dense::cholesky_solve(Mt_.data(), ld, nd, thdd);
+  if (ns == 0) return true;
+  const int lx = static_cast<int>(Xt_.rows()), ls = static_cast<int>(St_.rows());
+  for (int r = 0; r < ns; ++r) {
+    for (int j = 0; j < nd; ++j) Xt_(j, r) = At_(r, j);
+    dense::cholesky_solve(Mt_.data(), ld, nd, Xt_.data() + static_cast<long>(r) * lx);
+  }
+  for (int r = 0; r < ns; ++r) {
+    double rhs = -bt_(r);
+    for (int j = 0; j < nd; ++j) rhs += At_(r, j) * thdd[j];
+    ws_.lambda(m_.nc + r) = rhs;
+    for (int s = 0; s <= r; ++s) {
+      double x = 0.0;
+      for (int j = 0; j < nd; ++j) x += At_(r, j) * Xt_(j, s);
+      St_(r, s) = x;
+    }
+  }
+  if (!dense::cholesky(St_.data(), ls, ns)) return false;
+  double* lam = ws_.lambda.data() + m_.nc;
+  dense::cholesky_solve(St_.data(), ls, ns, lam);
+  for (int r = 0; r < ns; ++r)
+    for (int j = 0; j < nd; ++j) thdd[j] -= Xt_(j, r) * lam[r];
+  return true;
+}
+
+int MultibodySystem::joint_rhs(double t, const double* y, double* ydot) {
+  const int nq = m_.nq, nd = nz_;
+  JointKinematics& k = *kin_;
+  forward_kinematics(m_, *tree_, t, y, y + nd, k, true);
+  if (const EvalStatus s = evaluate_forces(m_, ws_, t, k.q.data(), k.v.data(), false); s != EvalStatus::ok)
+    return ode_flag(s);
+  const double* M = m_.mass_diag.data();
+  // g − M c into ws_.qdd (scratch), then M_θ and Q.
+  for (int i = 0; i < nq; ++i) ws_.qdd(i) = ws_.g(i) - M[i] * k.c(i);
+  for (int a = 0; a < nd; ++a) {
+    const double* Ja = k.J.data() + static_cast<long>(a) * nq;
+    double qa = 0.0;
+    for (int i = 0; i < nq; ++i) qa += Ja[i] * ws_.qdd(i);
+    Qt_(a) = qa;
+    for (int b = 0; b <= a; ++b) {
+      const double* Jb = k.J.data() + static_cast<long>(b) * nq;
+      double x = 0.0;
+      for (int i = 0; i < nq; ++i) x += Ja[i] * M[i] * Jb[i];
+      Mt_(a, b) = x;
+    }
+  }
+  // Sliding rows: Φ_q,r (J θ̈ + c) = γ̂_r, γ̂ = γ − 2αΦ̇ − β²Φ (as evaluate()).
+  const int ns = ws_.nc_active - m_.nc;
+  for (int r = 0; r < ns; ++r) {
+    const int row = m_.nc + r;
+    double b = ws_.gamma(row) - 2.0 * stab_.alpha * ws_.Phi_dot(row) - stab_.beta * stab_.beta * ws_.Phi(row);
+    for (int i = 0; i < nq; ++i) b -= ws_.Phi_q(row, i) * k.c(i);
+    bt_(r) = b;
+    for (int j = 0; j < nd; ++j) {
+      double x = 0.0;
+      for (int i = 0; i < nq; ++i) x += ws_.Phi_q(row, i) * k.J(i, j);
+      At_(r, j) = x;
+    }
+  }
+  std::copy(y + nd, y + 2 * nd, ydot);
+  if (!joint_accelerations(ydot + nd)) throw std::runtime_error("the joint-coordinate mass matrix is singular");
+  for (size_t f = 0; f < m_.films.size() && ns > 0; ++f) {
+    FilmKinematics& fk = ws_.films[f];
+    if (!fk.sliding) continue;
+    // The constraint's force on the journal is −λ r: that is the radial film force.
+    fk.force.radial_N = -ws_.lambda(ws_.slide_row[f]);
+    fk.F = fk.force.radial_N * fk.r + fk.force.tangential_N * perp(fk.r);
+  }
+  return 0;
+}
+
 int MultibodySystem::rhs(double t, const double* y, double* ydot) {
   const int nq = m_.nq;
+  if (form_ == Formulation::joint) return joint_rhs(t, y, ydot);
   if (form_ != Formulation::partitioned) {
     std::copy(y + nq, y + 2 * nq, ydot);
     const EvalStatus s = evaluate(m_, ws_, stab_, t, y, y + nq, ydot + nq);

@@ -198,7 +198,8 @@ void check_workspace(const Model& m, const Workspace& ws) {
              "workspace built for a model with other film elements");
 }
 
-EvalStatus evaluate_forces(const Model& m, Workspace& ws, double t, const double* q, const double* v) {
+EvalStatus evaluate_forces(const Model& m, Workspace& ws, double t, const double* q, const double* v,
+                           bool constraint_rows) {
   check_workspace(m, ws);
   ++ws.counters.rhs;
   const double* cphi = ws.cos_phi.data();
@@ -231,7 +232,10 @@ EvalStatus evaluate_forces(const Model& m, Workspace& ws, double t, const double
   }
   ws.nc_active = m.nc + n_sliding;
   if (ws.nc_active == 0) return EvalStatus::ok;
-  fill_constraints(m.constraints, t, q, v, cphi, sphi, ws.Phi_q, ws.Phi, ws.Phi_dot, &ws.gamma);
+  if (constraint_rows)
+    fill_constraints(m.constraints, t, q, v, cphi, sphi, ws.Phi_q, ws.Phi, ws.Phi_dot, &ws.gamma);
+  else if (n_sliding > 0)
+    ws.Phi_q.middleRows(m.nc, n_sliding).setZero();
   if (n_sliding > 0) fill_sliding_rows(m, ws, q, v);
   return EvalStatus::ok;
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "lub/common/constants.hpp"
+#include "lub/formulation/joint_tree.hpp"
 
 namespace lub::detail {
 
@@ -38,7 +39,7 @@ Tolerances::Tolerances(const Scene& scene, const Model& m, double factor) {
 
 std::vector<double> Tolerances::integrated_atol(const MultibodySystem& sys) const {
   std::vector<double> atol(static_cast<size_t>(sys.size()), 0.0);
-  sys.reduce(atol_full_.data(), atol.data());
+  sys.reduce_units(atol_full_.data(), atol.data());
   return atol;
 }
 
@@ -67,8 +68,11 @@ IntegrationPlan plan_integration(const Scene& scene, const Model& m, double fact
   // A mechanism without a degree of freedom (every coordinate fixed by joints and drivers:
   // the ideal slider-crank) leaves partitioning nothing to integrate: it runs on the
   // baumgarte formulation, whose states are all the coordinates.
-  plan.formulation = sol.formulation == Formulation::partitioned && m.nq <= m.nc ? Formulation::baumgarte
-                                                                                 : sol.formulation;
+  // The joint formulation applies where the ideal joints form a tree rooted at the ground
+  // (lub/formulation/joint_tree.hpp); a loop of ideal joints runs on the partitioned one.
+  plan.formulation = sol.formulation;
+  if (plan.formulation == Formulation::joint && !build_joint_tree(m)) plan.formulation = Formulation::partitioned;
+  if (plan.formulation == Formulation::partitioned && m.nq <= m.nc) plan.formulation = Formulation::baumgarte;
   is.user_jacobian = plan.newton && sol.jacobian == JacobianKind::structured;
   // A fresh Jacobian every step where a reused one fails. Partitioned: the squeeze film's
   // stiff mode lies almost along a degree of freedom and changes within a few degrees of
@@ -78,7 +82,7 @@ IntegrationPlan plan_integration(const Scene& scene, const Model& m, double fact
   // with reuse, none with a fresh Jacobian). Not with switching none: difference quotients
   // across the printed law's jump make a fresh Jacobian worse than a reused one (the hard
   // case law_pinkus_sternlicht_no_events, tests/test_stress_hard_cases.cpp).
-  is.jacobian_every_step = plan.formulation == Formulation::partitioned ||
+  is.jacobian_every_step = plan.formulation == Formulation::partitioned || plan.formulation == Formulation::joint ||
                            (sol.projection && sol.switching == Switching::events);
   return plan;
 }

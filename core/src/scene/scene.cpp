@@ -225,7 +225,7 @@ SolverSpec parse_solver(const json& j) {
   const bool ida = s.method == Method::ida;
   s.formulation = r.choice_of<Formulation>("formulation", ida ? Formulation::ggl : Formulation::partitioned);
   const json form(std::string(name_of(s.formulation)));
-  const bool partitioned = s.formulation == Formulation::partitioned;
+  const bool partitioned = s.formulation == Formulation::partitioned || s.formulation == Formulation::joint;
   if (s.formulation == Formulation::ggl && !ida)
     fail("solver.formulation", form, "ggl is a DAE: it requires solver.method = ida");
   if (ida && s.formulation != Formulation::ggl)
@@ -244,8 +244,8 @@ SolverSpec parse_solver(const json& j) {
   }
   if (s.projection && partitioned)
     fail("solver.projection", json(true),
-         "does not apply to solver.formulation = partitioned, the default (no drift to project): "
-         "set solver.formulation = baumgarte to project");
+         "does not apply to solver.formulation = " + std::string(name_of(s.formulation)) +
+             " (no drift to project): set solver.formulation = baumgarte to project");
   if (s.projection && s.method != Method::cvode_bdf)
     fail("solver.projection", json(true), "requires solver.method = cvode_bdf (CVODE projects only with BDF)");
   s.max_wall_time_s = r.number_or("max_wall_time_s", s.max_wall_time_s, positive, "must be > 0 s");

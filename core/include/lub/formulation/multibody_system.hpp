@@ -13,12 +13,20 @@
 //        q' = v − Φ_qᵀ μ,   M v' = g − Φ_qᵀ λ,   Φ = 0,   Φ_q v + Φ_t = 0,
 //    in Y = (q, v, λ, μ): the constraints hold at position and velocity level without
 //    Baumgarte's terms (μ = 0 on the exact solution; it absorbs the drift).
+//  - joint: y = (θ, θ̇), the coordinates of the spanning tree of the ideal joints
+//    (lub/formulation/joint_tree.hpp), where the lubricated joints cut every loop. Forward
+//    kinematics gives q = q(θ, t), q̇ = J θ̇ + q̇_t, q̈ = J θ̈ + c; the equations of motion
+//        (Jᵀ M J) θ̈ = Jᵀ (g − M c)
+//    have no constraint equation (a sliding film's row aside, Baumgarte-stabilised as in
+//    evaluate()); g is evaluate_forces()'s, the film element's force in one place.
 // All expose roots (ε limit, switching of discontinuous laws) and quadratures (work).
 #pragma once
 
+#include <optional>
 #include <utility>
 #include <vector>
 
+#include "lub/formulation/joint_tree.hpp"
 #include "lub/formulation/options.hpp"
 #include "lub/integrators/integrator.hpp"
 #include "lub/mechanism/model.hpp"
@@ -81,6 +89,8 @@ class MultibodySystem final : public OdeSystem {
   int expand(double t, const double* y, double* qv, Context who = Context::integrator);
   /// Full (q, v) → integrator state.
   void reduce(const double* qv, double* y) const;
+  /// Each integrated state's unit size from the full state's (2 nq): the tolerances.
+  void reduce_units(const double* full, double* out) const;
   /// Chooses the independent coordinates at the consistent state (q, v).
   void partition(double t, const double* qv);
   /// Whether the dependent block has become ill-conditioned (partitioned): re-partition.
@@ -148,6 +158,15 @@ class MultibodySystem final : public OdeSystem {
   std::vector<int> slot_of_switching_;  // per film: nc + its index among switching films, or −1
   JacobianScratch jac_{m_};
   std::vector<double> dq_scale_, dq_y_, dq_f_;  // partitioned: the forward differences' scales and scratch
+
+  // joint: the tree, its kinematics, and the reduced system's scratch: M_θ = JᵀMJ (nd × nd),
+  // Q (nd), the sliding rows' Jacobian A (rows × nd), M_θ⁻¹Aᵀ, their Schur complement.
+  std::optional<JointTree> tree_;
+  std::optional<JointKinematics> kin_;
+  Eigen::MatrixXd Mt_, At_, Xt_, St_;
+  Eigen::VectorXd Qt_, bt_;
+  int joint_rhs(double t, const double* y, double* ydot);
+  bool joint_accelerations(double* qdd_theta);
 
   int partitioned_jacobian(double t, const double* y, const double* fy, double* J);
   int forward_difference_jacobian(double t, const double* y, const double* fy, double* J);

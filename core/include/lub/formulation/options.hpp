@@ -13,15 +13,17 @@ namespace lub {
 /// How the equations of motion are integrated (lub/formulation/multibody_system.hpp):
 /// baumgarte (all coordinates, Baumgarte's terms: the paper's method), partitioned
 /// (generalised coordinate partitioning: only the degrees of freedom), ggl (the stabilised
-/// index-2 DAE, for IDA).
-enum class Formulation { baumgarte, partitioned, ggl };
+/// index-2 DAE, for IDA), joint (the coordinates of a spanning tree of the ideal joints,
+/// where the lubricated joints cut every loop: lub/formulation/joint_tree.hpp).
+enum class Formulation { baumgarte, partitioned, ggl, joint };
 
 template <>
 struct NameTable<Formulation> {
-  static constexpr std::array<std::pair<Formulation, std::string_view>, 3> entries{{
+  static constexpr std::array<std::pair<Formulation, std::string_view>, 4> entries{{
       {Formulation::baumgarte, "baumgarte"},
       {Formulation::partitioned, "partitioned"},
       {Formulation::ggl, "ggl"},
+      {Formulation::joint, "joint"},
   }};
 };
 

@@ -171,8 +171,11 @@ void check_workspace(const Model& m, const Workspace& ws);
 /// sliding film's radial force left out: it is its row's multiplier), film kinematics
 /// and forces, and — when there are constraint rows — Φ, Φ_q, Φ̇, γ of the ws.nc_active
 /// rows, without solving for λ and q̈ (the GGL residual needs no more): ok, or
-/// outside_domain.
-EvalStatus evaluate_forces(const Model& m, Workspace& ws, double t, const double* q, const double* v);
+/// outside_domain. With `constraint_rows` false the ideal joints' and drivers' rows are
+/// left out (the joint-coordinate formulation satisfies them by construction); the sliding
+/// rows are filled all the same.
+EvalStatus evaluate_forces(const Model& m, Workspace& ws, double t, const double* q, const double* v,
+                           bool constraint_rows = true);
 
 /// Evaluates accelerations q̈ (and λ, film kinematics and forces in `ws`) at (t, q, v), the
 /// constraints stabilised by `stab`: ok, outside_domain (ε >= 1 without contact) or singular.
