@@ -131,10 +131,10 @@ def brute_force_neighbours(df, axes):
     """Neighbours by the definition, pair by pair: equal on every axis but one numeric axis,
     whose two values are consecutive in that axis's sorted distinct values."""
     levels = {a: sorted(set(df[a].dropna())) for a in axes if df[a].dtype.kind == "f"}
+    same = lambda a, i, j: df.at[i, a] == df.at[j, a] or (a in levels and np.isnan(df.at[i, a]) and np.isnan(df.at[j, a]))
     out = set()
     for i, j in itertools.combinations(df.index, 2):
-        diff = [a for a in axes if not (df.at[i, a] == df.at[j, a] or (a in levels and
-                                                                        np.isnan(df.at[i, a]) and np.isnan(df.at[j, a])))]
+        diff = [a for a in axes if not same(a, i, j)]
         if len(diff) == 1 and diff[0] in levels and not np.isnan(df.at[i, diff[0]]) and not np.isnan(df.at[j, diff[0]]):
             a = diff[0]
             lo, hi = sorted((i, j), key=lambda k: df.at[k, a])
@@ -198,7 +198,8 @@ def plot_steady():
 def test_the_mark_sits_where_the_crossing_was_interpolated(plot_steady):
     e = only_edge(table({"viscosity_Pa_s": 0.1, **mult(0.9, 0.0)}, {"viscosity_Pa_s": 0.4, **mult(1.2, 0.0)}))
     assert plot_steady.edge_fraction(e) == pytest.approx(1.0 / 3.0, rel=1e-12)
-    lost = only_edge(table({"viscosity_Pa_s": 0.1, "classification": "drifting"}, {"viscosity_Pa_s": 0.4, **mult(0.9, 0.0)}))
+    lost = only_edge(table({"viscosity_Pa_s": 0.1, "classification": "drifting"},
+                           {"viscosity_Pa_s": 0.4, **mult(0.9, 0.0)}))
     assert plot_steady.edge_fraction(lost) == 0.5
 
 
@@ -227,7 +228,8 @@ def test_the_map_draws_every_kind_of_edge_in_and_between_panels(plot_steady, tmp
     texts = []
     import matplotlib.axes
     real = matplotlib.axes.Axes.text
-    monkeypatch.setattr(matplotlib.axes.Axes, "text", lambda ax, x, y, s, **kw: texts.append(s) or real(ax, x, y, s, **kw))
+    monkeypatch.setattr(matplotlib.axes.Axes, "text",
+                        lambda ax, x, y, s, **kw: texts.append(s) or real(ax, x, y, s, **kw))
     edges = classification_map(plot_steady, df, tmp_path / "map.png")
     assert sorted(edges.kind) == sorted(["fold", "period_doubling", "neimark_sacker", "orbit_lost", "orbit_lost"])
     # One letter per edge in a panel, two for the edge between panels (one in each, its arrow
@@ -237,6 +239,7 @@ def test_the_map_draws_every_kind_of_edge_in_and_between_panels(plot_steady, tmp
 
 
 def test_the_map_of_a_study_without_multipliers_is_drawn_as_before(plot_steady, tmp_path):
-    rows = [{"clearance_m": c, "viscosity_Pa_s": v, "classification": "periodic"} for c in (1e-4, 2e-4) for v in (0.1, 0.4)]
+    rows = [{"clearance_m": c, "viscosity_Pa_s": v, "classification": "periodic"}
+            for c in (1e-4, 2e-4) for v in (0.1, 0.4)]
     edges = classification_map(plot_steady, table(*rows, multipliers=False), tmp_path / "map.png")
     assert edges.empty and (tmp_path / "map.png").stat().st_size > 0

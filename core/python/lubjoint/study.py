@@ -27,7 +27,8 @@ import json
 import os
 from collections.abc import Mapping
 
-from .bifurcations import KINDS as BIFURCATION_LETTERS, bifurcation_edges  # noqa: F401  (re-exported: the study's look-ups in one place)
+# Re-exported: the study's look-ups in one place.
+from .bifurcations import KINDS as BIFURCATION_LETTERS, bifurcation_edges  # noqa: F401
 
 #: The study-file format lubsweep writes (kStudyFormat, sweep/include/lub/sweep/study_file.hpp).
 #: 5: NaN for every unknown float (4 wrote -1 for an unknown periodicity).
