@@ -63,8 +63,11 @@ def draw_edges(axs, layout, cases, edges):
         colour, letter = EDGE_COLOURS[e.kind], study_reader.BIFURCATION_LETTERS[e.kind]
         style = dict(color=colour, lw=2.2, ls="--" if e.kind == "orbit_lost" else "-", solid_capstyle="butt")
         box = dict(fc="white", ec=colour, lw=0.6, pad=0.6, alpha=0.9)
-        cells = [(laws.index(r["force_law"]), speeds.index(r["speed_rpm"]), clearances.index(r["clearance_m"]),
-                  viscosities.index(r["viscosity_Pa_s"])) for r in ends]
+        try:
+            cells = [(laws.index(r["force_law"]), speeds.index(r["speed_rpm"]), clearances.index(r["clearance_m"]),
+                      viscosities.index(r["viscosity_Pa_s"])) for r in ends]
+        except ValueError:  # a cell off the panels (an axis unset, NaN)
+            continue
         if e.axis in ("clearance_m", "viscosity_Pa_s"):
             (i, j, ya, xa), (_, _, yb, xb) = cells
             t = edge_fraction(e)
