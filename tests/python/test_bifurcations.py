@@ -243,3 +243,56 @@ def test_the_map_of_a_study_without_multipliers_is_drawn_as_before(plot_steady, 
             for c in (1e-4, 2e-4) for v in (0.1, 0.4)]
     edges = classification_map(plot_steady, table(*rows, multipliers=False), tmp_path / "map.png")
     assert edges.empty and (tmp_path / "map.png").stat().st_size > 0
+
+
+# --- the chain on a study lubsweep writes ----------------------------------------------------
+
+
+def test_the_chain_on_a_two_cell_continuation_study(plot_steady, tmp_path):
+    # Frene long at 0.5 and 0.2 mm, continued (a few seconds): the multipliers come from
+    # lubsweep, the edge from bifurcation_edges, the marks from plot_steady. Whether |mu|max
+    # crosses 1 between them is the physics' answer (at this build: 0.998 and 1.0001, a
+    # complex pair: Neimark-Sacker); the test checks the edge against the /cases columns by
+    # hand either way.
+    import json
+    import os
+    import subprocess
+    build = Path(os.environ.get("LUB_BUILD_DIR", Path(__file__).resolve().parents[2] / "build"))
+    lubsweep = build / "sweep" / "lubsweep"
+    if not lubsweep.exists():
+        pytest.skip(f"no {lubsweep} (build lubsweep)")
+    source = Path(__file__).resolve().parents[2]
+    grid = {"scene": str(source / "configs" / "scenes" / "slider_crank.json"), "joint": "rod_slider",
+            "driver": "crank_speed",
+            "set": {"/solver/formulation": "partitioned", "/simulation/steady": "continuation"},
+            "study": {"max_cycles": 40, "stop_when_steady": True, "steady_tolerance": 0.001, "metric_cycles": 2,
+                      "channels": [], "on_failure": "continue"},
+            "axes": [{"name": "clearance_m", "values": [0.0005, 0.0002]}, {"name": "viscosity_Pa_s", "values": [0.4]},
+                     {"name": "speed_rpm", "values": [5000]}, {"name": "force_law", "values": ["frene_long"]}]}
+    (tmp_path / "grid.json").write_text(json.dumps(grid))
+    env = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"}
+    p = subprocess.run([str(lubsweep), str(tmp_path / "grid.json"), "-o", str(tmp_path / "study.h5"), "-q",
+                        "--no-summary"], capture_output=True, text=True, env=env, timeout=300)
+    assert p.returncode == 0, p.stderr
+    cases = study.cases(tmp_path / "study.h5")
+    assert sorted(cases["continued_from"]) == [-1, 1]  # the 0.2 mm cell is the seed (largest mu omega / c^2)
+    edges = classification_map(plot_steady, cases, tmp_path / "map.png")
+    mu = cases["multiplier_1_modulus"]
+    assert mu.notna().all()
+    if (mu[0] - 1.0) * (mu[1] - 1.0) > 0:
+        assert edges.empty
+        return
+    e = edges.iloc[0]
+    assert len(edges) == 1 and (e.case_a, e.case_b, e.axis) == (1, 0, "clearance_m")
+    u = cases.loc[0 if mu[0] > 1 else 1]
+    # The rule with its tolerances (1e-3 rad, 1e-6 relative: bifurcation_edges' docstring).
+    angle = u["multiplier_1_angle_rad"]
+    pair = (abs(u["multiplier_2_modulus"] / u["multiplier_1_modulus"] - 1.0) <= 1e-6
+            and abs(u["multiplier_2_angle_rad"] + angle) <= 1e-3)
+    expected = ("fold" if abs(angle) <= 1e-3 else "period_doubling" if abs(angle) >= math.pi - 1e-3
+                else "neimark_sacker" if pair else "unclassified")
+    assert e.kind == expected
+    # |mu| - 1 linear in ln c between (ln 0.2 mm, mu[1] - 1) and (ln 0.5 mm, mu[0] - 1).
+    t = (mu[1] - 1.0) / (mu[1] - mu[0])
+    assert e.crossing_value == pytest.approx(2e-4 * (5e-4 / 2e-4) ** t, rel=1e-12)
+    assert (tmp_path / "map.png").stat().st_size > 0
