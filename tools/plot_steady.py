@@ -5,7 +5,14 @@
 
 From a study over clearance x viscosity x crank speed x force law (configs/grids/
 full_factorial.json):
-  steady_classification.png   each case's classification, one panel per law and speed
+  steady_classification.png   each case's classification, one panel per law and speed; the grid
+                              edges where the orbit changes (lubjoint.study.bifurcation_edges):
+                              F fold, PD period doubling, NS Neimark-Sacker (a bar where
+                              |mu|max crosses 1, interpolated between the cells), X orbit lost
+                              (a dashed bar midway), ? unclassified; an edge along the crank
+                              speed is a letter at the cell's side, its arrow toward the panel
+                              of the other end
+  steady_edges.csv            those edges (the columns of bifurcation_edges), when there are any
   steady_multiplier.png       the dominant Floquet multiplier's modulus |mu|max there
 With --orbit (needs the compiled lubjoint module): Frene long at the reference case,
   steady_frene_long_orbit.png  the journal's orbit over a 40-cycle transient, its Poincare
@@ -26,9 +33,60 @@ from lubjoint import study as study_reader  # noqa: E402  (PYTHONPATH=build/pyth
 CLASSES = ["periodic", "periodic_unstable", "drifting", "not_converged", "film_collapse", "solver_failure",
            "budget_exceeded"]
 COLOURS = ["#2a9d8f", "#e9c46a", "#e76f51", "#8d99ae", "#6d597a", "#000000", "#444444"]
+# The edges' marks (lubjoint.bifurcations.KINDS gives the letters).
+EDGE_COLOURS = {"fold": "#d62828", "period_doubling": "#1d3557", "neimark_sacker": "#7b2cbf",
+                "unclassified": "#555555", "orbit_lost": "#000000"}
+EDGE_NAMES = {"fold": "F fold", "period_doubling": "PD period doubling", "neimark_sacker": "NS Neimark-Sacker",
+              "unclassified": "? unclassified", "orbit_lost": "X orbit lost"}
 
 
-def grid_panels(cases, value, title, out, cmap=None, norm=None, categorical=False):
+def edge_fraction(e):
+    """Where |mu|max crosses 1 on an edge, as the fraction of the way from its case a to its case b
+    (the cells are one step apart; the crossing was interpolated in the log of the axis value); 0.5
+    where there is no crossing value (orbit lost)."""
+    x, va, vb = e.crossing_value, e.value_a, e.value_b
+    if not np.isfinite(x):
+        return 0.5
+    if va > 0 and vb > 0:
+        return float(np.log(x / va) / np.log(vb / va))
+    return float((x - va) / (vb - va))
+
+
+def draw_edges(axs, layout, cases, edges):
+    """The edges on the panels: a bar across the link at the crossing with the kind's letter; along
+    the crank speed (between panels) a letter at the cell's side, its arrow toward the other panel.
+    Returns the kinds drawn."""
+    laws, speeds, clearances, viscosities = layout
+    drawn = set()
+    for e in edges.itertuples():
+        ends = [cases.loc[e.case_a], cases.loc[e.case_b]]
+        colour, letter = EDGE_COLOURS[e.kind], study_reader.BIFURCATION_LETTERS[e.kind]
+        style = dict(color=colour, lw=2.2, ls="--" if e.kind == "orbit_lost" else "-", solid_capstyle="butt")
+        box = dict(fc="white", ec=colour, lw=0.6, pad=0.6, alpha=0.9)
+        try:
+            cells = [(laws.index(r["force_law"]), speeds.index(r["speed_rpm"]), clearances.index(r["clearance_m"]),
+                      viscosities.index(r["viscosity_Pa_s"])) for r in ends]
+        except ValueError:  # a cell off the panels (an axis unset, NaN)
+            continue
+        if e.axis in ("clearance_m", "viscosity_Pa_s"):
+            (i, j, ya, xa), (_, _, yb, xb) = cells
+            t = edge_fraction(e)
+            x, y = xa + t * (xb - xa), ya + t * (yb - ya)
+            bar = ([x - 0.4, x + 0.4], [y, y]) if e.axis == "clearance_m" else ([x, x], [y - 0.4, y + 0.4])
+            axs[i][j].plot(*bar, **style)
+            axs[i][j].text(x, y, letter, ha="center", va="center", fontsize=6, color=colour, bbox=box)
+        elif e.axis == "speed_rpm":
+            for (i, j, y, x), (_, jo, _, _) in ((cells[0], cells[1]), (cells[1], cells[0])):
+                left = jo < j
+                axs[i][j].text(x - 0.48 if left else x + 0.48, y, f"\u2190{letter}" if left else f"{letter}\u2192",
+                               ha="left" if left else "right", va="center", fontsize=6, color=colour, bbox=box)
+        else:
+            continue
+        drawn.add(e.kind)
+    return drawn
+
+
+def grid_panels(cases, value, title, out, cmap=None, norm=None, categorical=False, edges=None):
     laws = list(dict.fromkeys(cases["force_law"]))
     speeds = sorted(set(cases["speed_rpm"]), reverse=True)
     clearances = sorted(set(cases["clearance_m"]), reverse=True)
@@ -50,10 +108,18 @@ def grid_panels(cases, value, title, out, cmap=None, norm=None, categorical=Fals
                 ax.set_ylabel(f"{law}\nclearance [mm]", fontsize=8)
             if i == 0:
                 ax.set_title(f"{speed:g} rpm", fontsize=9)
+    drawn = set()
+    if edges is not None and len(edges):
+        drawn = draw_edges(axs, (laws, speeds, clearances, viscosities), cases, edges)
     if categorical:
         handles = [plt.Rectangle((0, 0), 1, 1, color=c) for c in COLOURS]
-        fig.legend(handles, CLASSES, loc="lower center", ncol=4, fontsize=8)
-        fig.subplots_adjust(bottom=0.12)
+        labels = list(CLASSES)
+        for kind in (k for k in EDGE_NAMES if k in drawn):
+            handles.append(plt.Line2D([0], [0], color=EDGE_COLOURS[kind], lw=2.2,
+                                      ls="--" if kind == "orbit_lost" else "-"))
+            labels.append(EDGE_NAMES[kind])
+        fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=8)
+        fig.subplots_adjust(bottom=0.12 if not drawn else 0.16)
     else:
         fig.colorbar(im, ax=axs, shrink=0.6, label="|mu|max (dominant Floquet multiplier)")
     fig.suptitle(title, fontsize=10)
@@ -113,9 +179,15 @@ def main():
     from matplotlib.colors import BoundaryNorm, ListedColormap
     cmap = ListedColormap(COLOURS)
     norm = BoundaryNorm(np.arange(len(CLASSES) + 1) - 0.5, len(CLASSES))
+    edges = study_reader.bifurcation_edges(cases)
+    if len(edges):
+        edges.to_csv(os.path.join(a.outdir, "steady_edges.csv"), index=False)
+        print(os.path.join(a.outdir, "steady_edges.csv"))
+    continued = "continued_from" in cases and (cases["continued_from"] >= 0).any()
     grid_panels(cases, lambda r: CLASSES.index(r["classification"]) if r["classification"] in CLASSES else np.nan,
-                "steady-cycle classification (simulation.steady = auto)",
-                os.path.join(a.outdir, "steady_classification.png"), cmap=cmap, norm=norm, categorical=True)
+                f"steady-cycle classification (simulation.steady = {'continuation' if continued else 'auto'})",
+                os.path.join(a.outdir, "steady_classification.png"), cmap=cmap, norm=norm, categorical=True,
+                edges=edges)
     grid_panels(cases, lambda r: r["multiplier_1_modulus"], "dominant Floquet multiplier |mu|max (periodic cases)",
                 os.path.join(a.outdir, "steady_multiplier.png"), cmap="viridis")
     if a.orbit:

@@ -12,6 +12,7 @@ adds the format check and the look-ups the tools share:
     ds = study.grid("out/study.h5", "clearance")  # xarray Dataset over the sub-grid's axes
     s = study.series("out/study.h5", "case_0003") # xarray Dataset indexed by t, or None
     sc = study.scene("out/study.h5", 3)           # case 3's effective scene (dict)
+    e = study.bifurcation_edges(cases)            # grid edges where the orbit changes (lubjoint.bifurcations)
 
 The formats read are ``ACCEPTED_FORMATS`` (one: ``STUDY_FORMAT``, what this build's lubsweep
 writes); any other is refused with one message that says what to do (re-run the sweep with
@@ -25,6 +26,9 @@ NaN); an integer column of ``/cases`` (counts, flags) holds -1 and says so in it
 import json
 import os
 from collections.abc import Mapping
+
+# Re-exported: the study's look-ups in one place.
+from .bifurcations import KINDS as BIFURCATION_LETTERS, bifurcation_edges  # noqa: F401
 
 #: The study-file format lubsweep writes (kStudyFormat, sweep/include/lub/sweep/study_file.hpp).
 #: 5: NaN for every unknown float (4 wrote -1 for an unknown periodicity).
