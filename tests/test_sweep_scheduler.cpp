@@ -192,7 +192,9 @@ TEST(SweepScheduler, ResumeSkipsTheCasesDone) {
 }
 
 TEST(SweepScheduler, TaskMessageRoundTrip) {
-  const Task t{7, "{\"a\":1}"};
+  Task t;
+  t.case_id = 7;
+  t.scene = "{\"a\":1}";
   const Task d = decode_task(encode(t));
   EXPECT_EQ(d.case_id, 7);
   EXPECT_EQ(d.scene, t.scene);
@@ -207,7 +209,10 @@ TEST(SweepScheduler, MalformedResultMessageIsRefusedClearly) {
   const std::string bytes = encode(r);
   EXPECT_EQ(decode(bytes).values, r.values);
   try {
-    decode(encode(Task{1, "x"}));  // a task is not a result
+    Task t;
+    t.case_id = 1;
+    t.scene = "x";
+    decode(encode(t));  // a task is not a result
     FAIL() << "a task decoded as a result";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("not a result message"), std::string::npos) << e.what();

@@ -219,7 +219,7 @@ bool MultibodySystem::joint_accelerations(double* thdd) {
   const int nd = nz_, ns = ws_.nc_active - m_.nc;
   const int ld = static_cast<int>(Mt_.rows());
   if (!dense::cholesky(Mt_.data(), ld, nd)) return false;
-  std::copy(Qt_.data(), Qt_.data() + nd, thdd);
+  for (int i = 0; i < nd; ++i) thdd[i] = Qt_(i);
   dense::cholesky_solve(Mt_.data(), ld, nd, thdd);
   if (ns == 0) return true;
   const int lx = static_cast<int>(Xt_.rows()), ls = static_cast<int>(St_.rows());

@@ -89,7 +89,7 @@ PerCase sweep_once(const Grid& g, int n, int prefetch, bool local, bool write, d
     MpiCoordinator transport(MPI_COMM_WORLD);
     Schedule s;
     s.prefetch = prefetch;
-    if (local) s.local = [&](const Case& c) { return stand_in(c.id, 0, case_us); };
+    if (local) s.local = [&](const Task& t) { return stand_in(t.case_id, 0, case_us); };
     s.record = [&](const CaseResult& r) {
       if (writer) writer->append(r);
     };
