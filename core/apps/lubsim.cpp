@@ -138,7 +138,7 @@ int main(int argc, char** argv) {
     std::printf("steady   %s (%s)%s\n", cls.c_str(), r.steady.method.c_str(),
                 cls == "periodic" || cls == "periodic_unstable"
                     ? ""
-                    : ": the metrics below are a transient's, not a steady cycle's (README \"Steady cycles\")");
+                    : ": the metrics below are a transient's, not a steady cycle's (docs/theory/steady-cycles.md)");
     if (r.steady.method == "shooting")
       std::printf("metrics  (the periodic orbit, %d cycles)\n", scene.simulation.metric_cycles);
     else
@@ -146,7 +146,7 @@ int main(int argc, char** argv) {
                   r.metrics.cycles_run);
     for (const auto& f : lub::metric_fields())
       std::printf("  %-34s %.6g %s\n", f.name.c_str(), f.get(r), f.unit.c_str());
-    std::printf("solver   %s (%s) rtol %.3g atol %.3g m (per state, README \"Integration\") jacobian %s\n",
+    std::printf("solver   %s (%s) rtol %.3g atol %.3g m (per state: docs/theory/formulations.md) jacobian %s\n",
                 r.stats.method.c_str(), r.stats.formulation.c_str(), r.stats.rtol, r.stats.atol,
                 r.stats.jacobian.c_str());
     for (const auto& f : lub::solver_fields())

@@ -340,7 +340,7 @@ Grid parse_grid(const std::string& text, const std::string& base_dir, const std:
   find_targets(r, cx);
   std::vector<PendingBlock> pending = read_blocks(r);
   r.finish();
-  if (pending.empty()) throw InputError("grid: needs axes, cases or grids (see the README, \"Writing a grid\")");
+  if (pending.empty()) throw InputError("grid: needs axes, cases or grids (docs/guide/grids.md)");
   expand_blocks(g, cx, pending);
   return g;
 }

@@ -72,7 +72,7 @@ void print_counts(std::FILE* out, const std::string& path, std::size_t n, std::i
   for (const auto& c : cls) ++by_class[c];
   std::fprintf(out, "classification:");
   for (const auto& [name, count] : by_class) std::fprintf(out, " %s %zu,", name.c_str(), count);
-  std::fprintf(out, " (h_min etc. only for periodic cycles: README \"Steady cycles\")\n");
+  std::fprintf(out, " (h_min etc. only for periodic cycles: docs/theory/steady-cycles.md)\n");
 }
 
 /// The table: a heading line, then `n` rows, each column as wide as its widest cell.

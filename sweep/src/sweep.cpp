@@ -35,7 +35,7 @@ const char* const kUsage =
     "usage: mpirun -np N lubsweep GRID.json -o STUDY.h5 [options]\n"
     "       lubsweep --summary STUDY.h5\n"
     "\n"
-    "Runs every case of GRID.json (see README, \"Writing a grid\") and writes STUDY.h5:\n"
+    "Runs every case of GRID.json (docs/guide/grids.md) and writes STUDY.h5:\n"
     "/cases (one row per case: axis values, status, metrics, solver statistics), /grids\n"
     "(case ids over each sub-grid's axes, with dimension scales, and the results over them),\n"
     "/scene and /scene_patches (each case's scene as a JSON Patch of the root attribute\n"

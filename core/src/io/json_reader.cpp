@@ -188,7 +188,7 @@ Eigen::Vector2d ObjectReader::vec2_or(const std::string& key, const Eigen::Vecto
 void ObjectReader::finish() const {
   for (auto it = object_.begin(); it != object_.end(); ++it) {
     if (!read_.count(it.key()))
-      fail(child(it.key()), it.value(), "unknown key (check the spelling; see the README)");
+      fail(child(it.key()), it.value(), "unknown key (check the spelling; the keys: docs/reference/)");
   }
 }
 
