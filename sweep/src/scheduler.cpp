@@ -79,6 +79,58 @@ class LocalWorker {
   std::thread thread_;  // last: starts after the members it uses
 };
 
+/// Which queued case may start (continuation: once its parent's result is in) and the task
+/// that carries its nearest ancestor's orbit.
+class ContinuationOrder {
+ public:
+  ContinuationOrder(const Grid& grid, const Schedule& s) : grid_(grid), parents_(s.parents), orbits_(s.finished) {}
+
+  /// Takes the first ready case off the queue, as a task; nullopt while none is ready.
+  std::optional<Task> next(std::deque<int>& queue) {
+    if (queue.empty()) return std::nullopt;
+    auto it = std::find_if(queue.begin(), queue.end(), [this](int id) {
+      return parent(id) < 0 || orbits_.count(parent(id)) > 0;
+    });
+    // Nothing ready and nothing running: no result will make one ready (a parent outside
+    // the queue): the first case goes without its parent.
+    if (it == queue.end() && running_ == 0) it = queue.begin();
+    if (it == queue.end()) return std::nullopt;
+    const int id = *it;
+    queue.erase(it);
+    ++running_;
+    return task_of(id);
+  }
+  void done(const CaseResult& r) {
+    --running_;
+    orbits_[r.case_id] = r.orbit_seed;
+  }
+
+ private:
+  int parent(int id) const { return parents_.empty() ? -1 : parents_.at(static_cast<std::size_t>(id)); }
+  Task task_of(int id) const {
+    const Case& c = grid_.cases.at(static_cast<std::size_t>(id));
+    Task t;
+    t.case_id = c.id;
+    t.scene = c.scene;
+    // The nearest ancestor with an orbit (a parent that found none passes on its own start).
+    for (int p = parent(id); p >= 0; p = parent(p)) {
+      const auto it = orbits_.find(p);
+      if (it != orbits_.end() && !it->second.empty()) {
+        t.from_case = p;
+        t.from_scene = grid_.cases.at(static_cast<std::size_t>(p)).scene;
+        t.from_orbit = it->second;
+        break;
+      }
+    }
+    return t;
+  }
+
+  const Grid& grid_;
+  const std::vector<int>& parents_;
+  std::map<int, std::vector<double>> orbits_;  ///< the orbits of the cases done so far
+  int running_ = 0;                            ///< cases handed out and not yet returned
+};
+
 }  // namespace
 
 std::deque<int> cases_to_run(const Grid& grid, const std::map<int, CaseResult>& done) {
@@ -100,42 +152,9 @@ bool schedule(const Grid& grid, std::deque<int> queue, CoordinatorTransport& tra
       if (s.on_abort) s.on_abort(r);
     }
   };
-  // Continuation: the orbits of the cases done so far; a case waits for its parent's.
-  std::map<int, std::vector<double>> orbits = s.finished;
-  const auto parent_of = [&](int id) { return s.parents.empty() ? -1 : s.parents.at(static_cast<std::size_t>(id)); };
-  const auto ready = [&](int id) { return parent_of(id) < 0 || orbits.count(parent_of(id)) > 0; };
-  const auto task_of = [&](int id) {
-    const Case& c = grid.cases.at(static_cast<std::size_t>(id));
-    Task t{c.id, c.scene, -1, "", {}};
-    // The nearest ancestor with an orbit (a parent that found none passes on its own start).
-    for (int p = parent_of(id); p >= 0; p = parent_of(p)) {
-      const auto it = orbits.find(p);
-      if (it != orbits.end() && !it->second.empty()) {
-        t.from_case = p;
-        t.from_scene = grid.cases.at(static_cast<std::size_t>(p)).scene;
-        t.from_orbit = it->second;
-        break;
-      }
-    }
-    return t;
-  };
-  int running = 0;  // cases handed out and not yet returned
-  auto next = [&]() -> std::optional<Task> {
-    if (aborting || queue.empty()) return std::nullopt;
-    auto it = std::find_if(queue.begin(), queue.end(), ready);
-    // Nothing ready and nothing running: no result will make one ready (a parent outside
-    // the queue): the first case goes without its parent.
-    if (it == queue.end() && running == 0) it = queue.begin();
-    if (it == queue.end()) return std::nullopt;
-    const int id = *it;
-    queue.erase(it);
-    ++running;
-    return task_of(id);
-  };
-  const auto note = [&](const CaseResult& r) {
-    --running;
-    orbits[r.case_id] = r.orbit_seed;
-  };
+  ContinuationOrder order(grid, s);
+  auto next = [&]() -> std::optional<Task> { return aborting ? std::nullopt : order.next(queue); };
+  const auto note = [&](const CaseResult& r) { order.done(r); };
 
   std::optional<LocalWorker> local;
   if (s.local) local.emplace(s.local);

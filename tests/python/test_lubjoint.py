@@ -498,7 +498,7 @@ def test_a_continued_study_keeps_each_orbit_and_its_parent(tmp_path):
     assert list(df["continued_from"]) == [-1, 0]
     for case in (0, 1):
         seed = lubjoint.study.orbit_seed(tmp_path / "study.h5", case)
-        n = len(seed["chart"])
+        n = 2 * len(seed["chart"])  # the independent coordinates and their velocities
         assert seed["monodromy"].shape == (n, n) and len(seed["deviation"]) == len(seed["winding"])
         # The seed's monodromy is the orbit's, in each state's unit (S^-1 M S): the same
         # eigenvalues as the multipliers the file reports (4 of them, largest first).

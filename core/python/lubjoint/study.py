@@ -137,8 +137,8 @@ def orbit_seed(path, case_id):
 
     A dict: ``deviation`` (the state (q, v) at crank angle 0 minus the scene's initial
     state, each coordinate in its own unit: dimensionless), ``modes`` (film modes),
-    ``chart`` (the independent coordinates, indices of q), ``monodromy`` (n x n numpy array
-    in the same units; empty: none), ``winding`` [rad per period], ``max_eps`` [1] and
+    ``chart`` (the independent coordinates, indices of q), ``monodromy`` (2 m x 2 m numpy array
+    over the m independent coordinates and their velocities, in the same units; empty: none), ``winding`` [rad per period], ``max_eps`` [1] and
     ``steps_per_period`` [1]. See docs/theory/continuation.md.
     """
     import numpy as np
@@ -157,7 +157,7 @@ def orbit_seed(path, case_id):
     for n in sizes:
         fields.append(row[at:at + n])
         at += n
-    n = len(fields[2])
+    n = 2 * len(fields[2])  # the chart's coordinates and their velocities
     return {
         "deviation": np.array(fields[0]),
         "modes": [int(x) for x in fields[1]],

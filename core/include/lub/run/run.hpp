@@ -188,7 +188,9 @@ struct OrbitSeed {
   std::vector<double> deviation;  ///< (q, v) − initial (q, v), in units (2 nq, dimensionless)
   std::vector<int> modes;         ///< each film's mode (FilmMode) at crank angle 0
   std::vector<int> chart;         ///< the chart's independent coordinates (indices of q)
-  std::vector<double> monodromy;  ///< ∂P/∂z in units, column-major (chart² entries); empty: none
+  /// ∂P/∂z in units, column-major, over the chart's coordinates and their velocities
+  /// ((2 × chart size)² entries); empty: none
+  std::vector<double> monodromy;
   std::vector<double> winding;    ///< how far each coordinate turns in a period [rad or 0] (2 nq)
   double max_eps = kNaN;      ///< the largest eccentricity ratio on the orbit
   double steps_per_period = 0.0;  ///< the integrator's steps per period on the orbit
