@@ -76,6 +76,9 @@ class Runner {
   Stop check_drift_and_budgets(double t);
   /// The integrator gave up at t: restart it there once, or end the segment.
   Stop integration_failed(double t);
+  /// A fresh start of the integrator from its own state at t (after a mode switch, a
+  /// resync, a failure), with the root directions of the modes now in force.
+  void restart_here(double t);
   Stop fail(RunStatus status, const std::string& message);
   /// The next stop time: the next cycle boundary (never the end of the run, which would
   /// bound SUNDIALS' initial-step estimates at every restart and so make the steps depend
@@ -267,8 +270,7 @@ Stop Runner::handle_root(double t, bool have_state) {
     return fail(RunStatus::solver_failure, "coordinate partitioning: the dependent coordinates cannot be recovered at t = " +
                                                std::to_string(t) + " s");
   res_.stats.mode_switches += sys_->switch_modes(root_flags_, t, yfull_.data());
-  integ_->reinit(t, integ_->y());
-  integ_->set_root_directions(sys_->root_directions());
+  restart_here(t);
   return Stop::none;
 }
 
@@ -304,6 +306,11 @@ Stop Runner::check_drift_and_budgets(double t) {
   return Stop::none;
 }
 
+void Runner::restart_here(double t) {
+  integ_->reinit(t, integ_->y());
+  integ_->set_root_directions(sys_->root_directions());
+}
+
 Stop Runner::integration_failed(double t) {
   // SUNDIALS leaves (t, y) at the end of the last accepted step. Where the film is thin the
   // squeeze film's radial mode is stiff (h λ ~ 1e4–1e8) and the state a step accepts lies
@@ -320,8 +327,7 @@ Stop Runner::integration_failed(double t) {
   if (restart) {
     try {
       integ_->clear_error();
-      integ_->reinit(t, integ_->y());
-      integ_->set_root_directions(sys_->root_directions());
+      restart_here(t);
       t_restarted_ = t;
       return Stop::none;
     } catch (const std::exception& e) {
@@ -352,8 +358,7 @@ Stop Runner::advance(double& t) {
     // A free mode that no longer matches the sign of ε̇: a crossing the root finder could
     // not see (ε̇ left zero from an exact zero at a restart). Restart on the branch that applies.
     res_.stats.mode_switches += resynced;
-    integ_->reinit(t, integ_->y());
-    integ_->set_root_directions(sys_->root_directions());
+    restart_here(t);
   }
   if (check_drift_and_budgets(t) == Stop::failed) return Stop::failed;
   if (steady || t >= t_end_ * (1 - 1e-15)) return Stop::done;

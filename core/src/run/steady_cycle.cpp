@@ -175,12 +175,14 @@ class SteadyRun {
   /// Newton on the period map from `base`, then the monodromy and the multipliers; if
   /// `final`, the classification, the metrics and error bars on the orbit. Sets the
   /// orbit's seed. False if no orbit was found (the message says why).
+  /// `from`: the orbit Newton started from (a continuation's), whose ε_max and steps per
+  /// period a path step's seed keeps (only the final step measures its own).
   bool solve_orbit(Chart& chart, const StartState& base, const std::vector<double>& winding, long long budget,
-                   steady::ShootingOptions options, bool final);
+                   steady::ShootingOptions options, bool final, const OrbitSeed& from);
   int last_iterations_ = 0;
-  double seed_max_eps_ = kNaN, seed_steps_per_period_ = 0.0;
-  /// Shooting's options at the transient's end: difference and Newton steps within the gap.
-  steady::ShootingOptions shooting_options(const Chart& chart) const;
+  /// Shooting's options from a cycle whose largest eccentricity ratio is `max_eps` (NaN:
+  /// unknown): difference and Newton steps within the gap.
+  steady::ShootingOptions shooting_options(const Chart& chart, double max_eps) const;
   /// Shooting found no orbit: drifting or not converged, and why.
   void shooting_failed(const steady::ShootingResult& found, const PeriodMap& period);
   /// The metrics and channels of the orbit at chart coordinates z; false if it fails.
@@ -301,14 +303,14 @@ void SteadyRun::shoot() {
   }
 }
 
-steady::ShootingOptions SteadyRun::shooting_options(const Chart& chart) const {
+steady::ShootingOptions SteadyRun::shooting_options(const Chart& chart, double max_eps) const {
   steady::ShootingOptions options;
   options.scales = chart.units();
   options.tolerance = sim_.shooting_tolerance;
   // Near the wall a step of 1 % of the clearance would put the perturbed journal through
-  // it: at most a tenth of the thinnest gap of the last cycle, 1 − ε_max (in clearances).
-  const double gap =
-      res_.cycles.empty() || !(res_.cycles.back().max_eps > 0.0) ? 1.0 : 1.0 - res_.cycles.back().max_eps;
+  // it: at most a tenth of the thinnest gap, 1 − ε_max (in clearances), of the cycle
+  // shooting starts from.
+  const double gap = !(max_eps > 0.0) ? 1.0 : 1.0 - max_eps;
   options.step = std::min(kDifferenceStep, 0.1 * gap);
   // Newton's steps no longer than the gap either (they are measured in the same units).
   options.max_newton_step = std::min(options.max_newton_step, gap);
@@ -390,11 +392,12 @@ void SteadyRun::shoot_from_transient() {
   // 20 times the transient's steps per cycle (its first cycles, from rest, included).
   const long long budget =
       20 * res_.stats.steps / std::max<long long>(1, static_cast<long long>(res_.cycles.size())) + 1000;
-  solve_orbit(chart, base, winding, budget, shooting_options(chart), true);
+  const double max_eps = res_.cycles.empty() ? kNaN : res_.cycles.back().max_eps;
+  solve_orbit(chart, base, winding, budget, shooting_options(chart, max_eps), true, OrbitSeed{});
 }
 
 bool SteadyRun::solve_orbit(Chart& chart, const StartState& base, const std::vector<double>& winding,
-                            long long budget, steady::ShootingOptions options, bool final) {
+                            long long budget, steady::ShootingOptions options, bool final, const OrbitSeed& from) {
   SteadyCycle& steady = res_.steady;
   PeriodMap period(rm_, chart, base, winding, 1.0, res_.stats, steady.periods_integrated);
   period.set_step_budget(budget);
@@ -426,8 +429,8 @@ bool SteadyRun::solve_orbit(Chart& chart, const StartState& base, const std::vec
                    (final ? tight_period.last_failure() : period.last_failure());
     return false;
   }
-  double max_eps = std::isfinite(seed_max_eps_) ? seed_max_eps_ : kNaN;
-  double steps_per_period = seed_steps_per_period_;
+  double max_eps = from.max_eps;
+  double steps_per_period = from.steps_per_period;
   steady.multipliers = steady::floquet_multipliers(monodromy.M);
   if (final) {
     const double dominant = steady.multipliers.empty() ? 0.0 : std::abs(steady.multipliers.front());
@@ -457,15 +460,8 @@ bool SteadyRun::continue_from(const OrbitSeed& seed, bool final) {
       res_.steady.kind = SteadyClass::periodic;
       return true;
     }
-    seed_max_eps_ = seed.max_eps;
-    seed_steps_per_period_ = seed.steps_per_period;
-    steady::ShootingOptions options;
-    options.scales = chart.units();
-    options.tolerance = sim_.shooting_tolerance;
-    // Within the neighbour's gap, as from a transient (shooting_options).
-    const double gap = seed.max_eps > 0.0 && seed.max_eps < 1.0 ? 1.0 - seed.max_eps : 1.0;
-    options.step = std::min(kDifferenceStep, 0.1 * gap);
-    options.max_newton_step = std::min(options.max_newton_step, gap);
+    // Within the neighbour's gap, as from a transient.
+    steady::ShootingOptions options = shooting_options(chart, seed.max_eps);
     options.max_iterations = kContinuationIterations;
     Eigen::MatrixXd J0;
     if (const std::optional<Eigen::MatrixXd> M0 = detail::seed_monodromy(seed, chart)) {
@@ -474,7 +470,7 @@ bool SteadyRun::continue_from(const OrbitSeed& seed, bool final) {
     }
     // The neighbour's steps per period, with room for a thinner film's smaller steps.
     const long long budget = static_cast<long long>(50.0 * seed.steps_per_period) + 1000;
-    return solve_orbit(chart, *base, seed.winding, budget, options, final);
+    return solve_orbit(chart, *base, seed.winding, budget, options, final, seed);
   } catch (const std::exception& e) {
     res_.steady.kind = SteadyClass::not_converged;
     res_.message = std::string("continuation: ") + e.what();
