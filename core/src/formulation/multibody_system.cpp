@@ -270,7 +270,7 @@ int MultibodySystem::joint_rhs(double t, const double* y, double* ydot) {
   const int ns = ws_.nc_active - m_.nc;
   for (int r = 0; r < ns; ++r) {
     const int row = m_.nc + r;
-    double b = ws_.gamma(row) - 2.0 * stab_.alpha * ws_.Phi_dot(row) - stab_.beta * stab_.beta * ws_.Phi(row);
+    double b = stab_.stabilised_gamma(ws_.gamma(row), ws_.Phi_dot(row), ws_.Phi(row));
     for (int i = 0; i < nq; ++i) b -= ws_.Phi_q(row, i) * k.c(i);
     bt_(r) = b;
     for (int j = 0; j < nd; ++j) {

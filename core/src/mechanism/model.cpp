@@ -253,7 +253,7 @@ EvalStatus evaluate(const Model& m, Workspace& ws, const Stabilisation& stab, do
   // (Φ_q M⁻¹ Φ_qᵀ) λ = Φ_q M⁻¹ g − γ̂,  γ̂ = γ − 2α Φ̇ − β² Φ  (qdd holds M⁻¹ g meanwhile)
   for (int i = 0; i < m.nq; ++i) qdd[i] = w[i] * ws.g(i);
   for (int r = 0; r < nc; ++r)
-    ws.rhs(r) = row_dot(ws, r, qdd) - (ws.gamma(r) - 2.0 * stab.alpha * ws.Phi_dot(r) - (stab.beta * stab.beta) * ws.Phi(r));
+    ws.rhs(r) = row_dot(ws, r, qdd) - stab.stabilised_gamma(ws.gamma(r), ws.Phi_dot(r), ws.Phi(r));
   if (!factor_schur(m, ws, nc)) return EvalStatus::singular;
   ws.lambda.head(nc) = ws.rhs.head(nc);
   dense::cholesky_solve(ws.S.data(), static_cast<int>(ws.S.rows()), nc, ws.lambda.data());

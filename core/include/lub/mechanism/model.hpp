@@ -94,6 +94,11 @@ struct Model {
 struct Stabilisation {
   double alpha = 5.0;
   double beta = 5.0;
+  /// γ̂ = γ − 2αΦ̇ − β²Φ: a constraint row's acceleration right-hand side with Baumgarte's
+  /// terms (Φ in m or rad, Φ̇ per s, γ per s²).
+  double stabilised_gamma(double gamma, double Phi_dot, double Phi) const {
+    return gamma - 2.0 * alpha * Phi_dot - (beta * beta) * Phi;
+  }
 };
 
 /// What an evaluation of the model found.
