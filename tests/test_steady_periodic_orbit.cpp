@@ -27,12 +27,16 @@ class AffineMap final : public lub::steady::CycleMap {
   int dim() const override { return 3; }
   int apply(const double* z, double* Pz) override {
     const Eigen::Map<const Eigen::Vector3d> zv(z);
-    if (zv.lpNorm<Eigen::Infinity>() > fail_) return 1;
+    if (zv.lpNorm<Eigen::Infinity>() > fail_) {
+      ++failures;
+      return 1;
+    }
     Eigen::Map<Eigen::Vector3d> out(Pz);
     out = A_ * zv + b_;
     return 0;
   }
   Eigen::Vector3d fixed_point() const { return (Eigen::Matrix3d::Identity() - A_).lu().solve(b_); }
+  int failures = 0;  ///< evaluations refused outside the domain
 
  private:
   Eigen::MatrixXd A_;
@@ -201,6 +205,122 @@ TEST(Contraction, NoiseFloorAndTooFewCycles) {
   EXPECT_TRUE(lub::steady::transient_converged(e, 1e-3));
   EXPECT_NEAR(lub::steady::trend_per_cycle({5.0, 4.0, 3.0, 2.0}, 10), -1.0, 1e-14);
   EXPECT_EQ(lub::steady::trend_per_cycle({5.0}, 10), 0.0);
+}
+
+}  // namespace
+
+namespace {
+
+// A slow manifold in closed form: z = (s, f), s creeping towards its limit s* by a factor
+// 1 − κ(s) each period (κ small and changing along the way, as a film's thinning rate
+// does near the wall), f slaved to s and decaying fast.
+//   s' = s* + (1 − κ(s)) (s − s*),  κ(s) = 2e-3 (1 + s²),   f' = 0.2 f + 0.1 sin s.
+// The plain iteration needs ~ln(1e6)/κ ≈ 5000 periods to get to 1e-6 of s*.
+class SlowManifoldMap final : public lub::steady::CycleMap {
+ public:
+  static constexpr double kLimit = 1.5;
+  int dim() const override { return 2; }
+  int apply(const double* z, double* Pz) override {
+    ++maps;
+    const double s = z[0], f = z[1];
+    if (s > wall) {
+      ++failures;
+      return 1;
+    }
+    const double kappa = 2e-3 * (1.0 + s * s);
+    Pz[0] = kLimit + (1.0 - kappa) * (s - kLimit);
+    Pz[1] = 0.2 * f + 0.1 * std::sin(s);
+    return 0;
+  }
+  long long maps = 0;
+  double wall = 1e300;  ///< s beyond it cannot be evaluated
+  int failures = 0;
+};
+
+TEST(AndersonFixedPoint, CrossesASlowManifoldInTensOfPeriods) {
+  SlowManifoldMap P;
+  lub::steady::AndersonOptions o;
+  o.residual_scales = {1.0, 1.0};
+  o.tolerance = 1e-10;
+  o.max_maps = 100;
+  const auto r = lub::steady::anderson_fixed_point(P, Eigen::Vector2d(-1.0, 0.0), o);
+  ASSERT_EQ(r.outcome, lub::steady::ShootingOutcome::converged);
+  // The fixed point: s*, f* = 0.1 sin s* / 0.8. The residual 1e-10 over 1 − μ_s (κ(s*) =
+  // 6.5e-3) bounds the distance to it.
+  EXPECT_NEAR(r.z(0), SlowManifoldMap::kLimit, 1e-10 / 6.5e-3);
+  EXPECT_NEAR(r.z(1), 0.1 * std::sin(SlowManifoldMap::kLimit) / 0.8, 1e-9);
+  // Secant-like: tens of periods where the plain iteration needs thousands.
+  EXPECT_LE(r.maps, 40);
+  EXPECT_EQ(r.maps, P.maps);
+}
+
+TEST(AndersonFixedPoint, RestartsFromTheFlowWhereAnExtrapolationLeavesTheDomain) {
+  // The slow manifold with a wall just beyond its limit (s > s* + 1e-4 cannot be
+  // evaluated, as a journal beyond the clearance): the flow approaches s* from below and
+  // never gets there, the secant extrapolation overshoots it. Each overshoot restarts the
+  // history from P(z_best), and the iteration still converges.
+  SlowManifoldMap P;
+  P.wall = SlowManifoldMap::kLimit + 1e-4;
+  lub::steady::AndersonOptions o;
+  o.residual_scales = {1.0, 1.0};
+  o.tolerance = 1e-10;
+  o.max_maps = 200;
+  const auto r = lub::steady::anderson_fixed_point(P, Eigen::Vector2d(-1.0, 0.0), o);
+  ASSERT_EQ(r.outcome, lub::steady::ShootingOutcome::converged) << r.maps << " maps, residual " << r.residual;
+  EXPECT_NEAR(r.z(0), SlowManifoldMap::kLimit, 1e-10 / 6.5e-3);
+  EXPECT_GT(P.failures, 0) << "no extrapolation crossed the wall: the restart was not exercised";
+  // A start the map cannot evaluate ends at once, left_domain.
+  const auto bad = lub::steady::anderson_fixed_point(P, Eigen::Vector2d(2.0, 0.0), o);
+  EXPECT_EQ(bad.outcome, lub::steady::ShootingOutcome::left_domain);
+  EXPECT_EQ(bad.maps, 1);
+}
+
+TEST(AndersonFixedPoint, StopsWhereTheMapIsOnlyNoise) {
+  // A map whose fixed point is hidden under noise of 1e-6: the best residual stops
+  // improving, and `stall` maps later the iteration ends, not_converged, near the point.
+  class Noisy final : public lub::steady::CycleMap {
+   public:
+    int dim() const override { return 1; }
+    int apply(const double* z, double* Pz) override {
+      k = k * 1103515245u + 12345u;
+      Pz[0] = 0.5 + 0.99 * (z[0] - 0.5) + 1e-6 * (static_cast<double>((k >> 16) & 0x7fff) / 32767.0 - 0.5);
+      return 0;
+    }
+    unsigned k = 1;
+  } P;
+  lub::steady::AndersonOptions o;
+  o.residual_scales = {1.0};
+  o.tolerance = 1e-12;
+  o.max_maps = 500;
+  o.stall = 12;
+  const auto r = lub::steady::anderson_fixed_point(P, Eigen::VectorXd::Constant(1, -3.0), o);
+  EXPECT_EQ(r.outcome, lub::steady::ShootingOutcome::not_converged);
+  EXPECT_LT(r.maps, 100);
+  EXPECT_NEAR(r.z(0), 0.5, 1e-6 / 0.01);  // the noise over 1 − μ
+}
+
+}  // namespace
+
+namespace {
+
+TEST(Monodromy, AStepThroughTheWallIsTakenAgainSmaller) {
+  // The affine map fails beyond |z|∞ = fp + 5e-3: the difference step 1e-2 from the fixed
+  // point crosses that wall, 1e-3 does not. With retries the monodromy is A (differences of
+  // an affine map are exact to round-off); without, the perturbed period's failure is
+  // reported.
+  AffineMap probe(0.998, 0.93, 1e-3);
+  const Eigen::Vector3d fp = probe.fixed_point();
+  AffineMap P(0.998, 0.93, 1e-3, fp.lpNorm<Eigen::Infinity>() + 5e-3);
+  Eigen::VectorXd Pz(3);
+  ASSERT_EQ(P.apply(fp.data(), Pz.data()), 0);
+  lub::steady::MonodromyOptions mo{{1.0, 1.0, 1.0}, 1e-2, true, 2};
+  const auto m = lub::steady::monodromy_by_differences(P, fp, Pz, mo);
+  ASSERT_EQ(m.failed, 0);
+  EXPECT_GT(P.failures, 0);
+  const auto mu = lub::steady::floquet_multipliers(m.M);
+  EXPECT_NEAR(std::abs(mu.front()), 0.998, 1e-9);
+  mo.retries = 0;
+  EXPECT_EQ(lub::steady::monodromy_by_differences(P, fp, Pz, mo).failed, 1);
 }
 
 }  // namespace

@@ -8,33 +8,60 @@
 #include <Eigen/Core>
 
 #include "lub/formulation/multibody_system.hpp"
+#include "lub/scene/scene.hpp"
 #include "lub/steady/periodic_orbit.hpp"
 #include "run/segment.hpp"
 
 namespace lub::detail {
 
-/// The coordinates shooting works in: the partitioned formulation's independent
-/// coordinates and velocities, partitioned once at the state where shooting starts
-/// (whatever formulation integrates the periods), each in its own unit.
+/// The coordinates shooting works in (simulation.shooting_coordinates), each in its own unit:
+///  - independent: the partitioned formulation's independent coordinates and velocities,
+///    partitioned once at the state where shooting starts (whatever formulation
+///    integrates the periods);
+///  - wall: each lubricated joint's wall coordinates w and their rates ẇ
+///    (wall_coordinates.hpp), where the journals' eccentricities are a complete set of
+///    coordinates (the drivers move everything else: 2 per film, a regular map from the
+///    independent coordinates); elsewhere the independent ones.
 class Chart {
  public:
-  Chart(RunModel& rm, const StartState& x);
+  Chart(RunModel& rm, const StartState& x, ShootingCoordinates kind = ShootingCoordinates::independent);
   int size() const { return n_; }
-  /// Each coordinate's unit (state_units reduced to the chart).
+  /// Each coordinate's unit (state_units reduced to the chart; wall: 1 and the driver's rate).
   const std::vector<double>& units() const { return units_; }
+  /// The units a residual is measured in: `units`, in the wall chart × 1/(1 − ε²) of each
+  /// journal at the start, so that a tolerance means what it means in the independent
+  /// coordinates (an eccentricity change in clearances), however thin the film.
+  const std::vector<double>& residual_units() const { return residual_units_; }
   /// The chart coordinates of a full state (q, v).
   Eigen::VectorXd reduce(const std::vector<double>& qv) const;
-  void reduce(const double* qv, double* z) const { sys_.reduce(qv, z); }
-  /// The consistent state at time t with independent part z (the observer context: its
+  void reduce(const double* qv, double* z) const;
+  /// The consistent state at time t with chart coordinates z (the observer context: its
   /// Newton starts from the partition's state every time, so the map is a function of z).
   bool expand(double t, const double* z, std::vector<double>& qv);
-  /// The independent coordinates (indices of q) the chart was partitioned with.
-  const std::vector<int>& independent() const { return sys_.independent(); }
+  /// The chart's coordinates, which a seed's monodromy must share: the independent
+  /// coordinates (indices of q) the chart was partitioned with, or −1, −2, … (wall).
+  const std::vector<int>& independent() const { return ids_; }
+  /// Whether the chart is the wall-safe one.
+  bool wall() const { return wall_; }
 
  private:
+  /// The wall chart applies at x: 2 coordinates per film, every ε < 1, a regular map.
+  bool wall_applies(const StartState& x);
+  /// Wall: the eccentricities u = e/c and rates of every film at qv (2 nf each).
+  void film_state(const double* qv, Eigen::VectorXd& u, Eigen::VectorXd& u_dot) const;
+  /// Wall: ∂u/∂y at the partition's coordinates y (empty if the state cannot be recovered).
+  Eigen::MatrixXd eccentricity_jacobian(double t, const std::vector<double>& y);
+  /// Wall: the partition's coordinates y whose state has eccentricities u* and rates u̇*.
+  bool solve_partition(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& u_dot, std::vector<double>& qv);
+
+  const Model& model_;
   MultibodySystem sys_;
-  std::vector<double> units_;
+  std::vector<double> units_, residual_units_;
+  std::vector<int> ids_;
   int n_ = 0;
+  bool wall_ = false;
+  std::vector<double> y0_;       ///< wall: the partition's coordinates at the start
+  std::vector<double> y_units_;  ///< wall: their units
 };
 
 /// How much each coordinate advances over one period: 2π k for a body angle that turns

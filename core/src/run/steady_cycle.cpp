@@ -52,6 +52,14 @@ constexpr int kWindow = 10;
 /// ≈ 0.998. Newton with 1e-3 forward differences stalled at a residual of 3.5e-9 once in
 /// four starts; with 1e-2 it converged in all four.
 constexpr double kDifferenceStep = 1e-2;
+/// Anderson acceleration (find_orbit): periods at most, and the residual (in the residual's
+/// units) at which it hands over to Newton: the map's noise floor at rtol 1e-8 is ~1e-7–1e-6.
+constexpr int kAndersonPeriods = 60;
+constexpr double kAndersonHandOver = 1e-6;
+/// A Newton from the transient that stalls below this residual is at the map's noise: it
+/// runs again on periods at rtol × kTightenFactor.
+constexpr double kTightenBelow = 1e-4;
+constexpr double kTightenFactor = 0.1;
 /// Error bars re-integrate at rtol × this.
 constexpr double kTightFactor = 0.01;
 /// Newton iterations of one continuation step before it counts as failed (and the step is
@@ -180,6 +188,10 @@ class SteadyRun {
   bool solve_orbit(Chart& chart, const StartState& base, const std::vector<double>& winding, long long budget,
                    steady::ShootingOptions options, bool final, const OrbitSeed& from);
   int last_iterations_ = 0;
+  /// Newton on the period map from z0; if that fails and `accelerate`, Anderson-accelerated
+  /// periods from z0 and Newton again from where they got to.
+  steady::ShootingResult find_orbit(PeriodMap& period, const Eigen::VectorXd& z0, const steady::ShootingOptions& options,
+                                    bool accelerate);
   /// Shooting's options from a cycle whose largest eccentricity ratio is `max_eps` (NaN:
   /// unknown): difference and Newton steps within the gap.
   steady::ShootingOptions shooting_options(const Chart& chart, double max_eps) const;
@@ -306,7 +318,15 @@ void SteadyRun::shoot() {
 steady::ShootingOptions SteadyRun::shooting_options(const Chart& chart, double max_eps) const {
   steady::ShootingOptions options;
   options.scales = chart.units();
+  options.residual_scales = chart.residual_units();
   options.tolerance = sim_.shooting_tolerance;
+  if (sim_.shooting_fallback == ShootingFallback::anderson) options.difference_retries = 2;
+  // The wall chart keeps every iterate and difference step inside the clearance, and
+  // its steps are relative changes of the gap.
+  if (chart.wall()) {
+    options.step = kDifferenceStep;
+    return options;
+  }
   // Near the wall a step of 1 % of the clearance would put the perturbed journal through
   // it: at most a tenth of the thinnest gap, 1 − ε_max (in clearances), of the cycle
   // shooting starts from.
@@ -379,7 +399,7 @@ void SteadyRun::shoot_from_transient() {
   SteadyCycle& steady = res_.steady;
   if (boundaries_.size() < 2) return;  // the transient is shorter than two cycles
   const StartState base = end_;
-  Chart chart(rm_, base);
+  Chart chart(rm_, base, sim_.shooting_coordinates);
   if (chart.size() == 0) {
     // Nothing moves but what the drivers move: every state is a function of the crank
     // angle, periodic from the first cycle (the periodicity column shows what the
@@ -396,37 +416,73 @@ void SteadyRun::shoot_from_transient() {
   solve_orbit(chart, base, winding, budget, shooting_options(chart, max_eps), true, OrbitSeed{});
 }
 
+steady::ShootingResult SteadyRun::find_orbit(PeriodMap& period, const Eigen::VectorXd& z0,
+                                             const steady::ShootingOptions& options, bool accelerate) {
+  steady::ShootingResult found = steady::solve_periodic_orbit(period, z0, options);
+  if (found.outcome == steady::ShootingOutcome::converged || !accelerate ||
+      sim_.shooting_fallback != ShootingFallback::anderson)
+    return found;
+  // Newton from the transient's end found no orbit: the orbit may lie far along a slow
+  // manifold. Anderson-accelerated periods from the same start (one period a step,
+  // following the flow), then Newton again from where they got to.
+  steady::AndersonOptions ao;
+  ao.residual_scales = options.residual_scales.empty() ? options.scales : options.residual_scales;
+  ao.max_maps = kAndersonPeriods;
+  ao.tolerance = kAndersonHandOver;
+  const steady::ShootingResult accelerated = steady::anderson_fixed_point(period, z0, ao);
+  if (accelerated.residual < 0 || accelerated.residual >= found.residual) return found;
+  steady::ShootingResult again = steady::solve_periodic_orbit(period, accelerated.z, options);
+  again.iterations += found.iterations;
+  again.maps += found.maps + accelerated.maps;
+  return again.outcome == steady::ShootingOutcome::converged || again.residual < found.residual ? again : found;
+}
+
 bool SteadyRun::solve_orbit(Chart& chart, const StartState& base, const std::vector<double>& winding,
                             long long budget, steady::ShootingOptions options, bool final, const OrbitSeed& from) {
   SteadyCycle& steady = res_.steady;
-  PeriodMap period(rm_, chart, base, winding, 1.0, res_.stats, steady.periods_integrated);
-  period.set_step_budget(budget);
-  // Periods at rtol/100: the Newton Jacobians' and the monodromy's central differences
-  // (the map's noise at rtol, ~1e-5 c at 1e-8, over a step of ~1e-2 c would be ~1e-3 in
-  // them: Frêne long's |μ|max 0.9973 or 0.9990 with steps 1e-2 and 8.8e-3 at rtol 1e-8,
-  // against 0.9966 from the transient's own decay), and the error bars.
-  PeriodMap tight_period(rm_, chart, base, winding, kTightFactor, res_.stats, steady.periods_integrated);
-  tight_period.set_step_budget(10 * budget);
-  options.jacobian_map = &tight_period;
-  const steady::ShootingResult found = steady::solve_periodic_orbit(period, chart.reduce(base.qv), options);
+  // The period map at rtol × factor, and at rtol/100 of that: the Newton Jacobians' and
+  // the monodromy's central differences (the map's noise at rtol, ~1e-5 c at 1e-8, over a
+  // step of ~1e-2 c would be ~1e-3 in them: Frêne long's |μ|max 0.9973 or 0.9990 with
+  // steps 1e-2 and 8.8e-3 at rtol 1e-8, against 0.9966 from the transient's own decay),
+  // and the error bars.
+  std::optional<PeriodMap> period, tight_period;
+  auto maps_at = [&](double factor) {
+    period.emplace(rm_, chart, base, winding, factor, res_.stats, steady.periods_integrated);
+    period->set_step_budget(budget);
+    tight_period.emplace(rm_, chart, base, winding, factor * kTightFactor, res_.stats, steady.periods_integrated);
+    tight_period->set_step_budget(10 * budget);
+    options.jacobian_map = &*tight_period;
+  };
+  maps_at(1.0);
+  steady::ShootingResult found = find_orbit(*period, chart.reduce(base.qv), options, !from.valid());
+  if (found.outcome != steady::ShootingOutcome::converged && !from.valid() &&
+      sim_.shooting_fallback == ShootingFallback::anderson && found.residual >= 0 && found.residual <= kTightenBelow) {
+    // Stalled at the map's own noise (near |μ| = 1 its fixed point moves by that noise
+    // over 1 − |μ|): Newton again on periods at rtol/10.
+    maps_at(kTightenFactor);
+    steady::ShootingResult again = steady::solve_periodic_orbit(*period, found.z, options);
+    again.iterations += found.iterations;
+    again.maps += found.maps;
+    if (again.outcome == steady::ShootingOutcome::converged || again.residual < found.residual) found = std::move(again);
+  }
   steady.newton_iterations += static_cast<int>(found.iterations);
   steady.orbit_residual = found.residual;
   last_iterations_ = static_cast<int>(found.iterations);
   if (found.outcome != steady::ShootingOutcome::converged) {
-    shooting_failed(found, period);
+    shooting_failed(found, *period);
     return false;
   }
   // Floquet multipliers: central differences at the orbit (error O(h²)). A step of a
   // continuation's path needs only a Jacobian for the next step: forward differences.
   const steady::Monodromy monodromy =
-      final ? steady::monodromy_by_differences(tight_period, found.z, found.Pz,
-                                               steady::MonodromyOptions{chart.units(), options.step, true})
-            : steady::monodromy_by_differences(period, found.z, found.Pz,
-                                               steady::MonodromyOptions{chart.units(), options.step, false});
+      final ? steady::monodromy_by_differences(*tight_period, found.z, found.Pz,
+                                               steady::MonodromyOptions{chart.units(), options.step, true, options.difference_retries})
+            : steady::monodromy_by_differences(*period, found.z, found.Pz,
+                                               steady::MonodromyOptions{chart.units(), options.step, false, options.difference_retries});
   if (monodromy.failed) {
     steady.kind = SteadyClass::not_converged;
     res_.message = "shooting converged, but a perturbed period failed: " +
-                   (final ? tight_period.last_failure() : period.last_failure());
+                   (final ? tight_period->last_failure() : period->last_failure());
     return false;
   }
   double max_eps = from.max_eps;
@@ -440,7 +496,7 @@ bool SteadyRun::solve_orbit(Chart& chart, const StartState& base, const std::vec
     if (!measure_orbit(chart, base, found.z)) return false;
     max_eps = res_.metrics.max_eps;
     steps_per_period = static_cast<double>(res_.stats.steps - steps0) / std::max(1, sim_.metric_cycles);
-    if (sim_.error_bars) orbit_error_bars(chart, base, tight_period, found.z, monodromy.M, options);
+    if (sim_.error_bars) orbit_error_bars(chart, base, *tight_period, found.z, monodromy.M, options);
   }
   StartState orbit = base;
   if (!chart.expand(base.t, found.z.data(), orbit.qv)) return final;
@@ -455,7 +511,7 @@ bool SteadyRun::continue_from(const OrbitSeed& seed, bool final) {
       res_.message = "the neighbour's orbit is of another mechanism";
       return false;
     }
-    Chart chart(rm_, *base);
+    Chart chart(rm_, *base, sim_.shooting_coordinates);
     if (chart.size() == 0) {
       res_.steady.kind = SteadyClass::periodic;
       return true;

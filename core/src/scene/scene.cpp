@@ -269,6 +269,9 @@ SimulationSpec parse_simulation(const json& j) {
   s.transient_cycles = static_cast<int>(r.integer_or("transient_cycles", s.transient_cycles, 1, 1'000'000));
   s.shooting_tolerance = r.number_or("shooting_tolerance", s.shooting_tolerance,
                                      [](double v) { return v > 0.0 && v < 1.0; }, "must be in (0, 1)");
+  s.shooting_coordinates =
+      r.choice_of<ShootingCoordinates>("shooting_coordinates", s.shooting_coordinates);
+  s.shooting_fallback = r.choice_of<ShootingFallback>("shooting_fallback", s.shooting_fallback);
   // Error bars cost a re-integration at a 100x tighter rtol: on by default where a steady
   // cycle is the product (shooting, auto), off for a plain transient.
   s.error_bars = r.boolean_or("error_bars", s.steady != SteadyMethod::transient);

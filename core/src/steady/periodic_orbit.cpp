@@ -29,26 +29,33 @@ Monodromy monodromy_by_differences(CycleMap& P, const Eigen::VectorXd& z, const 
   Monodromy out;
   out.M.setZero(n, n);
   Eigen::VectorXd zp = z, Pp(n), Pm(n);
-  for (int j = 0; j < n; ++j) {
-    const double h = opt.step * opt.scales[static_cast<size_t>(j)];
+  // One column: false if a perturbed period fails.
+  auto column = [&](int j, double h) {
     zp(j) = z(j) + h;
     ++out.maps;
-    if (P.apply(zp.data(), Pp.data()) != 0) {
-      ++out.failed;
-      return out;
-    }
-    if (opt.central) {
+    bool ok = P.apply(zp.data(), Pp.data()) == 0;
+    if (ok && opt.central) {
       zp(j) = z(j) - h;
       ++out.maps;
-      if (P.apply(zp.data(), Pm.data()) != 0) {
-        ++out.failed;
-        return out;
-      }
-      out.M.col(j) = (Pp - Pm) / (2.0 * h);
-    } else {
+      ok = P.apply(zp.data(), Pm.data()) == 0;
+      if (ok) out.M.col(j) = (Pp - Pm) / (2.0 * h);
+    } else if (ok) {
       out.M.col(j) = (Pp - Pz) / h;
     }
     zp(j) = z(j);
+    return ok;
+  };
+  for (int j = 0; j < n; ++j) {
+    // A perturbed period that fails (the step put the journal through the wall, or the
+    // integrator gave up on the perturbed start) is tried again with steps 10 and 100
+    // times smaller: near the wall the unit step can exceed what the film allows.
+    double h = opt.step * opt.scales[static_cast<size_t>(j)];
+    bool ok = false;
+    for (int attempt = 0; attempt <= opt.retries && !ok; ++attempt, h *= 0.1) ok = column(j, h);
+    if (!ok) {
+      ++out.failed;
+      return out;
+    }
   }
   return out;
 }
@@ -88,6 +95,7 @@ struct Problem {
   Eigen::VectorXd best_z, best_Pz;
   double best = std::numeric_limits<double>::infinity();
   const Eigen::MatrixXd* initial = nullptr;  // ShootingOptions::initial_jacobian, until used
+  std::vector<double> residual_scales;       // r_i
   int jacobians = 0;
 };
 
@@ -104,7 +112,7 @@ int residual_cb(N_Vector u, N_Vector f, void* data) {
   double r = 0.0;
   for (int i = 0; i < pb.n; ++i) {
     fd[i] = pb.Pz(i) - pb.z(i);
-    r = std::max(r, std::abs(fd[i]) / pb.opt->scales[static_cast<size_t>(i)]);
+    r = std::max(r, std::abs(fd[i]) / pb.residual_scales[static_cast<size_t>(i)]);
   }
   if (r < pb.best) {
     pb.best = r;
@@ -128,7 +136,7 @@ int jacobian_cb(N_Vector u, N_Vector fu, SUNMatrix J, void* data, N_Vector, N_Ve
   const double* fd = N_VGetArrayPointer(fu);
   Eigen::VectorXd z(pb.n), Pz(pb.n);
   for (int i = 0; i < pb.n; ++i) z(i) = ud[i], Pz(i) = fd[i] + ud[i];
-  MonodromyOptions mo{pb.opt->scales, pb.opt->step, pb.opt->central_jacobian};
+  MonodromyOptions mo{pb.opt->scales, pb.opt->step, pb.opt->central_jacobian, pb.opt->difference_retries};
   CycleMap& map = pb.opt->jacobian_map ? *pb.opt->jacobian_map : *pb.P;
   const Monodromy m = monodromy_by_differences(map, z, Pz, mo);
   pb.maps += m.maps;
@@ -147,7 +155,8 @@ void silent(int, const char*, const char*, char*, void*) {}
 
 ShootingResult solve_periodic_orbit(CycleMap& P, const Eigen::VectorXd& z0, const ShootingOptions& opt) {
   const int n = P.dim();
-  if (static_cast<int>(opt.scales.size()) != n || z0.size() != n)
+  if (static_cast<int>(opt.scales.size()) != n || z0.size() != n ||
+      (!opt.residual_scales.empty() && static_cast<int>(opt.residual_scales.size()) != n))
     throw std::invalid_argument("solve_periodic_orbit: scales and z0 must have the map's dimension");
   Problem pb;
   pb.P = &P;
@@ -158,6 +167,7 @@ ShootingResult solve_periodic_orbit(CycleMap& P, const Eigen::VectorXd& z0, cons
   if (opt.initial_jacobian && (opt.initial_jacobian->rows() != n || opt.initial_jacobian->cols() != n))
     throw std::invalid_argument("solve_periodic_orbit: the initial Jacobian must be n x n");
   pb.initial = opt.initial_jacobian;
+  pb.residual_scales = opt.residual_scales.empty() ? opt.scales : opt.residual_scales;
 
   // Destroyed in reverse order of declaration: KINSOL's memory first, the context last.
   OwnedContext ctx;
@@ -170,7 +180,7 @@ ShootingResult solve_periodic_orbit(CycleMap& P, const Eigen::VectorXd& z0, cons
   for (int i = 0; i < n; ++i) {
     NV_Ith_S(u.get(), i) = z0(i);
     NV_Ith_S(us.get(), i) = 1.0 / opt.scales[static_cast<size_t>(i)];
-    NV_Ith_S(fs.get(), i) = 1.0 / opt.scales[static_cast<size_t>(i)];
+    NV_Ith_S(fs.get(), i) = 1.0 / pb.residual_scales[static_cast<size_t>(i)];
   }
   OwnedMatrix J;
   J = SUNDenseMatrix(n, n, ctx);
@@ -240,6 +250,117 @@ ShootingResult solve_periodic_orbit(CycleMap& P, const Eigen::VectorXd& z0, cons
                                     flag == KIN_LSETUP_FAIL)
                     ? ShootingOutcome::left_domain
                     : ShootingOutcome::not_converged;
+  return out;
+}
+
+}  // namespace lub::steady
+
+namespace lub::steady {
+
+namespace {
+double scaled_max(const Eigen::VectorXd& f, const std::vector<double>& r) {
+  double m = 0.0;
+  for (Eigen::Index i = 0; i < f.size(); ++i) m = std::max(m, std::abs(f(i)) / r[static_cast<size_t>(i)]);
+  return m;
+}
+}  // namespace
+
+namespace {
+/// Anderson's iterate from the history (zs, fs; the last entry the current iterate):
+/// z + f − (ΔZ + ΔF) γ, γ = argmin ‖W (f − ΔF γ)‖₂; plain z + f without history.
+Eigen::VectorXd anderson_step(const std::vector<Eigen::VectorXd>& zs, const std::vector<Eigen::VectorXd>& fs,
+                              const Eigen::VectorXd& w) {
+  const Eigen::VectorXd& z = zs.back();
+  const Eigen::VectorXd& f = fs.back();
+  Eigen::VectorXd next = z + f;
+  const int n = static_cast<int>(z.size());
+  const int m = static_cast<int>(zs.size()) - 1;
+  if (m == 0) return next;
+  Eigen::MatrixXd dF(n, m), dZ(n, m);
+  for (int j = 0; j < m; ++j) {
+    dF.col(j) = fs[static_cast<size_t>(j + 1)] - fs[static_cast<size_t>(j)];
+    dZ.col(j) = zs[static_cast<size_t>(j + 1)] - zs[static_cast<size_t>(j)];
+  }
+  // A column-pivoting QR drops directions the history does not resolve.
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(w.asDiagonal() * dF);
+  const Eigen::VectorXd gamma = qr.solve(w.asDiagonal() * f);
+  if (gamma.allFinite()) next -= (dZ + dF) * gamma;
+  return next;
+}
+}  // namespace
+
+ShootingResult anderson_fixed_point(CycleMap& P, const Eigen::VectorXd& z0, const AndersonOptions& opt) {
+  const int n = P.dim();
+  if (z0.size() != n || static_cast<int>(opt.residual_scales.size()) != n)
+    throw std::invalid_argument("anderson_fixed_point: scales and z0 must have the map's dimension");
+  const Eigen::VectorXd w = Eigen::Map<const Eigen::VectorXd>(opt.residual_scales.data(), n).cwiseInverse();
+  ShootingResult out;
+  out.z = z0;
+  Eigen::VectorXd z = z0, Pz(n);
+  std::vector<Eigen::VectorXd> zs, fs;  // the history: iterates and their residuals
+  double best = std::numeric_limits<double>::infinity();
+  Eigen::VectorXd best_z, best_Pz;
+  // The last accepted iterate's image (a state the flow reached) and Anderson's point
+  // from it: a trial that fails, or whose residual is 10 × the best, is pulled back
+  // towards the image, z = plain + θ (anderson − plain), θ halved each time; below 1/16
+  // the image itself, and the history starts afresh.
+  Eigen::VectorXd plain, extrapolated;
+  double theta = 1.0;
+  int since_best = 0;  // maps since the best residual improved
+  auto pull_back = [&]() {
+    theta *= 0.5;
+    if (theta >= 1.0 / 16.0) {
+      z = plain + theta * (extrapolated - plain);
+      return;
+    }
+    z = plain;
+    zs.clear();
+    fs.clear();
+  };
+  while (out.maps < opt.max_maps) {
+    ++out.maps;
+    const bool trial = !zs.empty() && theta >= 1.0 / 16.0;  // z is an extrapolation
+    if (P.apply(z.data(), Pz.data()) != 0) {
+      if (!trial || ++since_best >= opt.stall) break;  // the start, or a state the flow reached, fails
+      pull_back();
+      continue;
+    }
+    const double r = scaled_max(Pz - z, opt.residual_scales);
+    if (trial && r > 10.0 * best) {
+      if (++since_best >= opt.stall) break;
+      pull_back();
+      continue;
+    }
+    if (r < best) {
+      best = r;
+      best_z = z;
+      best_Pz = Pz;
+      since_best = 0;
+    } else if (++since_best >= opt.stall) {
+      break;
+    }
+    if (r <= opt.tolerance) break;
+    zs.push_back(z);
+    fs.push_back(Pz - z);
+    if (static_cast<int>(zs.size()) > opt.depth + 1) {
+      zs.erase(zs.begin());
+      fs.erase(fs.begin());
+    }
+    ++out.iterations;
+    plain = Pz;
+    extrapolated = anderson_step(zs, fs, w);
+    theta = 1.0;
+    z = extrapolated;
+  }
+  if (std::isfinite(best)) {
+    out.z = best_z;
+    out.Pz = best_Pz;
+    out.residual = best;
+    out.outcome = best <= opt.tolerance ? ShootingOutcome::converged : ShootingOutcome::not_converged;
+  } else {
+    out.outcome = ShootingOutcome::left_domain;
+    out.message = "the period from the start failed";
+  }
   return out;
 }
 

@@ -133,6 +133,40 @@ struct NameTable<SteadyMethod> {
   }};
 };
 
+/// The unknowns of shooting's Newton (simulation.shooting_coordinates;
+/// docs/theory/steady-cycles.md, coordinates).
+enum class ShootingCoordinates {
+  /// the journals' eccentricities mapped onto the plane (w = atanh(ε) e/(c ε)) and their
+  /// rates, where they are a complete set of coordinates: no Newton iterate or difference
+  /// step crosses the wall, and a step is a relative change of the gap
+  wall,
+  independent,  ///< the partitioned formulation's independent coordinates and velocities
+};
+template <>
+struct NameTable<ShootingCoordinates> {
+  static constexpr std::array<std::pair<ShootingCoordinates, std::string_view>, 2> entries{{
+      {ShootingCoordinates::wall, "wall"},
+      {ShootingCoordinates::independent, "independent"},
+  }};
+};
+
+/// What shooting does when Newton from the transient fails (simulation.shooting_fallback;
+/// docs/theory/steady-cycles.md).
+enum class ShootingFallback {
+  none,      ///< more transient, then Newton once more (the default)
+  /// first Anderson-accelerated periods from the same start and Newton from where they got
+  /// to, Newton again on periods at rtol/10 where it stalls at the map's noise, and
+  /// difference steps that fail retried 10 and 100 times smaller
+  anderson,
+};
+template <>
+struct NameTable<ShootingFallback> {
+  static constexpr std::array<std::pair<ShootingFallback, std::string_view>, 2> entries{{
+      {ShootingFallback::none, "none"},
+      {ShootingFallback::anderson, "anderson"},
+  }};
+};
+
 struct SimulationSpec {
   std::optional<double> duration_s;  ///< fixed end time, or:
   int max_cycles = 5;                ///< cap on crank cycles
@@ -149,6 +183,8 @@ struct SimulationSpec {
   /// A periodic orbit is converged when max_i |P(z)_i − z_i| / s_i is below this, s_i
   /// each state's unit (lengths in the clearance: 1e-9 is 0.5 pm at 0.5 mm).
   double shooting_tolerance = 1e-9;
+  ShootingCoordinates shooting_coordinates = ShootingCoordinates::independent;
+  ShootingFallback shooting_fallback = ShootingFallback::none;
   /// Error bars on the steady metrics (`<metric>_error`): the steady cycle re-found and
   /// re-measured at a 100× tighter rtol (docs/theory/steady-cycles.md, error bars). Default:
   /// on for shooting and auto, off for transient.

@@ -38,6 +38,8 @@ struct MonodromyOptions {
   std::vector<double> scales;  ///< s_i
   double step = 1e-4;          ///< difference step h_i = step × s_i
   bool central = true;         ///< central (2 n maps, error O(h²)) or forward (n maps, O(h))
+  /// A column whose perturbed period fails is tried again with the step ÷ 10, this many times.
+  int retries = 0;
 };
 struct Monodromy {
   Eigen::MatrixXd M;
@@ -52,8 +54,11 @@ Monodromy monodromy_by_differences(CycleMap& P, const Eigen::VectorXd& z, const 
 std::vector<std::complex<double>> floquet_multipliers(const Eigen::MatrixXd& M);
 
 struct ShootingOptions {
-  std::vector<double> scales;     ///< s_i
-  double tolerance = 1e-9;        ///< converged when max_i |P(z)_i − z_i| / s_i <= tolerance
+  std::vector<double> scales;     ///< s_i: the unknowns' units (steps, difference steps)
+  /// The residual's units r_i (empty: s_i), where a coordinate stretches what the
+  /// tolerance should measure (the wall coordinates near the wall).
+  std::vector<double> residual_scales;
+  double tolerance = 1e-9;        ///< converged when max_i |P(z)_i − z_i| / r_i <= tolerance
   double step = 1e-4;             ///< difference step of the Newton Jacobians, × s_i
   int max_iterations = 25;        ///< Newton iterations
   double max_newton_step = 0.3;   ///< largest Newton step, scaled 2-norm (units s_i)
@@ -76,6 +81,8 @@ struct ShootingOptions {
   /// own rule) or the reuse count runs out: one period an iteration instead of 2 n + 1.
   const Eigen::MatrixXd* initial_jacobian = nullptr;
   int chord_iterations = 2;
+  /// MonodromyOptions::retries of the Newton Jacobians' differences.
+  int difference_retries = 0;
 };
 
 enum class ShootingOutcome {
@@ -88,7 +95,7 @@ struct ShootingResult {
   ShootingOutcome outcome = ShootingOutcome::not_converged;
   Eigen::VectorXd z;        ///< the last iterate (z* if converged)
   Eigen::VectorXd Pz;       ///< P(z)
-  double residual = -1.0;   ///< max_i |P(z)_i − z_i| / s_i at z (−1: not evaluated)
+  double residual = -1.0;   ///< max_i |P(z)_i − z_i| / r_i at z (−1: not evaluated)
   long iterations = 0;      ///< Newton iterations
   long long maps = 0;       ///< map evaluations (including the Jacobians' differences)
   int jacobians = 0;        ///< difference Jacobians computed (not counting an initial one)
@@ -101,6 +108,29 @@ struct ShootingResult {
 /// jacobian_map). A map failure at a trial point is
 /// reported to KINSOL as recoverable (it shortens the step).
 ShootingResult solve_periodic_orbit(CycleMap& P, const Eigen::VectorXd& z0, const ShootingOptions& opt);
+
+/// Anderson-accelerated iteration of the map (Walker & Ni 2011, type II): each step
+/// z_{k+1} = z_k + f_k − (ΔZ + ΔF) γ, f = P(z) − z, γ the least-squares fit of f_k by the
+/// last `depth` differences ΔF of f (ΔZ those of z), in the residual's units. One period a
+/// step and no Jacobian: where the orbit lies far along a slow manifold (a multiplier close
+/// to 1, the transient creeping towards it by a little each cycle) it extrapolates along
+/// the slow direction as a secant method would, and each iterate stays a state the flow
+/// itself nearly reaches, where a Newton step from far would leave along the linearisation.
+/// An extrapolated iterate whose map fails (beyond the wall), or whose residual is 10 ×
+/// the best so far, is pulled back towards the plain iterate P(z_k) (a state the flow
+/// reached), halving the extrapolation four times before taking P(z_k) and starting the
+/// history afresh; `stall` maps without a better residual end it (at the map's noise the
+/// history only cycles).
+struct AndersonOptions {
+  std::vector<double> residual_scales;  ///< r_i
+  int depth = 4;                        ///< differences kept (m)
+  int max_maps = 60;                    ///< periods at most
+  double tolerance = 1e-6;              ///< stop when max_i |f_i| / r_i <= tolerance
+  int stall = 12;                       ///< stop after this many maps without a better residual
+};
+/// The best iterate (smallest residual) and its image; `outcome` converged if it met the
+/// tolerance; `maps` the periods spent; `iterations` the steps taken.
+ShootingResult anderson_fixed_point(CycleMap& P, const Eigen::VectorXd& z0, const AndersonOptions& opt);
 
 /// max_i |a_i − b_i| / s_i.
 double scaled_distance(const Eigen::VectorXd& a, const Eigen::VectorXd& b, const std::vector<double>& scales);
