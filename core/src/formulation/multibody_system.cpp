@@ -93,21 +93,26 @@ void MultibodySystem::factor_dependent_block(Recovery& rc) {
   dense::lu(rc.lu.data(), nc, nc, rc.piv.data());
 }
 
+void MultibodySystem::joint_expand(double t, const double* y, double* qv) {
+  const int nq = m_.nq;
+  // The same (t, y) again (the root function's at a step end, then the run loop's): the
+  // same positions and velocities.
+  Recovery& rc = integ_rec_;
+  if (!rc.have_last || t != rc.last_t || !std::equal(y, y + 2 * nz_, rc.last_y.begin())) {
+    forward_kinematics(m_, *tree_, t, y, y + nz_, *kin_, false);
+    std::copy(kin_->q.data(), kin_->q.data() + nq, rc.qv.begin());
+    std::copy(kin_->v.data(), kin_->v.data() + nq, rc.qv.begin() + nq);
+    rc.last_t = t;
+    std::copy(y, y + 2 * nz_, rc.last_y.begin());
+    rc.have_last = true;
+  }
+  std::copy(rc.qv.begin(), rc.qv.end(), qv);
+}
+
 int MultibodySystem::expand(double t, const double* y, double* qv, Context who) {
   const int nq = m_.nq;
   if (form_ == Formulation::joint) {
-    // The same (t, y) again (the root function's at a step end, then the run loop's): the
-    // same positions and velocities.
-    Recovery& rc = integ_rec_;
-    if (!rc.have_last || t != rc.last_t || !std::equal(y, y + 2 * nz_, rc.last_y.begin())) {
-      forward_kinematics(m_, *tree_, t, y, y + nz_, *kin_, false);
-      std::copy(kin_->q.data(), kin_->q.data() + nq, rc.qv.begin());
-      std::copy(kin_->v.data(), kin_->v.data() + nq, rc.qv.begin() + nq);
-      rc.last_t = t;
-      std::copy(y, y + 2 * nz_, rc.last_y.begin());
-      rc.have_last = true;
-    }
-    std::copy(rc.qv.begin(), rc.qv.end(), qv);
+    joint_expand(t, y, qv);
     return 0;
   }
   if (form_ != Formulation::partitioned) {

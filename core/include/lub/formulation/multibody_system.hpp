@@ -173,6 +173,8 @@ class MultibodySystem final : public OdeSystem {
   Eigen::MatrixXd Mt_, At_, Xt_, St_;
   Eigen::VectorXd Qt_, bt_;
   int joint_rhs(double t, const double* y, double* ydot);
+  /// expand() of the joint formulation: forward kinematics, the last (t, y) kept.
+  void joint_expand(double t, const double* y, double* qv);
   /// θ̈ at y into thdd, the forces, films and sliding rows' λ into ws (kin_ at y).
   EvalStatus joint_evaluate(Workspace& ws, double t, const double* y, double* thdd);
   bool joint_accelerations(Workspace& ws, double* thdd);
