@@ -125,7 +125,7 @@ std::optional<JointTree> build_joint_tree(const Model& m, std::string* why) {
 JointKinematics::JointKinematics(const Model& m, const JointTree& tree)
     : q(Eigen::VectorXd::Zero(m.nq)), v(Eigen::VectorXd::Zero(m.nq)), c(Eigen::VectorXd::Zero(m.nq)),
       J(Eigen::MatrixXd::Zero(m.nq, tree.ndof)), cphi(static_cast<size_t>(m.nb), 1.0),
-      sphi(static_cast<size_t>(m.nb), 0.0) {}
+      sphi(static_cast<size_t>(m.nb), 0.0), trig_phi(static_cast<size_t>(m.nb), std::nan("")) {}
 
 namespace {
 
@@ -149,8 +149,12 @@ void free_body(const TreeEdge& e, const double* theta, const double* theta_dot, 
     k.q(cc + i) = theta[e.dof + i];
     k.v(cc + i) = theta_dot[e.dof + i];
   }
-  k.cphi[static_cast<size_t>(e.child)] = std::cos(k.q(cc + 2));
-  k.sphi[static_cast<size_t>(e.child)] = std::sin(k.q(cc + 2));
+  const size_t ch = static_cast<size_t>(e.child);
+  if (k.trig_phi[ch] != k.q(cc + 2)) {
+    k.cphi[ch] = std::cos(k.q(cc + 2));
+    k.sphi[ch] = std::sin(k.q(cc + 2));
+    k.trig_phi[ch] = k.q(cc + 2);
+  }
   if (!derivatives) return;
   k.c.segment<3>(cc).setZero();
   k.J.middleRows<3>(cc).setZero();
@@ -183,9 +187,20 @@ void forward_kinematics(const Model& m, const JointTree& tree, double t, const d
     // A revolute's coordinate is its child's angle (see the header): no parent term.
     const double phi_c = rev ? x : phi_p + e.dphi;
     const double w_c = rev ? xd : w_p;
-    const double cc_ = std::cos(phi_c), sc = std::sin(phi_c);
-    k.cphi[static_cast<size_t>(e.child)] = cc_;
-    k.sphi[static_cast<size_t>(e.child)] = sc;
+    // A slide or fixed joint without a relative angle keeps its parent's: the same angle,
+    // the same cos and sin (no trigonometric call).
+    // A body whose angle has not changed since the last call (the driven crank in the
+    // Jacobian's difference quotients, any body in a velocity's) keeps its entries.
+    const size_t ch = static_cast<size_t>(e.child);
+    if (!rev && e.dphi == 0.0) {
+      k.cphi[ch] = cp;
+      k.sphi[ch] = sp;
+    } else if (k.trig_phi[ch] != phi_c) {
+      k.cphi[ch] = std::cos(phi_c);
+      k.sphi[ch] = std::sin(phi_c);
+    }
+    k.trig_phi[ch] = phi_c;
+    const double cc_ = k.cphi[ch], sc = k.sphi[ch];
     auto Ap = [&](const Vector2d& s) { return Vector2d(cp * s.x() - sp * s.y(), sp * s.x() + cp * s.y()); };
     const Vector2d u = Ap(e.u_p);
     const Vector2d w = Ap(e.s_p) + (slide ? x * u : Vector2d(0, 0));

@@ -37,6 +37,7 @@ MultibodySystem::MultibodySystem(const Model& m, Workspace& ws, const Stabilisat
     if (!tree_) throw std::runtime_error("solver.formulation = joint does not apply: " + why);
     nz_ = tree_->ndof;
     kin_.emplace(m, *tree_);
+    integ_rec_.last_y.assign(static_cast<size_t>(2 * nz_), 0.0);
     const int rows = m.n_switching;
     Mt_ = Eigen::MatrixXd::Zero(nz_, nz_);
     Qt_ = Eigen::VectorXd::Zero(nz_);
@@ -92,12 +93,26 @@ void MultibodySystem::factor_dependent_block(Recovery& rc) {
   dense::lu(rc.lu.data(), nc, nc, rc.piv.data());
 }
 
+void MultibodySystem::joint_expand(double t, const double* y, double* qv) {
+  const int nq = m_.nq;
+  // The same (t, y) again (the root function's at a step end, then the run loop's): the
+  // same positions and velocities.
+  Recovery& rc = integ_rec_;
+  if (!rc.have_last || t != rc.last_t || !std::equal(y, y + 2 * nz_, rc.last_y.begin())) {
+    forward_kinematics(m_, *tree_, t, y, y + nz_, *kin_, false);
+    std::copy(kin_->q.data(), kin_->q.data() + nq, rc.qv.begin());
+    std::copy(kin_->v.data(), kin_->v.data() + nq, rc.qv.begin() + nq);
+    rc.last_t = t;
+    std::copy(y, y + 2 * nz_, rc.last_y.begin());
+    rc.have_last = true;
+  }
+  std::copy(rc.qv.begin(), rc.qv.end(), qv);
+}
+
 int MultibodySystem::expand(double t, const double* y, double* qv, Context who) {
   const int nq = m_.nq;
   if (form_ == Formulation::joint) {
-    forward_kinematics(m_, *tree_, t, y, y + nz_, *kin_, false);
-    std::copy(kin_->q.data(), kin_->q.data() + nq, qv);
-    std::copy(kin_->v.data(), kin_->v.data() + nq, qv + nq);
+    joint_expand(t, y, qv);
     return 0;
   }
   if (form_ != Formulation::partitioned) {
@@ -213,10 +228,10 @@ void MultibodySystem::reduce_units(const double* full, double* out) const {
 }
 
 // M_θ θ̈ = Q with M_θ = JᵀMJ, Q = Jᵀ(g − Mc) (in Mt_, Qt_); with sliding films, the rows
-// A θ̈ = b (At_, bt_) by their Schur complement, λ = (A M_θ⁻¹ Aᵀ)⁻¹ (A M_θ⁻¹ Q − b),
-// θ̈ = M_θ⁻¹ (Q − Aᵀλ). False if M_θ or the complement is singular.
-bool MultibodySystem::joint_accelerations(double* thdd) {
-  const int nd = nz_, ns = ws_.nc_active - m_.nc;
+// A θ̈ = b (At_, bt_) by their Schur complement, λ = (A M_θ⁻¹ Aᵀ)⁻¹ (A M_θ⁻¹ Q − b) into
+// ws.lambda, θ̈ = M_θ⁻¹ (Q − Aᵀλ). False if M_θ or the complement is singular.
+bool MultibodySystem::joint_accelerations(Workspace& ws, double* thdd) {
+  const int nd = nz_, ns = ws.nc_active - m_.nc;
   const int ld = static_cast<int>(Mt_.rows());
   if (!dense::cholesky(Mt_.data(), ld, nd)) return false;
   for (int i = 0; i < nd; ++i) thdd[i] = Qt_(i);
@@ -230,7 +245,7 @@ bool MultibodySystem::joint_accelerations(double* thdd) {
   for (int r = 0; r < ns; ++r) {
     double rhs = -bt_(r);
     for (int j = 0; j < nd; ++j) rhs += At_(r, j) * thdd[j];
-    ws_.lambda(m_.nc + r) = rhs;
+    ws.lambda(m_.nc + r) = rhs;
     for (int s = 0; s <= r; ++s) {
       double x = 0.0;
       for (int j = 0; j < nd; ++j) x += At_(r, j) * Xt_(j, s);
@@ -238,26 +253,33 @@ bool MultibodySystem::joint_accelerations(double* thdd) {
     }
   }
   if (!dense::cholesky(St_.data(), ls, ns)) return false;
-  double* lam = ws_.lambda.data() + m_.nc;
+  double* lam = ws.lambda.data() + m_.nc;
   dense::cholesky_solve(St_.data(), ls, ns, lam);
   for (int r = 0; r < ns; ++r)
     for (int j = 0; j < nd; ++j) thdd[j] -= Xt_(j, r) * lam[r];
   return true;
 }
 
-int MultibodySystem::joint_rhs(double t, const double* y, double* ydot) {
+EvalStatus MultibodySystem::joint_evaluate(Workspace& ws, double t, const double* y, double* thdd) {
   const int nq = m_.nq, nd = nz_;
   JointKinematics& k = *kin_;
   forward_kinematics(m_, *tree_, t, y, y + nd, k, true);
-  if (const EvalStatus s = evaluate_forces(m_, ws_, t, k.q.data(), k.v.data(), false); s != EvalStatus::ok)
-    return ode_flag(s);
+  // The bodies' cos φ and sin φ are the forward kinematics': evaluate_forces' table
+  // (body_trig) keeps them, the same values for the same angles.
+  for (int b = 0; b < m_.nb; ++b) {
+    ws.cos_phi[static_cast<size_t>(b)] = k.cphi[static_cast<size_t>(b)];
+    ws.sin_phi[static_cast<size_t>(b)] = k.sphi[static_cast<size_t>(b)];
+    ws.trig_phi[static_cast<size_t>(b)] = k.q(3 * b + 2);
+  }
+  if (const EvalStatus s = evaluate_forces(m_, ws, t, k.q.data(), k.v.data(), false); s != EvalStatus::ok)
+    return s;
   const double* M = m_.mass_diag.data();
-  // g − M c into ws_.qdd (scratch), then M_θ and Q.
-  for (int i = 0; i < nq; ++i) ws_.qdd(i) = ws_.g(i) - M[i] * k.c(i);
+  // g − M c into ws.qdd (scratch), then M_θ and Q.
+  for (int i = 0; i < nq; ++i) ws.qdd(i) = ws.g(i) - M[i] * k.c(i);
   for (int a = 0; a < nd; ++a) {
     const double* Ja = k.J.data() + static_cast<long>(a) * nq;
     double qa = 0.0;
-    for (int i = 0; i < nq; ++i) qa += Ja[i] * ws_.qdd(i);
+    for (int i = 0; i < nq; ++i) qa += Ja[i] * ws.qdd(i);
     Qt_(a) = qa;
     for (int b = 0; b <= a; ++b) {
       const double* Jb = k.J.data() + static_cast<long>(b) * nq;
@@ -267,28 +289,49 @@ int MultibodySystem::joint_rhs(double t, const double* y, double* ydot) {
     }
   }
   // Sliding rows: Φ_q,r (J θ̈ + c) = γ̂_r, γ̂ = γ − 2αΦ̇ − β²Φ (as evaluate()).
-  const int ns = ws_.nc_active - m_.nc;
+  const int ns = ws.nc_active - m_.nc;
   for (int r = 0; r < ns; ++r) {
     const int row = m_.nc + r;
-    double b = stab_.stabilised_gamma(ws_.gamma(row), ws_.Phi_dot(row), ws_.Phi(row));
-    for (int i = 0; i < nq; ++i) b -= ws_.Phi_q(row, i) * k.c(i);
+    double b = stab_.stabilised_gamma(ws.gamma(row), ws.Phi_dot(row), ws.Phi(row));
+    for (int i = 0; i < nq; ++i) b -= ws.Phi_q(row, i) * k.c(i);
     bt_(r) = b;
     for (int j = 0; j < nd; ++j) {
       double x = 0.0;
-      for (int i = 0; i < nq; ++i) x += ws_.Phi_q(row, i) * k.J(i, j);
+      for (int i = 0; i < nq; ++i) x += ws.Phi_q(row, i) * k.J(i, j);
       At_(r, j) = x;
     }
   }
-  std::copy(y + nd, y + 2 * nd, ydot);
-  if (!joint_accelerations(ydot + nd)) throw std::runtime_error("the joint-coordinate mass matrix is singular");
+  if (!joint_accelerations(ws, thdd)) return EvalStatus::singular;
   for (size_t f = 0; f < m_.films.size() && ns > 0; ++f) {
-    FilmKinematics& fk = ws_.films[f];
+    FilmKinematics& fk = ws.films[f];
     if (!fk.sliding) continue;
     // The constraint's force on the journal is −λ r: that is the radial film force.
-    fk.force.radial_N = -ws_.lambda(ws_.slide_row[f]);
+    fk.force.radial_N = -ws.lambda(ws.slide_row[f]);
     fk.F = fk.force.radial_N * fk.r + fk.force.tangential_N * perp(fk.r);
   }
-  return 0;
+  return EvalStatus::ok;
+}
+
+int MultibodySystem::joint_rhs(double t, const double* y, double* ydot) {
+  const int nd = nz_;
+  std::copy(y + nd, y + 2 * nd, ydot);
+  const EvalStatus s = joint_evaluate(ws_, t, y, ydot + nd);
+  if (s == EvalStatus::singular) throw std::runtime_error("the joint-coordinate mass matrix is singular");
+  return ode_flag(s);
+}
+
+EvalStatus MultibodySystem::joint_observation(double t, const double* y, Workspace& ws, double* qdd) {
+  const int nq = m_.nq, nd = nz_;
+  const EvalStatus s = joint_evaluate(ws, t, y, acc_.data());
+  if (s != EvalStatus::ok) return s;
+  // q̈ = J θ̈ + c
+  const JointKinematics& k = *kin_;
+  for (int i = 0; i < nq; ++i) qdd[i] = k.c(i);
+  for (int j = 0; j < nd; ++j) {
+    const double* Jj = k.J.data() + static_cast<long>(j) * nq;
+    for (int i = 0; i < nq; ++i) qdd[i] += Jj[i] * acc_[static_cast<size_t>(j)];
+  }
+  return EvalStatus::ok;
 }
 
 int MultibodySystem::rhs(double t, const double* y, double* ydot) {

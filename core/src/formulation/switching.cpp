@@ -31,7 +31,10 @@ int MultibodySystem::roots(double t, const double* y, double* g) {
       g[j + 1] = 1.0;
     } else {
       if (!evaluated) {
-        if (evaluate(m_, ws_, stab_, t, q, v, acc_.data()) != EvalStatus::ok) return 1;
+        // The sliding rows' multipliers: in joint coordinates from the joint equations.
+        const EvalStatus s = form_ == Formulation::joint ? joint_evaluate(ws_, t, y, acc_.data())
+                                                         : evaluate(m_, ws_, stab_, t, q, v, acc_.data());
+        if (s != EvalStatus::ok) return 1;
         evaluated = true;
       }
       std::tie(g[j], g[j + 1]) = sliding_exit_functions(k);

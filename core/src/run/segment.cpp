@@ -52,6 +52,10 @@ class Runner {
   std::unique_ptr<Integrator> integ_;
   std::vector<double> qv0_, qdd_, ytmp_, yfull_, yint_;
   std::optional<double> drift_limit_;
+  /// The observers evaluate the joint formulation's equations at the integrated state
+  /// (MultibodySystem::joint_observation) instead of the absolute model: on joint, where no
+  /// observation needs an ideal joint's multiplier (its reaction).
+  bool joint_observer_ = false;
   CycleRecorder cycles_;
   SeriesRecorder series_;
   // Sampling (sample_step): the next series sample and phase point, cycles closed.
@@ -87,8 +91,11 @@ class Runner {
   /// One observation at (t, y), one evaluation of the model: with `record` a row of the
   /// series; with `measure` the cycle's extremes and the drift statistics. Output samples
   /// that fall at neither a step end nor a phase point only record: the metrics must not
-  /// depend on the output rate.
-  void observe(double t, const double* y, bool record, bool measure = true);
+  /// depend on the output rate. `y` is the integrated state, `qv` its full (q, v).
+  void observe(double t, const double* y, const double* qv, bool record, bool measure = true);
+  /// Whether an observation needs an ideal joint's multiplier: a reaction of a joint
+  /// without a film, as the metric joint or a recorded channel.
+  bool observers_need_multipliers() const;
   void close_cycle(double t_end);
   /// Sampling: the observations due in the step (t_prev, t] from the integrator's dense
   /// output, in time order (series samples, orbit phase points, cycle ends). True if the
@@ -174,25 +181,44 @@ bool Runner::start_integrator() {
   }
   E0_ = energy ? mechanical_energy(m_, qv0_.data(), qv0_.data() + m_.nq) : 0.0;
   integ_->set_root_directions(sys_->root_directions());
+  joint_observer_ = sys_->formulation() == Formulation::joint && !observers_need_multipliers();
   drift_limit_ = scene_.simulation.drift_limit_m;
   if (!drift_limit_ && scene_.min_clearance_m()) drift_limit_ = 0.1 * *scene_.min_clearance_m();
   return true;
 }
 
-void Runner::observe(double t, const double* y, bool record, bool measure) {
-  const double* q = y;
-  const double* v = y + m_.nq;
+bool Runner::observers_need_multipliers() const {
+  auto ideal = [&](int joint) { return joint >= 0 && m_.joint_film[joint] < 0 && m_.joint_constraint[joint] >= 0; };
+  if (ideal(scene_.metrics.joint)) return true;
+  if (!series_.active()) return false;
+  for (const ChannelSpec& c : scene_.output.channels)
+    if (c.source == ChannelSource::joint && ideal(c.index) &&
+        (c.joint_quantity == JointQuantity::reaction || c.joint_quantity == JointQuantity::reaction_x ||
+         c.joint_quantity == JointQuantity::reaction_y))
+      return true;
+  return false;
+}
+
+void Runner::observe(double t, const double* y, const double* qv, bool record, bool measure) {
+  const double* q = qv;
+  const double* v = qv + m_.nq;
   std::copy(ws_.film_mode.begin(), ws_.film_mode.end(), obs_ws_.film_mode.begin());
   std::copy(ws_.slide_radius.begin(), ws_.slide_radius.end(), obs_ws_.slide_radius.begin());
-  if (evaluate(m_, obs_ws_, stab_, t, q, v, qdd_.data()) != EvalStatus::ok) return;
+  const EvalStatus s = joint_observer_ ? sys_->joint_observation(t, y, obs_ws_, qdd_.data())
+                                       : evaluate(m_, obs_ws_, stab_, t, q, v, qdd_.data());
+  if (s != EvalStatus::ok) return;
   ++res_.stats.observer_evals;
   if (record) series_.record(Probe{t, q, v, qdd_.data()}, obs_ws_);
   if (!measure) return;
   const Workspace& ws = obs_ws_;
-  res_.stats.max_position_drift =
-      std::max(res_.stats.max_position_drift, m_.nc ? ws.Phi.head(m_.nc).lpNorm<Eigen::Infinity>() : 0.0);
-  res_.stats.max_velocity_drift =
-      std::max(res_.stats.max_velocity_drift, m_.nc ? ws.Phi_dot.head(m_.nc).lpNorm<Eigen::Infinity>() : 0.0);
+  // In joint coordinates the ideal joints hold by construction (forward kinematics): no
+  // constraint row is evaluated, and there is no drift to measure.
+  if (!joint_observer_) {
+    res_.stats.max_position_drift =
+        std::max(res_.stats.max_position_drift, m_.nc ? ws.Phi.head(m_.nc).lpNorm<Eigen::Infinity>() : 0.0);
+    res_.stats.max_velocity_drift =
+        std::max(res_.stats.max_velocity_drift, m_.nc ? ws.Phi_dot.head(m_.nc).lpNorm<Eigen::Infinity>() : 0.0);
+  }
   cycles_.measure(t, ws, qdd_.data());
 }
 
@@ -205,7 +231,7 @@ void Runner::first_observation() {
   dt_sample_ = scene_.output.sample_interval_s;
   dt_phase_ = period_ ? *period_ / kPhasePoints : 0.0;
   if (!opt_.observe) return;
-  observe(t0_, qv0_.data(), series_.active());
+  observe(t0_, integ_->y(), qv0_.data(), series_.active());
   if (series_.active()) sample_k_ = 1;
   if (period_) cycles_.phase_point(qv0_.data(), qv0_.data() + m_.nq), phase_k_ = 1;
   boundaries_.push_back({t0_, qv0_, ws_.film_mode, ws_.slide_radius});  // the first cycle's start
@@ -245,12 +271,12 @@ bool Runner::sample_step(double t_prev, double t) {
       if ((phase_k_ - 1) % kPhasePoints == 0) stop = end_cycle(tp, have);
       if (!stop && have) {
         cycles_.phase_point(ytmp_.data(), ytmp_.data() + m_.nq);
-        observe(tp, ytmp_.data(), sample_due && ts == tp);
+        observe(tp, yint_.data(), ytmp_.data(), sample_due && ts == tp);
         if (sample_due && ts == tp) ++sample_k_;
       }
     } else {
       ++sample_k_;
-      if (ts > t_prev && state_at(ts)) observe(ts, ytmp_.data(), /*record=*/true, /*measure=*/false);
+      if (ts > t_prev && state_at(ts)) observe(ts, yint_.data(), ytmp_.data(), /*record=*/true, /*measure=*/false);
     }
   }
   return stop;
@@ -348,7 +374,7 @@ Stop Runner::advance(double& t) {
   // cycle ends; then the step end itself.
   const bool steady = opt_.observe && sample_step(t_prev, t);
   const bool have_state = sys_->expand(t, integ_->y(), yfull_.data()) == 0;
-  if (have_state && opt_.observe) observe(t, yfull_.data(), false);
+  if (have_state && opt_.observe) observe(t, integ_->y(), yfull_.data(), false);
   if (out == StepOutcome::root) {
     if (handle_root(t, have_state) == Stop::failed) return Stop::failed;
   } else if (have_state && sys_->partition_degraded()) {

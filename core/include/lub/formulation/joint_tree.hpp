@@ -67,6 +67,9 @@ struct JointKinematics {
   Eigen::VectorXd q, v, c;  ///< positions, velocities, acceleration at θ̈ = 0 (nq each)
   Eigen::MatrixXd J;        ///< ∂q/∂θ (nq × ndof), column-major
   std::vector<double> cphi, sphi;  ///< cos φ, sin φ of each body at q
+  /// The angle each body's cphi, sphi were computed at (NaN: none yet): a body whose
+  /// angle is unchanged keeps them (the same argument, the same values: no result changes).
+  std::vector<double> trig_phi;
 };
 
 /// Positions and velocities of every body at (t, θ, θ̇) into k.q, k.v; with `derivatives`

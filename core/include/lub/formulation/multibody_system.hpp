@@ -119,6 +119,13 @@ class MultibodySystem final : public OdeSystem {
   /// root finder could not see), switched to the branch that applies. Returns the number
   /// of switches (0: none; the integrator must be restarted otherwise).
   int resync_modes(double t, const double* y);
+  /// The observers' evaluation in joint coordinates (joint formulation only): at the
+  /// integrated state y = (θ, θ̇), the forces and films (a sliding film's force included)
+  /// into `ws` and the absolute accelerations q̈ = J θ̈ + c (nq) into qdd — the equations
+  /// the right-hand side solves, not the absolute model's: the ideal joints' and drivers'
+  /// rows (Φ, Φ_q, their multipliers λ) in `ws` are left unset. `ws` carries the film modes
+  /// to evaluate in; it may be the integrator's or another workspace.
+  EvalStatus joint_observation(double t, const double* y, Workspace& ws, double* qdd);
   void set_projection_tolerance(double tol) { projection_tol_ = tol; }
   /// Size of each integrated state in its own unit (atol / rtol: 2 nz entries, in the
   /// current partition's order): the increments of the partitioned Jacobian's forward
@@ -166,7 +173,11 @@ class MultibodySystem final : public OdeSystem {
   Eigen::MatrixXd Mt_, At_, Xt_, St_;
   Eigen::VectorXd Qt_, bt_;
   int joint_rhs(double t, const double* y, double* ydot);
-  bool joint_accelerations(double* qdd_theta);
+  /// expand() of the joint formulation: forward kinematics, the last (t, y) kept.
+  void joint_expand(double t, const double* y, double* qv);
+  /// θ̈ at y into thdd, the forces, films and sliding rows' λ into ws (kin_ at y).
+  EvalStatus joint_evaluate(Workspace& ws, double t, const double* y, double* thdd);
+  bool joint_accelerations(Workspace& ws, double* thdd);
 
   int partitioned_jacobian(double t, const double* y, const double* fy, double* J);
   int forward_difference_jacobian(double t, const double* y, const double* fy, double* J);
