@@ -33,15 +33,17 @@ Monodromy monodromy_by_differences(CycleMap& P, const Eigen::VectorXd& z, const 
     const double h = opt.step * opt.scales[static_cast<size_t>(j)];
     zp(j) = z(j) + h;
     ++out.maps;
-    if (P.apply(zp.data(), Pp.data()) != 0) {
+    if (const int flag = P.apply(zp.data(), Pp.data()); flag != 0) {
       ++out.failed;
+      out.refused = flag < 0;
       return out;
     }
     if (opt.central) {
       zp(j) = z(j) - h;
       ++out.maps;
-      if (P.apply(zp.data(), Pm.data()) != 0) {
+      if (const int flag = P.apply(zp.data(), Pm.data()); flag != 0) {
         ++out.failed;
+        out.refused = flag < 0;
         return out;
       }
       out.M.col(j) = (Pp - Pm) / (2.0 * h);
@@ -84,6 +86,7 @@ struct Problem {
   int n = 0;
   long long maps = 0;
   int failures = 0;            // map failures at trial points
+  bool refused = false;        // the map refused to go on (CycleMap::apply < 0)
   Eigen::VectorXd z, Pz;       // scratch
   Eigen::VectorXd best_z, best_Pz;
   double best = std::numeric_limits<double>::infinity();
@@ -97,9 +100,10 @@ int residual_cb(N_Vector u, N_Vector f, void* data) {
   double* fd = N_VGetArrayPointer(f);
   for (int i = 0; i < pb.n; ++i) pb.z(i) = ud[i];
   ++pb.maps;
-  if (pb.P->apply(pb.z.data(), pb.Pz.data()) != 0) {
+  if (const int flag = pb.P->apply(pb.z.data(), pb.Pz.data()); flag != 0) {
     ++pb.failures;
-    return 1;  // recoverable: the line search shortens the step
+    pb.refused = pb.refused || flag < 0;
+    return flag < 0 ? -1 : 1;  // refused: KINSOL stops; else recoverable: the line search shortens the step
   }
   double r = 0.0;
   for (int i = 0; i < pb.n; ++i) {
@@ -134,7 +138,8 @@ int jacobian_cb(N_Vector u, N_Vector fu, SUNMatrix J, void* data, N_Vector, N_Ve
   pb.maps += m.maps;
   if (m.failed) {
     ++pb.failures;
-    return 1;
+    pb.refused = pb.refused || m.refused;
+    return m.refused ? -1 : 1;
   }
   for (int j = 0; j < pb.n; ++j)
     for (int i = 0; i < pb.n; ++i) SM_ELEMENT_D(J, i, j) = m.M(i, j) - (i == j ? 1.0 : 0.0);
@@ -232,6 +237,10 @@ ShootingResult solve_periodic_orbit(CycleMap& P, const Eigen::VectorXd& z0, cons
   if (flag_name.empty() || flag_name == "NONE") flag_name = "KINSOL flag " + std::to_string(flag);
   out.message = "Newton on P(z) = z: " + flag_name;
   std::free(const_cast<char*>(name));
+  if (pb.refused) {
+    out.outcome = ShootingOutcome::refused;
+    return out;
+  }
   // Left the domain: the map's failures stopped Newton, or a Jacobian's difference step
   // from the iterate failed (the iterate is within a step of the wall); not a line search
   // that merely met one failing trial point on its way.
