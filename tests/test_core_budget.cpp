@@ -65,6 +65,8 @@ TEST(Budget, TheDefaultIsWhatTheMethodIntegratesAtMost) {
   EXPECT_EQ(tb.simulation.max_periods, tb.simulation.max_cycles + tb.simulation.metric_cycles);
   const lub::Scene a = lub::parse_scene(reference("auto"));
   EXPECT_EQ(a.simulation.max_periods, a.simulation.max_cycles + lub::kSteadyStagePeriods);
+  const lub::Scene c = lub::parse_scene(reference("continuation"));
+  EXPECT_EQ(c.simulation.max_periods, 2 * c.simulation.max_cycles + 4 * lub::kSteadyStagePeriods);
   for (const char* steady : {"auto", "shooting", "continuation"})
     EXPECT_EQ(lub::parse_scene(one_cycle(steady)).simulation.max_periods, 1) << steady;
   json given = reference("auto");

@@ -263,6 +263,9 @@ long long default_max_periods(const SimulationSpec& s) {
   if (s.duration_s) return std::numeric_limits<long long>::max();
   if (s.steady == SteadyMethod::transient) return s.max_cycles + (s.error_bars ? s.metric_cycles : 0);
   if (s.max_cycles < kMinSteadyCycles) return s.max_cycles;
+  // continuation: up to four searches for an orbit (the path from a neighbour, the scene's
+  // own auto, its thick-film version's, the path back from there), two transients.
+  if (s.steady == SteadyMethod::continuation) return 2LL * s.max_cycles + 4 * kSteadyStagePeriods;
   return s.max_cycles + kSteadyStagePeriods;
 }
 

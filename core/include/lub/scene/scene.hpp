@@ -172,9 +172,9 @@ struct SimulationSpec {
   std::optional<double> drift_limit_m;
 };
 
-/// Periods a steady stage (shooting, auto, continuation) may spend beyond the transient's
-/// max_cycles by default: ~10 times what shooting the slider-crank costs from a transient
-/// (27–311 periods on the reference scene's speed × viscosity grid, docs/theory/steady-cycles.md).
+/// Periods one search for an orbit (shooting or auto after its transient, a continuation
+/// path) may spend by default: 5 times the most an auto case of full_factorial.json takes
+/// in all (804 periods, 40 cycles of transient included; docs/theory/steady-cycles.md, budgets).
 inline constexpr long long kSteadyStagePeriods = 4000;
 /// The steady stage needs a transient of at least this many cycles (max_cycles): below it
 /// a case runs its transient only (docs/theory/steady-cycles.md, budgets).
