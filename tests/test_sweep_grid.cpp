@@ -143,12 +143,13 @@ TEST(SweepGrid, PointerToAnUnsetValueShowsNull) {
 }
 
 TEST(SweepGrid, StudySettingsBecomeSceneValues) {
-  const Grid g = parse(R"("study": {"max_cycles": 7, "stop_when_steady": true, "steady_tolerance": 0.002,
+  const Grid g = parse(R"("study": {"max_cycles": 7, "max_periods": 300, "stop_when_steady": true, "steady_tolerance": 0.002,
                                     "metric_cycles": 3, "channels": ["h_min", "crank_angle"], "last_cycles": 2,
                                     "samples_per_cycle": 360, "on_failure": "abort"},
                          "axes": [{"name": "speed_rpm", "values": [6000]}])");
   const json s = scene_of(g, 0);
   EXPECT_EQ(s["simulation"]["max_cycles"], 7);
+  EXPECT_EQ(s["simulation"]["max_periods"], 300);
   EXPECT_EQ(s["simulation"]["stop_when_steady"], true);
   EXPECT_EQ(s["simulation"]["steady_tolerance"], 0.002);
   EXPECT_EQ(s["simulation"]["metric_cycles"], 3);

@@ -64,6 +64,8 @@ def main(argv):
             "channels", []).append({"name": "c", "body": "b", "joint": "j", "quantity": "x"}),
         "duration and cycles together": lambda d: d.setdefault("simulation", {}).update(
             {"duration_s": 1.0, "max_cycles": 2}),
+        "duration and a period budget together": lambda d: d.setdefault("simulation", {}).update(
+            {"duration_s": 1.0, "max_periods": 2}),
     }
     for what, mutate in mutations.items():
         doc = copy.deepcopy(base)

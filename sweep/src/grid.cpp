@@ -189,6 +189,8 @@ void apply_study(const json& study, Context& cx, FailurePolicy& policy) {
   ObjectReader s(study, "grid.study");
   json& b = cx.base;
   if (s.has("max_cycles")) object_at(b, "simulation")["max_cycles"] = s.integer("max_cycles", 1, 1'000'000);
+  if (s.has("max_periods"))
+    object_at(b, "simulation")["max_periods"] = s.integer("max_periods", 1, 1'000'000'000);
   if (s.has("stop_when_steady")) object_at(b, "simulation")["stop_when_steady"] = s.boolean_or("stop_when_steady", true);
   if (s.has("steady_tolerance"))
     object_at(b, "simulation")["steady_tolerance"] = s.number("steady_tolerance", positive, "must be > 0");

@@ -14,6 +14,9 @@
 #                 killed sweep's stale lock file does not block the next sweep
 #       output_path  lubsweep and lubsim refuse an output path that is a directory (or in
 #                 a missing directory) before any work: exit 2, message, no file created
+#       one_cycle a grid of one-cycle cases (cheap_4096.json in small) costs one period a
+#                 case in the study's default steady method and in continuation; exit 77
+#                 (skipped) without Debian's h5py
 #       tools     the Python tools on a small study (compare_study.py finds a regression,
 #                 plot_paper.py and sweep_map.py draw); exit 77 (skipped) without Debian's
 #                 h5py, matplotlib, xarray, h5netcdf, pandas
@@ -158,6 +161,18 @@ output_path)
   [ "$(grep -c "must name a file, not a directory (it is an existing directory)" all.log)" = 2 ] || { cat all.log >&2; fail "existing directory message"; }
   [ -z "$(ls -A adir)" ] || fail "a refused output created files in adir: $(ls -A adir)"
   [ ! -e missing_dir ] || fail "a refused output created its directory"
+  ;;
+one_cycle)
+  /usr/bin/python3 -c "import h5py" 2>/dev/null || { echo "no h5py: skipped"; exit 77; }
+  grid="$here/one_cycle_grid.json"
+  run 1 one.h5
+  /usr/bin/python3 - <<'PY' || fail "a one-cycle case integrated more than one period"
+import h5py, sys
+c = h5py.File("one.h5", "r")["cases"]
+periods, cycles = c["periods_integrated"][()], c["cycles_run"][()]
+print(f"{len(periods)} cases, periods_integrated {sorted(set(periods.tolist()))}, cycles_run {sorted(set(cycles.tolist()))}")
+sys.exit(0 if len(periods) == 8 and (periods == 1).all() and (cycles == 1).all() else 1)
+PY
   ;;
 tools)
   # The Python post-processing on a small study (skipped without Debian's h5py/matplotlib).

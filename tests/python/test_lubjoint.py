@@ -349,7 +349,7 @@ def test_gil_released_during_run():
 @pytest.fixture(scope="module")
 def study_file(tmp_path_factory):
     d = tmp_path_factory.mktemp("study")
-    grid = {"scene": str(SCENE), "study": {"max_cycles": 1, "metric_cycles": 1, "channels": ["h_min"]},
+    grid = {"scene": str(SCENE), "study": {"max_cycles": 2, "metric_cycles": 1, "channels": ["h_min"]},  # 2: a steady stage (1: the transient alone)
             "axes": [{"name": "viscosity_Pa_s", "values": [0.4, 0.2]}]}
     (d / "grid.json").write_text(json.dumps(grid))
     env = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"}
@@ -459,7 +459,7 @@ def test_one_missing_value_convention(study_file, tmp_path):
         assert f.attrs["format"] == "lubsim-run-3"
         assert np.isnan(f["cycles/periodicity"][0]) and np.isnan(f["cycles/periodicity"].attrs["_FillValue"])
         assert f["metrics"].attrs["cycles_to_steady"] == -1 and f["metrics"].attrs["missing_value"] == -1
-    with h5py.File(study_file, "r") as f:  # max_cycles 1: no periodicity, never steady
+    with h5py.File(study_file, "r") as f:  # one metric cycle: no periodicity
         assert np.isnan(f["cases/periodicity"][:]).all() and np.isnan(f["grids/grid/periodicity"][:]).all()
         assert f["cases/cycles_to_steady"].attrs["missing_value"] == -1
         assert np.isnan(f["cases/periodicity"].attrs["_FillValue"])

@@ -186,6 +186,11 @@ PeriodMap::PeriodMap(RunModel& rm, Chart& chart, const StartState& base, std::ve
       periods_(periods) {}
 
 int PeriodMap::apply(const double* z, double* Pz) {
+  if (periods_ >= max_periods_) {
+    failure_ = "simulation.max_periods reached";
+    refused_ = true;
+    return -1;
+  }
   StartState start = base_;
   if (!chart_.expand(base_.t, z, start.qv)) {
     failure_ = "the dependent coordinates cannot be recovered at the period's start";

@@ -2,6 +2,7 @@
 // crank angle 0, in the chart's independent coordinates, once round the crank.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -82,6 +83,12 @@ class PeriodMap final : public steady::CycleMap {
   /// neighbourhood (near the wall the printed law's corrector crawls at h ~ 1e-8 s for
   /// minutes before it fails): it fails instead.
   void set_step_budget(long long n) { max_steps_ = n; }
+  /// The run's budget of periods (simulation.max_periods, less what the case spent before
+  /// this run): a period that would pass it is not started, and the map refuses (apply
+  /// returns −1: shooting stops).
+  void set_period_budget(long long n) { max_periods_ = n; }
+  /// Whether the map refused for the budget.
+  bool refused() const { return refused_; }
 
  private:
   RunModel& rm_;
@@ -93,6 +100,8 @@ class PeriodMap final : public steady::CycleMap {
   long long& periods_;
   std::string failure_;
   long long max_steps_ = 0;
+  long long max_periods_ = std::numeric_limits<long long>::max();
+  bool refused_ = false;
 };
 
 }  // namespace lub::detail

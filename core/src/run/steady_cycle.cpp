@@ -20,6 +20,7 @@
 #include "lub/steady/periodic_orbit.hpp"
 #include "run/metrics.hpp"
 #include "run/orbit_seed.hpp"
+#include "run/period_budget.hpp"
 #include "run/period_map.hpp"
 #include "run/segment.hpp"
 #include "run/series_recorder.hpp"
@@ -33,6 +34,7 @@ std::string classification(const RunResult& r) {
 namespace {
 
 using detail::Chart;
+using detail::PeriodBudget;
 using detail::PeriodMap;
 using detail::RunModel;
 using detail::SegmentOptions;
@@ -149,7 +151,11 @@ void set_errors(Metrics& m, const Metrics& tight, const Metrics* extra = nullptr
 
 class SteadyRun {
  public:
-  explicit SteadyRun(const Scene& scene) : scene_(scene), sim_(scene.simulation), rm_(scene) {}
+  /// `budget`: the case's max_periods and what the case spent before this run (default:
+  /// the scene's, nothing).
+  explicit SteadyRun(const Scene& scene) : SteadyRun(scene, PeriodBudget(scene.simulation.max_periods, 0)) {}
+  SteadyRun(const Scene& scene, PeriodBudget budget)
+      : scene_(scene), sim_(scene.simulation), rm_(scene), budget_(std::move(budget)) {}
   RunResult run();
   /// One step of a continuation: Newton from a neighbour's orbit placed into this scene;
   /// `final`: this is the run's own scene (metrics, error bars). False if it failed.
@@ -166,6 +172,10 @@ class SteadyRun {
   RunResult res_;
   std::vector<StartState> boundaries_;  // the transient's cycle boundaries
   StartState end_;                      // where the transient ended
+  PeriodBudget budget_;                 // simulation.max_periods: every stage asks it first
+  long long spent() const { return res_.steady.periods_integrated; }
+  /// simulation.max_cycles below kMinSteadyCycles: the transient alone, and why.
+  void transient_only();
 
   /// The transient: from the scene's initial state over its max_cycles, or `cycles` more
   /// from where it ended, stopped early by `stop`; appends cycles, series, boundaries.
@@ -221,13 +231,22 @@ bool SteadyRun::transient(int cycles, std::function<bool(const std::vector<Cycle
   // and the run keeps what it has.
   if (before > 0)
     o.max_steps = 20 * res_.stats.steps / static_cast<long long>(before) * cycles + 1000;
+  bool stopped = false;
   if (stop)
     o.stop_after_cycle = [&, stop](const std::vector<CycleMetrics>& cs) {
-      if (before == 0) return stop(cs);  // the first segment's cycles are all there are
+      if (before == 0) return stopped = stop(cs);  // the first segment's cycles are all there are
       std::vector<CycleMetrics> all = res_.cycles;
       all.insert(all.end(), cs.begin(), cs.end());
-      return stop(all);
+      return stopped = stop(all);
     };
+  // Within simulation.max_periods: the cycles asked for, or as many as are left.
+  const int asked = before == 0 ? sim_.max_cycles : cycles;
+  const long long left = budget_.left(spent());
+  if (left <= 0) {
+    budget_.stopped(spent(), "no more transient cycles");
+    return false;
+  }
+  if (left < asked && scene_.cycle_period_s()) o.cycles = static_cast<int>(left);
   SegmentResult seg = detail::run_segment(rm_, o);
   if (before > 0 && seg.res.status == RunStatus::budget_exceeded && o.max_steps > 0 &&
       seg.res.stats.steps >= o.max_steps) {
@@ -257,6 +276,8 @@ bool SteadyRun::transient(int cycles, std::function<bool(const std::vector<Cycle
                      seg.boundaries.end());
   end_ = seg.end;
   res_.steady.transient_cycles = static_cast<int>(res_.cycles.size());
+  if (left < asked && res_.status == RunStatus::ok && !stopped)
+    budget_.stopped(spent(), "the transient stopped after " + std::to_string(res_.cycles.size()) + " cycles");
   return res_.status == RunStatus::ok;
 }
 
@@ -283,6 +304,12 @@ SegmentResult SteadyRun::measure(const StartState& s, double factor, bool series
   SegmentOptions o;
   o.start = &s;
   o.cycles = cycles > 0 ? cycles : sim_.metric_cycles;
+  if (!budget_.allows(o.cycles, spent(), factor == 1.0 ? "the orbit not measured" : "no error bars")) {
+    SegmentResult refused;
+    refused.res.status = RunStatus::budget_exceeded;
+    refused.res.message = "simulation.max_periods reached";
+    return refused;
+  }
   o.rtol_factor = factor;
   o.series = series;
   SegmentResult seg = detail::run_segment(rm_, o);
@@ -304,6 +331,11 @@ void SteadyRun::finish_transient() {
 }
 
 void SteadyRun::shoot() {
+  if (budget_.left(spent()) <= 0) {
+    res_.steady.kind = SteadyClass::not_converged;
+    budget_.stopped(spent(), "no shooting");
+    return;
+  }
   // A case that cannot be shot (a rank-deficient constraint Jacobian where shooting would
   // start, KINSOL out of memory) is not converged, with the reason: never an exception
   // out of run_scene.
@@ -342,6 +374,14 @@ void SteadyRun::shooting_failed(const steady::ShootingResult& found, const Perio
                          ? SteadyClass::drifting
                          : SteadyClass::not_converged;
   std::ostringstream msg;
+  if (found.outcome == steady::ShootingOutcome::refused) {
+    // Stopped by simulation.max_periods: Newton was not done, so nothing is concluded.
+    res_.steady.kind = SteadyClass::not_converged;
+    msg << "shooting stopped after " << found.iterations << " Newton iterations (residual " << found.residual << ")";
+    budget_.stopped(spent(), msg.str());
+    res_.message.clear();  // the budget's note says it (take_result)
+    return;
+  }
   msg << "shooting did not converge (" << found.message << ", residual " << found.residual << " after "
       << found.iterations << " Newton iterations)";
   if (!period.last_failure().empty()) msg << "; a period failed: " << period.last_failure();
@@ -380,13 +420,20 @@ void SteadyRun::orbit_error_bars(Chart& chart, const StartState& base, PeriodMap
   // tolerance z* would pass at once, however far the tight orbit lies.
   tight.tolerance = options.tolerance * kTightFactor;
   const steady::ShootingResult resolved = steady::solve_periodic_orbit(tight_period, z, tight);
+  if (resolved.outcome == steady::ShootingOutcome::refused) {
+    budget_.stopped(spent(), "no error bars");
+    return;
+  }
   Eigen::VectorXd z_tight;
   if (resolved.outcome == steady::ShootingOutcome::converged) {
     z_tight = resolved.z;
   } else {
     // Not converged within its iterations: one Newton step, as the first-order estimate.
     Eigen::VectorXd tight_end(chart.size());
-    if (tight_period.apply(z.data(), tight_end.data()) != 0) return;
+    if (tight_period.apply(z.data(), tight_end.data()) != 0) {
+      if (tight_period.refused()) budget_.stopped(spent(), "no error bars");
+      return;
+    }
     z_tight = z - M_minus_I.fullPivLu().solve(tight_end - z);
   }
   StartState tight_start = base;
@@ -419,7 +466,8 @@ void SteadyRun::shoot_from_transient() {
 steady::ShootingResult SteadyRun::find_orbit(PeriodMap& period, const Eigen::VectorXd& z0,
                                              const steady::ShootingOptions& options, bool accelerate) {
   steady::ShootingResult found = steady::solve_periodic_orbit(period, z0, options);
-  if (found.outcome == steady::ShootingOutcome::converged || !accelerate ||
+  if (found.outcome == steady::ShootingOutcome::converged || found.outcome == steady::ShootingOutcome::refused ||
+      !accelerate ||
       sim_.shooting_fallback != ShootingFallback::anderson)
     return found;
   // Newton from the transient's end found no orbit: the orbit may lie far along a slow
@@ -449,8 +497,10 @@ bool SteadyRun::solve_orbit(Chart& chart, const StartState& base, const std::vec
   auto maps_at = [&](double factor) {
     period.emplace(rm_, chart, base, winding, factor, res_.stats, steady.periods_integrated);
     period->set_step_budget(budget);
+    period->set_period_budget(budget_.run_limit());
     tight_period.emplace(rm_, chart, base, winding, factor * kTightFactor, res_.stats, steady.periods_integrated);
     tight_period->set_step_budget(10 * budget);
+    tight_period->set_period_budget(budget_.run_limit());
     options.jacobian_map = &*tight_period;
   };
   maps_at(1.0);
@@ -483,6 +533,10 @@ bool SteadyRun::solve_orbit(Chart& chart, const StartState& base, const std::vec
     steady.kind = SteadyClass::not_converged;
     res_.message = "shooting converged, but a perturbed period failed: " +
                    (final ? tight_period->last_failure() : period->last_failure());
+    if (monodromy.refused) {
+      budget_.stopped(spent(), "an orbit found, its multipliers not computed");
+      res_.message.clear();
+    }
     return false;
   }
   double max_eps = from.max_eps;
@@ -561,12 +615,27 @@ void SteadyRun::transient_error_bars() {
   }
 }
 
+void SteadyRun::transient_only() {
+  // max_cycles cycles and nothing more: a steady stage would cost tens of periods more than
+  // the case asked for (shooting the slider-crank from one cycle: 27–311).
+  const bool ok = transient(0, nullptr);
+  finish_transient();
+  if (ok) {
+    res_.steady.kind = SteadyClass::not_converged;
+    res_.message = "simulation.max_cycles = " + std::to_string(sim_.max_cycles) +
+                   ": too short for the steady stage (it needs max_cycles >= " + std::to_string(kMinSteadyCycles) +
+                   "); the transient alone";
+  }
+}
+
 RunResult SteadyRun::run() {
   const auto wall0 = std::chrono::steady_clock::now();
   SteadyCycle& steady = res_.steady;
   const double tol = sim_.steady_tolerance;
 
-  if (sim_.steady == SteadyMethod::transient) {
+  if (sim_.steady != SteadyMethod::transient && sim_.max_cycles < kMinSteadyCycles) {
+    transient_only();
+  } else if (sim_.steady == SteadyMethod::transient) {
     std::function<bool(const std::vector<CycleMetrics>&)> stop;
     if (sim_.stop_when_steady)
       stop = [&](const std::vector<CycleMetrics>& cs) { return transient_steady(scene_, cs, tol); };
@@ -630,6 +699,8 @@ RunResult SteadyRun::run() {
 
 RunResult SteadyRun::take_result(std::chrono::steady_clock::time_point wall0) {
   const SteadyCycle& steady = res_.steady;
+  if (!budget_.note().empty())
+    res_.message = budget_.note() + (res_.message.empty() ? "" : "; " + res_.message);
   res_.metrics.steady = res_.status == RunStatus::ok && steady.kind == SteadyClass::periodic;
   res_.metrics.cycles_to_steady = res_.metrics.steady ? static_cast<int>(steady.periods_integrated) : -1;
   res_.metrics.cycles_run = static_cast<int>(res_.cycles.size());
@@ -681,22 +752,35 @@ void add_costs(RunResult& total, const RunResult& part) {
   total.steady.newton_iterations += part.steady.newton_iterations;
 }
 
+/// Whether the case has spent its simulation.max_periods, having integrated `spent`; if
+/// so, `why` says so.
+bool budget_spent(const Scene& scene, long long spent, std::string& why) {
+  if (spent < scene.simulation.max_periods) return false;
+  PeriodBudget b(scene.simulation.max_periods, spent);
+  b.stopped(0, "no further step");
+  why = b.note();
+  return true;
+}
+
 /// Follows the path from the seed to the scene (λ = 1); the run's result there, or nullopt
-/// with `why` and what the tries cost in `spent`.
+/// with `why` and what the tries cost in `spent`. `before`: what the case integrated
+/// before the path (its simulation.max_periods bounds both).
 std::optional<RunResult> follow_path(const Scene& scene, const ContinuationStart& from, RunResult& spent,
-                                     std::string& why) {
+                                     std::string& why, long long before = 0) {
   OrbitSeed seed = from.seed;
   double lambda = 0.0, step = 1.0;
   int steps = 0;
   why = seed.valid() ? "" : "the neighbour has no orbit";
   while (seed.valid() && step >= kMinPathStep) {
+    const long long used = before + spent.steady.periods_integrated;
+    if (budget_spent(scene, used, why)) break;
     const double next = std::min(1.0, lambda + step);
     const bool final = next >= 1.0;
     const Scene between = final ? Scene{} : from.path(next);
-    SteadyRun r(final ? scene : between);
+    SteadyRun r(final ? scene : between, PeriodBudget(scene.simulation.max_periods, used));
     const bool ok = r.continue_from(seed, final);
     ++steps;
-    const int used = r.last_iterations();
+    const int iterations = r.last_iterations();
     RunResult part = r.take_result(std::chrono::steady_clock::now());
     if (ok && final) {
       add_costs(part, spent);
@@ -708,7 +792,7 @@ std::optional<RunResult> follow_path(const Scene& scene, const ContinuationStart
     if (ok) {
       seed = std::move(part.orbit_seed);
       lambda = next;
-      if (used <= 2) step *= 2.0;  // quick: a longer step next
+      if (iterations <= 2) step *= 2.0;  // quick: a longer step next
     } else {
       step *= 0.5;
       why = part.message;
@@ -727,11 +811,18 @@ RunResult finish_wall(RunResult r, std::chrono::steady_clock::time_point wall0) 
 }
 
 /// simulation.steady = continuation without a neighbour: auto; where it finds no orbit,
-/// the thick-film version's orbit continued back to the scene's viscosity.
-RunResult run_alone(const Scene& scene) {
+/// the thick-film version's orbit continued back to the scene's viscosity. `before`: the
+/// periods the case integrated before (a path given up).
+RunResult run_alone(const Scene& scene, long long before = 0) {
   const auto wall0 = std::chrono::steady_clock::now();
-  RunResult own = SteadyRun(scene).run();
-  if (own.status != RunStatus::ok || found_orbit(own)) return own;
+  const long long limit = scene.simulation.max_periods;
+  RunResult own = SteadyRun(scene, PeriodBudget(limit, before)).run();
+  if (own.status != RunStatus::ok || found_orbit(own) || scene.simulation.max_cycles < kMinSteadyCycles) return own;
+  std::string why;
+  if (budget_spent(scene, before + own.steady.periods_integrated, why)) {
+    if (own.message.find("simulation.max_periods") == std::string::npos) own.message = why + "; " + own.message;
+    return finish_wall(std::move(own), wall0);
+  }
   auto thick_version = [&scene](double factor) {
     Scene s = scene;
     for (JointSpec& j : s.joints)
@@ -739,7 +830,7 @@ RunResult run_alone(const Scene& scene) {
     return s;
   };
   const Scene thick = thick_version(kThickFilm);
-  const RunResult seeded = SteadyRun(thick).run();
+  const RunResult seeded = SteadyRun(thick, PeriodBudget(limit, before + own.steady.periods_integrated)).run();
   add_costs(own, seeded);
   if (!seeded.orbit_seed.valid()) {
     own.message = "no orbit at 16 × the viscosity either (" + classification(seeded) + "); " + own.message;
@@ -747,8 +838,7 @@ RunResult run_alone(const Scene& scene) {
   }
   const ContinuationStart from{seeded.orbit_seed,
                                [&](double lambda) { return thick_version(std::pow(kThickFilm, 1.0 - lambda)); }};
-  std::string why;
-  std::optional<RunResult> r = follow_path(scene, from, own, why);
+  std::optional<RunResult> r = follow_path(scene, from, own, why, before);
   if (!r) {
     own.message = "from 16 × the viscosity: " + why + "; " + own.message;
     return finish_wall(std::move(own), wall0);
@@ -766,12 +856,20 @@ RunResult run_scene(const Scene& scene) {
 }
 
 RunResult run_scene(const Scene& scene, const ContinuationStart& from) {
+  // Too short for a steady stage: the transient alone, whatever the neighbour.
+  if (scene.simulation.max_cycles < kMinSteadyCycles) return run_alone(scene);
   const auto wall0 = std::chrono::steady_clock::now();
   RunResult spent;
   std::string why;
   if (std::optional<RunResult> r = follow_path(scene, from, spent, why)) return finish_wall(std::move(*r), wall0);
+  // The budget is spent: the path's account is the case's.
+  std::string none;
+  if (budget_spent(scene, spent.steady.periods_integrated, none)) {
+    spent.message = why;
+    return finish_wall(std::move(spent), wall0);
+  }
   // The path could not be followed: the scene alone.
-  RunResult r = run_alone(scene);
+  RunResult r = run_alone(scene, spent.steady.periods_integrated);
   add_costs(r, spent);
   r.message = why + "; " + r.message;
   return finish_wall(std::move(r), wall0);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -253,6 +254,23 @@ SolverSpec parse_solver(const json& j) {
   return s;
 }
 
+}  // namespace
+
+long long default_max_periods(const SimulationSpec& s) {
+  // A run of fixed duration has no periods to count; a transient integrates max_cycles and
+  // its error bars metric_cycles again; a steady stage gets its allowance on top of the
+  // transient, unless the transient is too short for one (then the transient alone runs).
+  if (s.duration_s) return std::numeric_limits<long long>::max();
+  if (s.steady == SteadyMethod::transient) return s.max_cycles + (s.error_bars ? s.metric_cycles : 0);
+  if (s.max_cycles < kMinSteadyCycles) return s.max_cycles;
+  // continuation: up to four searches for an orbit (the path from a neighbour, the scene's
+  // own auto, its thick-film version's, the path back from there), two transients.
+  if (s.steady == SteadyMethod::continuation) return 2LL * s.max_cycles + 4 * kSteadyStagePeriods;
+  return s.max_cycles + kSteadyStagePeriods;
+}
+
+namespace {
+
 // simulation: end time or cycles, the steady stop, limits.
 SimulationSpec parse_simulation(const json& j) {
   ObjectReader r(j, "simulation");
@@ -278,9 +296,14 @@ SimulationSpec parse_simulation(const json& j) {
   s.eps_limit = r.number_or("eps_limit", s.eps_limit,
                             [](double v) { return v > 0.0 && v < 1.0; }, "must be in (0, 1)");
   s.drift_limit_m = r.number_optional("drift_limit_m", positive, "must be > 0 m");
+  const bool max_periods_given = r.has("max_periods");
+  s.max_periods = r.integer_or("max_periods", 1, 1, 1'000'000'000);
   r.finish();
   if (s.duration_s && r.has("max_cycles"))
     fail("simulation.max_cycles", j["max_cycles"],
+         "must not be given together with simulation.duration_s (the run ends at duration_s)");
+  if (s.duration_s && max_periods_given)
+    fail("simulation.max_periods", j["max_periods"],
          "must not be given together with simulation.duration_s (the run ends at duration_s)");
   if (!metric_cycles_given) s.metric_cycles = std::min(s.metric_cycles, s.max_cycles);
   if (!transient_cycles_given) s.transient_cycles = std::min(s.transient_cycles, s.max_cycles);
@@ -295,6 +318,7 @@ SimulationSpec parse_simulation(const json& j) {
   if (!s.duration_s && s.metric_cycles > s.max_cycles)
     fail("simulation.metric_cycles", json(s.metric_cycles),
          "must be <= simulation.max_cycles = " + std::to_string(s.max_cycles));
+  if (!max_periods_given) s.max_periods = default_max_periods(s);
   return s;
 }
 

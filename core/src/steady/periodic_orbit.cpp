@@ -29,31 +29,34 @@ Monodromy monodromy_by_differences(CycleMap& P, const Eigen::VectorXd& z, const 
   Monodromy out;
   out.M.setZero(n, n);
   Eigen::VectorXd zp = z, Pp(n), Pm(n);
-  // One column: false if a perturbed period fails.
+  // One column: the first nonzero flag of its perturbed periods (< 0: the map refuses,
+  // its budget spent), or 0.
   auto column = [&](int j, double h) {
     zp(j) = z(j) + h;
     ++out.maps;
-    bool ok = P.apply(zp.data(), Pp.data()) == 0;
-    if (ok && opt.central) {
+    int flag = P.apply(zp.data(), Pp.data());
+    if (flag == 0 && opt.central) {
       zp(j) = z(j) - h;
       ++out.maps;
-      ok = P.apply(zp.data(), Pm.data()) == 0;
-      if (ok) out.M.col(j) = (Pp - Pm) / (2.0 * h);
-    } else if (ok) {
+      flag = P.apply(zp.data(), Pm.data());
+      if (flag == 0) out.M.col(j) = (Pp - Pm) / (2.0 * h);
+    } else if (flag == 0) {
       out.M.col(j) = (Pp - Pz) / h;
     }
     zp(j) = z(j);
-    return ok;
+    return flag;
   };
   for (int j = 0; j < n; ++j) {
     // A perturbed period that fails (the step put the journal through the wall, or the
     // integrator gave up on the perturbed start) is tried again with steps 10 and 100
-    // times smaller: near the wall the unit step can exceed what the film allows.
+    // times smaller (opt.retries): near the wall the unit step can exceed what the film
+    // allows. A refusal is final.
     double h = opt.step * opt.scales[static_cast<size_t>(j)];
-    bool ok = false;
-    for (int attempt = 0; attempt <= opt.retries && !ok; ++attempt, h *= 0.1) ok = column(j, h);
-    if (!ok) {
+    int flag = column(j, h);
+    for (int attempt = 0; attempt < opt.retries && flag > 0; ++attempt) flag = column(j, h *= 0.1);
+    if (flag != 0) {
       ++out.failed;
+      out.refused = flag < 0;
       return out;
     }
   }
@@ -91,6 +94,7 @@ struct Problem {
   int n = 0;
   long long maps = 0;
   int failures = 0;            // map failures at trial points
+  bool refused = false;        // the map refused to go on (CycleMap::apply < 0)
   Eigen::VectorXd z, Pz;       // scratch
   Eigen::VectorXd best_z, best_Pz;
   double best = std::numeric_limits<double>::infinity();
@@ -105,9 +109,10 @@ int residual_cb(N_Vector u, N_Vector f, void* data) {
   double* fd = N_VGetArrayPointer(f);
   for (int i = 0; i < pb.n; ++i) pb.z(i) = ud[i];
   ++pb.maps;
-  if (pb.P->apply(pb.z.data(), pb.Pz.data()) != 0) {
+  if (const int flag = pb.P->apply(pb.z.data(), pb.Pz.data()); flag != 0) {
     ++pb.failures;
-    return 1;  // recoverable: the line search shortens the step
+    pb.refused = pb.refused || flag < 0;
+    return flag < 0 ? -1 : 1;  // refused: KINSOL stops; else recoverable: the line search shortens the step
   }
   double r = 0.0;
   for (int i = 0; i < pb.n; ++i) {
@@ -142,7 +147,8 @@ int jacobian_cb(N_Vector u, N_Vector fu, SUNMatrix J, void* data, N_Vector, N_Ve
   pb.maps += m.maps;
   if (m.failed) {
     ++pb.failures;
-    return 1;
+    pb.refused = pb.refused || m.refused;
+    return m.refused ? -1 : 1;
   }
   for (int j = 0; j < pb.n; ++j)
     for (int i = 0; i < pb.n; ++i) SM_ELEMENT_D(J, i, j) = m.M(i, j) - (i == j ? 1.0 : 0.0);
@@ -242,6 +248,10 @@ ShootingResult solve_periodic_orbit(CycleMap& P, const Eigen::VectorXd& z0, cons
   if (flag_name.empty() || flag_name == "NONE") flag_name = "KINSOL flag " + std::to_string(flag);
   out.message = "Newton on P(z) = z: " + flag_name;
   std::free(const_cast<char*>(name));
+  if (pb.refused) {
+    out.outcome = ShootingOutcome::refused;
+    return out;
+  }
   // Left the domain: the map's failures stopped Newton, or a Jacobian's difference step
   // from the iterate failed (the iterate is within a step of the wall); not a line search
   // that merely met one failing trial point on its way.
@@ -307,6 +317,7 @@ ShootingResult anderson_fixed_point(CycleMap& P, const Eigen::VectorXd& z0, cons
   Eigen::VectorXd plain, extrapolated;
   double theta = 1.0;
   int since_best = 0;  // maps since the best residual improved
+  bool refused = false;
   auto pull_back = [&]() {
     theta *= 0.5;
     if (theta >= 1.0 / 16.0) {
@@ -320,8 +331,10 @@ ShootingResult anderson_fixed_point(CycleMap& P, const Eigen::VectorXd& z0, cons
   while (out.maps < opt.max_maps) {
     ++out.maps;
     const bool trial = !zs.empty() && theta >= 1.0 / 16.0;  // z is an extrapolation
-    if (P.apply(z.data(), Pz.data()) != 0) {
-      if (!trial || ++since_best >= opt.stall) break;  // the start, or a state the flow reached, fails
+    if (const int flag = P.apply(z.data(), Pz.data()); flag != 0) {
+      // The start, or a state the flow reached, fails; or the map refuses (its budget).
+      refused = flag < 0;
+      if (refused || !trial || ++since_best >= opt.stall) break;
       pull_back();
       continue;
     }
@@ -356,7 +369,11 @@ ShootingResult anderson_fixed_point(CycleMap& P, const Eigen::VectorXd& z0, cons
     out.z = best_z;
     out.Pz = best_Pz;
     out.residual = best;
-    out.outcome = best <= opt.tolerance ? ShootingOutcome::converged : ShootingOutcome::not_converged;
+    out.outcome = best <= opt.tolerance ? ShootingOutcome::converged
+                  : refused              ? ShootingOutcome::refused
+                                         : ShootingOutcome::not_converged;
+  } else if (refused) {
+    out.outcome = ShootingOutcome::refused;
   } else {
     out.outcome = ShootingOutcome::left_domain;
     out.message = "the period from the start failed";

@@ -180,6 +180,12 @@ struct SimulationSpec {
   /// Transient cycles before shooting (shooting), or before the contraction rate decides
   /// between more transient and shooting (auto). Default min(8, max_cycles).
   int transient_cycles = 8;
+  /// The hard cap on the crank periods a case integrates in all: transient, period maps,
+  /// difference Jacobians and monodromy, measurements, error bars, continuation steps and
+  /// a thick-film start (docs/theory/steady-cycles.md, budgets). A stage that would pass it
+  /// does not start; the case says so. Default (default_max_periods): max_cycles, plus
+  /// metric_cycles for a transient's error bars, plus kSteadyStagePeriods for a steady stage.
+  long long max_periods = 0;
   /// A periodic orbit is converged when max_i |P(z)_i − z_i| / s_i is below this, s_i
   /// each state's unit (lengths in the clearance: 1e-9 is 0.5 pm at 0.5 mm).
   double shooting_tolerance = 1e-9;
@@ -201,6 +207,17 @@ struct SimulationSpec {
   /// when the scene has lubricated joints, none otherwise.
   std::optional<double> drift_limit_m;
 };
+
+/// Periods one search for an orbit (shooting or auto after its transient, a continuation
+/// path) may spend by default: 5 times the most an auto case of full_factorial.json takes
+/// in all (804 periods, 40 cycles of transient included; docs/theory/steady-cycles.md, budgets).
+inline constexpr long long kSteadyStagePeriods = 4000;
+/// The steady stage needs a transient of at least this many cycles (max_cycles): below it
+/// a case runs its transient only (docs/theory/steady-cycles.md, budgets).
+inline constexpr int kMinSteadyCycles = 2;
+/// simulation.max_periods when the scene does not give it: what the method integrates at
+/// most (docs/theory/steady-cycles.md, budgets).
+long long default_max_periods(const SimulationSpec& s);
 
 enum class ChannelSource { time, body, joint };
 

@@ -25,8 +25,9 @@ class CycleMap {
  public:
   virtual ~CycleMap() = default;
   virtual int dim() const = 0;
-  /// Writes P(z) into Pz. Returns 0, or > 0 if the map cannot be evaluated at z (the
-  /// orbit from z leaves the domain: a film collapses, the integrator fails).
+  /// Writes P(z) into Pz. Returns 0, > 0 if the map cannot be evaluated at z (the orbit
+  /// from z leaves the domain: a film collapses, the integrator fails), or < 0 if it
+  /// refuses to go on at all (a budget of periods is spent): the solvers stop there.
   virtual int apply(const double* z, double* Pz) = 0;
 };
 
@@ -45,6 +46,7 @@ struct Monodromy {
   Eigen::MatrixXd M;
   long long maps = 0;  ///< map evaluations spent
   int failed = 0;      ///< > 0: a perturbed map could not be evaluated (M not set)
+  bool refused = false;  ///< the map refused to go on (CycleMap::apply < 0; failed > 0 too)
 };
 /// `Pz` = P(z) (used by forward differences).
 Monodromy monodromy_by_differences(CycleMap& P, const Eigen::VectorXd& z, const Eigen::VectorXd& Pz,
@@ -89,6 +91,7 @@ enum class ShootingOutcome {
   converged,      ///< residual below the tolerance
   left_domain,    ///< the map failed along Newton's path (the iterates walked out of the domain)
   not_converged,  ///< no convergence (line search stalled, iteration limit)
+  refused,        ///< the map refused to go on (CycleMap::apply < 0: a budget spent)
 };
 
 struct ShootingResult {
