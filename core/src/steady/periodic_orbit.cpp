@@ -157,6 +157,56 @@ int jacobian_cb(N_Vector u, N_Vector fu, SUNMatrix J, void* data, N_Vector, N_Ve
 
 void silent(int, const char*, const char*, char*, void*) {}
 
+/// The outcome of KINSOL's `flag` on the problem pb (its best iterate, counters).
+ShootingResult verdict(const Problem& pb, int flag, long iterations, const Eigen::VectorXd& z0,
+                       const ShootingOptions& opt) {
+  ShootingResult out;
+  out.iterations = iterations;
+  out.maps = pb.maps;
+  out.jacobians = pb.jacobians;
+  if (std::isfinite(pb.best)) {
+    out.z = pb.best_z;
+    out.Pz = pb.best_Pz;
+    out.residual = pb.best;
+  } else {
+    out.z = z0;
+  }
+  if (out.residual >= 0 && out.residual <= opt.tolerance) {
+    out.outcome = ShootingOutcome::converged;
+    return out;
+  }
+  // Stalled at the map's own noise: the line search finds no decrease where the map is
+  // not smooth (an integration's step sequence changes with z), within noise_factor of
+  // the tolerance.
+  // So has one that ran out of iterations there: near a multiplier close to 1 the
+  // difference Jacobian's noise slows Newton to a crawl at that level.
+  if ((flag == KIN_LINESEARCH_NONCONV || flag == KIN_STEP_LT_STPTOL || flag == KIN_MAXITER_REACHED) &&
+      out.residual >= 0 &&
+      out.residual <= opt.noise_factor * opt.tolerance) {
+    out.outcome = ShootingOutcome::converged;
+    out.at_noise_floor = true;
+    return out;
+  }
+  const char* name = KINGetReturnFlagName(flag);
+  std::string flag_name = name ? name : "";
+  if (flag_name.empty() || flag_name == "NONE") flag_name = "KINSOL flag " + std::to_string(flag);
+  out.message = "Newton on P(z) = z: " + flag_name;
+  std::free(const_cast<char*>(name));
+  if (pb.refused) {
+    out.outcome = ShootingOutcome::refused;
+    return out;
+  }
+  // Left the domain: the map's failures stopped Newton, or a Jacobian's difference step
+  // from the iterate failed (the iterate is within a step of the wall); not a line search
+  // that merely met one failing trial point on its way.
+  out.outcome = pb.failures > 0 && (out.residual < 0 || flag == KIN_REPTD_SYSFUNC_ERR ||
+                                    flag == KIN_FIRST_SYSFUNC_ERR || flag == KIN_SYSFUNC_FAIL ||
+                                    flag == KIN_LSETUP_FAIL)
+                    ? ShootingOutcome::left_domain
+                    : ShootingOutcome::not_converged;
+  return out;
+}
+
 }  // namespace
 
 ShootingResult solve_periodic_orbit(CycleMap& P, const Eigen::VectorXd& z0, const ShootingOptions& opt) {
@@ -214,53 +264,9 @@ ShootingResult solve_periodic_orbit(CycleMap& P, const Eigen::VectorXd& z0, cons
   check(KINSetMaxNewtonStep(m, opt.max_newton_step), "KINSetMaxNewtonStep");
   const int flag = KINSol(m, u.get(), KIN_LINESEARCH, us.get(), fs.get());
 
-  ShootingResult out;
   long nni = 0;
   KINGetNumNonlinSolvIters(m, &nni);
-  out.iterations = nni;
-  out.maps = pb.maps;
-  out.jacobians = pb.jacobians;
-  if (std::isfinite(pb.best)) {
-    out.z = pb.best_z;
-    out.Pz = pb.best_Pz;
-    out.residual = pb.best;
-  } else {
-    out.z = z0;
-  }
-  if (out.residual >= 0 && out.residual <= opt.tolerance) {
-    out.outcome = ShootingOutcome::converged;
-    return out;
-  }
-  // Stalled at the map's own noise: the line search finds no decrease where the map is
-  // not smooth (an integration's step sequence changes with z), within noise_factor of
-  // the tolerance.
-  // So has one that ran out of iterations there: near a multiplier close to 1 the
-  // difference Jacobian's noise slows Newton to a crawl at that level.
-  if ((flag == KIN_LINESEARCH_NONCONV || flag == KIN_STEP_LT_STPTOL || flag == KIN_MAXITER_REACHED) &&
-      out.residual >= 0 &&
-      out.residual <= opt.noise_factor * opt.tolerance) {
-    out.outcome = ShootingOutcome::converged;
-    out.at_noise_floor = true;
-    return out;
-  }
-  const char* name = KINGetReturnFlagName(flag);
-  std::string flag_name = name ? name : "";
-  if (flag_name.empty() || flag_name == "NONE") flag_name = "KINSOL flag " + std::to_string(flag);
-  out.message = "Newton on P(z) = z: " + flag_name;
-  std::free(const_cast<char*>(name));
-  if (pb.refused) {
-    out.outcome = ShootingOutcome::refused;
-    return out;
-  }
-  // Left the domain: the map's failures stopped Newton, or a Jacobian's difference step
-  // from the iterate failed (the iterate is within a step of the wall); not a line search
-  // that merely met one failing trial point on its way.
-  out.outcome = pb.failures > 0 && (out.residual < 0 || flag == KIN_REPTD_SYSFUNC_ERR ||
-                                    flag == KIN_FIRST_SYSFUNC_ERR || flag == KIN_SYSFUNC_FAIL ||
-                                    flag == KIN_LSETUP_FAIL)
-                    ? ShootingOutcome::left_domain
-                    : ShootingOutcome::not_converged;
-  return out;
+  return verdict(pb, flag, nni, z0, opt);
 }
 
 }  // namespace lub::steady
