@@ -33,7 +33,6 @@ Chart::Chart(RunModel& rm, const StartState& x, ShootingCoordinates kind)
   if (kind != ShootingCoordinates::wall || !wall_applies(x)) return;
   // The wall chart: w in units of 1, ẇ in the driver's rate (the unit of a rate is the
   // length's times it, state_units).
-  y_units_ = units_;
   const int m = n_ / 2;
   const double rate = units_[static_cast<size_t>(m)] / units_[0];
   Eigen::VectorXd u, u_dot;

@@ -198,8 +198,8 @@ class SteadyRun {
   bool solve_orbit(Chart& chart, const StartState& base, const std::vector<double>& winding, long long budget,
                    steady::ShootingOptions options, bool final, const OrbitSeed& from);
   int last_iterations_ = 0;
-  /// Newton on the period map from z0; if that fails and `accelerate`, Anderson-accelerated
-  /// periods from z0 and Newton again from where they got to.
+  /// Newton on the period map from z0; if that fails and `accelerate` (the Anderson
+  /// fallback), Anderson-accelerated periods from z0 and Newton again from where they got to.
   steady::ShootingResult find_orbit(PeriodMap& period, const Eigen::VectorXd& z0, const steady::ShootingOptions& options,
                                     bool accelerate);
   /// Shooting's options from a cycle whose largest eccentricity ratio is `max_eps` (NaN:
@@ -463,12 +463,19 @@ void SteadyRun::shoot_from_transient() {
   solve_orbit(chart, base, winding, budget, shooting_options(chart, max_eps), true, OrbitSeed{});
 }
 
+/// A second Newton after `first` failed: it, with first's iterations and maps (and `extra`
+/// maps spent between them) counted in, if it converged or got closer; else first.
+steady::ShootingResult better_of(steady::ShootingResult first, steady::ShootingResult again, long long extra = 0) {
+  again.iterations += first.iterations;
+  again.maps += first.maps + extra;
+  return again.outcome == steady::ShootingOutcome::converged || again.residual < first.residual ? again : first;
+}
+
 steady::ShootingResult SteadyRun::find_orbit(PeriodMap& period, const Eigen::VectorXd& z0,
                                              const steady::ShootingOptions& options, bool accelerate) {
   steady::ShootingResult found = steady::solve_periodic_orbit(period, z0, options);
   if (found.outcome == steady::ShootingOutcome::converged || found.outcome == steady::ShootingOutcome::refused ||
-      !accelerate ||
-      sim_.shooting_fallback != ShootingFallback::anderson)
+      !accelerate)
     return found;
   // Newton from the transient's end found no orbit: the orbit may lie far along a slow
   // manifold. Anderson-accelerated periods from the same start (one period a step,
@@ -479,10 +486,7 @@ steady::ShootingResult SteadyRun::find_orbit(PeriodMap& period, const Eigen::Vec
   ao.tolerance = kAndersonHandOver;
   const steady::ShootingResult accelerated = steady::anderson_fixed_point(period, z0, ao);
   if (accelerated.residual < 0 || accelerated.residual >= found.residual) return found;
-  steady::ShootingResult again = steady::solve_periodic_orbit(period, accelerated.z, options);
-  again.iterations += found.iterations;
-  again.maps += found.maps + accelerated.maps;
-  return again.outcome == steady::ShootingOutcome::converged || again.residual < found.residual ? again : found;
+  return better_of(std::move(found), steady::solve_periodic_orbit(period, accelerated.z, options), accelerated.maps);
 }
 
 bool SteadyRun::solve_orbit(Chart& chart, const StartState& base, const std::vector<double>& winding,
@@ -504,16 +508,16 @@ bool SteadyRun::solve_orbit(Chart& chart, const StartState& base, const std::vec
     options.jacobian_map = &*tight_period;
   };
   maps_at(1.0);
-  steady::ShootingResult found = find_orbit(*period, chart.reduce(base.qv), options, !from.valid());
-  if (found.outcome != steady::ShootingOutcome::converged && !from.valid() &&
-      sim_.shooting_fallback == ShootingFallback::anderson && found.residual >= 0 && found.residual <= kTightenBelow) {
+  // The fallback (simulation.shooting_fallback) serves a start from the transient only.
+  const bool fallback = !from.valid() && sim_.shooting_fallback == ShootingFallback::anderson;
+  steady::ShootingResult found = find_orbit(*period, chart.reduce(base.qv), options, fallback);
+  if (fallback && found.outcome != steady::ShootingOutcome::converged &&
+      found.outcome != steady::ShootingOutcome::refused && found.residual >= 0 && found.residual <= kTightenBelow) {
     // Stalled at the map's own noise (near |μ| = 1 its fixed point moves by that noise
     // over 1 − |μ|): Newton again on periods at rtol/10.
     maps_at(kTightenFactor);
-    steady::ShootingResult again = steady::solve_periodic_orbit(*period, found.z, options);
-    again.iterations += found.iterations;
-    again.maps += found.maps;
-    if (again.outcome == steady::ShootingOutcome::converged || again.residual < found.residual) found = std::move(again);
+    const Eigen::VectorXd z = found.z;
+    found = better_of(std::move(found), steady::solve_periodic_orbit(*period, z, options));
   }
   steady.newton_iterations += static_cast<int>(found.iterations);
   steady.orbit_residual = found.residual;

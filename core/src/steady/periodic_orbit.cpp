@@ -274,14 +274,6 @@ ShootingResult solve_periodic_orbit(CycleMap& P, const Eigen::VectorXd& z0, cons
 namespace lub::steady {
 
 namespace {
-double scaled_max(const Eigen::VectorXd& f, const std::vector<double>& r) {
-  double m = 0.0;
-  for (Eigen::Index i = 0; i < f.size(); ++i) m = std::max(m, std::abs(f(i)) / r[static_cast<size_t>(i)]);
-  return m;
-}
-}  // namespace
-
-namespace {
 /// Anderson's iterate from the history (zs, fs; the last entry the current iterate):
 /// z + f − (ΔZ + ΔF) γ, γ = argmin ‖W (f − ΔF γ)‖₂; plain z + f without history.
 Eigen::VectorXd anderson_step(const std::vector<Eigen::VectorXd>& zs, const std::vector<Eigen::VectorXd>& fs,
@@ -344,7 +336,7 @@ ShootingResult anderson_fixed_point(CycleMap& P, const Eigen::VectorXd& z0, cons
       pull_back();
       continue;
     }
-    const double r = scaled_max(Pz - z, opt.residual_scales);
+    const double r = scaled_distance(Pz, z, opt.residual_scales);
     if (trial && r > 10.0 * best) {
       if (++since_best >= opt.stall) break;
       pull_back();
