@@ -63,6 +63,10 @@ TEST(Budget, TheDefaultIsWhatTheMethodIntegratesAtMost) {
   bars["simulation"]["error_bars"] = true;
   const lub::Scene tb = lub::parse_scene(bars);
   EXPECT_EQ(tb.simulation.max_periods, tb.simulation.max_cycles + tb.simulation.metric_cycles);
+  json stop = reference("transient");
+  stop["simulation"]["stop_when_steady"] = true;
+  const lub::Scene ts = lub::parse_scene(stop);
+  EXPECT_EQ(ts.simulation.max_periods, ts.simulation.max_cycles + lub::kConfirmationPeriods);
   const lub::Scene a = lub::parse_scene(reference("auto"));
   EXPECT_EQ(a.simulation.max_periods, a.simulation.max_cycles + lub::kSteadyStagePeriods);
   const lub::Scene c = lub::parse_scene(reference("continuation"));
@@ -189,6 +193,22 @@ TEST(Budget, BoundsAutoAndATransientsErrorBars) {
   EXPECT_EQ(r.steady.periods_integrated, s.simulation.max_cycles);
   EXPECT_TRUE(says(r, "no error bars")) << r.message;
   EXPECT_TRUE(std::isnan(r.metrics.min_film_thickness_m_error));
+}
+
+TEST(Budget, BoundsATransientsConfirmation) {
+  // stop_when_steady: the period map's confirmation of the stop (P(z) and the monodromy)
+  // is a stage like any other; cut one period short, the stop is not confirmed.
+  json doc = reference("transient");
+  doc["simulation"]["stop_when_steady"] = true;
+  const RunResult free = run(doc);
+  ASSERT_EQ(lub::classification(free), "periodic") << free.message;
+  ASSERT_GT(free.steady.periods_integrated, free.metrics.cycles_run);
+  const long long b = free.steady.periods_integrated - 1;
+  const RunResult r = run(with_budget(doc, b));
+  EXPECT_LE(r.steady.periods_integrated, b);
+  EXPECT_EQ(lub::classification(r), "not_converged") << r.message;
+  EXPECT_TRUE(says(r, reached(b))) << r.message;
+  EXPECT_TRUE(says(r, "the transient's stop not confirmed")) << r.message;
 }
 
 TEST(Budget, BoundsAContinuationPath) {

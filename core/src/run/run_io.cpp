@@ -55,7 +55,7 @@ const std::vector<ResultField>& metric_fields() {
         {"contraction_rate", "1", false, [](const RunResult& r) { return r.steady.contraction_rate; },
          "rho: cycle-to-cycle orbit distances shrink by this per cycle (transient, least squares; NaN: unknown)"},
         {"remaining_distance", "1", false, [](const RunResult& r) { return r.steady.remaining_distance; },
-         "the transient's distance still to go to its steady cycle, delta rho / (1 - rho), in clearances"},
+         "the transient's distance still to go to its steady cycle, in clearances: delta rho / (1 - rho), or the period map's |(I - M)^-1 (P(z) - z)| where it confirmed or refused the transient's stop"},
         {"orbit_residual", "1", false, [](const RunResult& r) { return r.steady.orbit_residual; },
          "shooting: max |P(z) - z| over the states, each in its own unit (lengths in clearances)"},
         {"newton_iterations", "1", true, [](const RunResult& r) { return double(r.steady.newton_iterations); },

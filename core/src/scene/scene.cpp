@@ -257,11 +257,13 @@ SolverSpec parse_solver(const json& j) {
 }  // namespace
 
 long long default_max_periods(const SimulationSpec& s) {
-  // A run of fixed duration has no periods to count; a transient integrates max_cycles and
-  // its error bars metric_cycles again; a steady stage gets its allowance on top of the
+  // A run of fixed duration has no periods to count; a transient integrates max_cycles,
+  // its error bars metric_cycles again and, with stop_when_steady, the period map's
+  // confirmations of its verdict; a steady stage gets its allowance on top of the
   // transient, unless the transient is too short for one (then the transient alone runs).
   if (s.duration_s) return std::numeric_limits<long long>::max();
-  if (s.steady == SteadyMethod::transient) return s.max_cycles + (s.error_bars ? s.metric_cycles : 0);
+  if (s.steady == SteadyMethod::transient)
+    return s.max_cycles + (s.error_bars ? s.metric_cycles : 0) + (s.stop_when_steady ? kConfirmationPeriods : 0);
   if (s.max_cycles < kMinSteadyCycles) return s.max_cycles;
   // continuation: up to four searches for an orbit (the path from a neighbour, the scene's
   // own auto, its thick-film version's, the path back from there), two transients.

@@ -103,9 +103,11 @@ struct SteadyCycle {
   /// ρ: successive cycles' orbit distances shrink as δ_{k+1} ≈ ρ δ_k (least squares over
   /// the transient's last cycles); NaN: not enough cycles.
   double contraction_rate = std::numeric_limits<double>::quiet_NaN();
-  /// The transient's distance still to go to its steady cycle, δ ρ / (1 − ρ) [clearances]
+  /// The transient's distance still to go to its steady cycle [clearances]: δ ρ / (1 − ρ),
+  /// or the period map's |(I − M)⁻¹ (P(z) − z)| where it was asked to confirm the stop
   double remaining_distance = std::numeric_limits<double>::quiet_NaN();
-  /// Shooting: max_i |P(z)_i − z_i| / s_i at the orbit found (or the best iterate)
+  /// Shooting: max_i |P(z)_i − z_i| / s_i at the orbit found (or the best iterate); a
+  /// confirmed transient: at its end
   double orbit_residual = std::numeric_limits<double>::quiet_NaN();
   int newton_iterations = 0;
   int transient_cycles = 0;        ///< cycles integrated before shooting (or in all, transient)

@@ -184,7 +184,8 @@ struct SimulationSpec {
   /// difference Jacobians and monodromy, measurements, error bars, continuation steps and
   /// a thick-film start (docs/theory/steady-cycles.md, budgets). A stage that would pass it
   /// does not start; the case says so. Default (default_max_periods): max_cycles, plus
-  /// metric_cycles for a transient's error bars, plus kSteadyStagePeriods for a steady stage.
+  /// metric_cycles for a transient's error bars and kConfirmationPeriods for its confirmation,
+  /// plus kSteadyStagePeriods for a steady stage.
   long long max_periods = 0;
   /// A periodic orbit is converged when max_i |P(z)_i − z_i| / s_i is below this, s_i
   /// each state's unit (lengths in the clearance: 1e-9 is 0.5 pm at 0.5 mm).
@@ -212,6 +213,11 @@ struct SimulationSpec {
 /// path) may spend by default: 5 times the most an auto case of full_factorial.json takes
 /// in all (804 periods, 40 cycles of transient included; docs/theory/steady-cycles.md, budgets).
 inline constexpr long long kSteadyStagePeriods = 4000;
+/// Periods the period map's confirmations of a transient's steady verdict may spend by
+/// default: each P(z) and the monodromy's 2 n central differences, n the shooting unknowns
+/// (4 for the slider-crank: 9 periods; 8 with two lubricated joints), asked again each
+/// time the transient doubles (docs/theory/steady-cycles.md, confirmation).
+inline constexpr long long kConfirmationPeriods = 128;
 /// The steady stage needs a transient of at least this many cycles (max_cycles): below it
 /// a case runs its transient only (docs/theory/steady-cycles.md, budgets).
 inline constexpr int kMinSteadyCycles = 2;
