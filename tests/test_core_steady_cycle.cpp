@@ -159,6 +159,44 @@ TEST(SteadyCycle, ATransientsStopOnASlowManifoldIsNotConfirmedByThePeriodMap) {
   EXPECT_LT(r.cycles.back().min_film_thickness_m, 0.67 * r.cycles[1000].min_film_thickness_m);
 }
 
+json cell(const std::string& law, double clearance_m, double viscosity_Pa_s, double rpm) {
+  json d = reference(law, "auto", 40);
+  d["joints"][3]["journal_radius_m"] = 0.0100 - clearance_m;
+  d["joints"][3]["viscosity_Pa_s"] = viscosity_Pa_s;
+  d["drivers"][0]["speed_rpm"] = rpm;
+  d["solver"]["formulation"] = "partitioned";
+  d["simulation"]["stop_when_steady"] = true;
+  return d;
+}
+
+TEST(SteadyCycle, NewtonStalledAtTheMapsNoiseTriesAgainTenTimesTighter) {
+  // The printed law, 0.1 mm, 100 cP, 5000 rpm (full factorial): Newton from the transient
+  // stalls in its line search at a residual of 2.5e-6, the map's noise at rtol 1e-8, and
+  // the transient's own estimate never settles (rate 1.17). At rtol/10 Newton converges to
+  // a strongly attracting orbit (|μ|max ≈ 0.016) that rtol/100 moves by ~1e-6 c.
+  const RunResult r = run(cell("pinkus_sternlicht", 1e-4, 0.1, 5000));
+  ASSERT_EQ(r.status, RunStatus::ok) << r.message;
+  EXPECT_EQ(lub::classification(r), "periodic") << r.message;
+  ASSERT_FALSE(r.steady.multipliers.empty());
+  EXPECT_LT(std::abs(r.steady.multipliers.front()), 0.1);
+  EXPECT_LT(r.steady.orbit_error, 1e-4);
+  EXPECT_LT(r.metrics.min_film_thickness_m_error, 1e-3 * r.metrics.min_film_thickness_m);
+}
+
+TEST(SteadyCycle, AnOrbitThatMovesByMoreThanTheToleranceAtTighterRtolIsNotLocated) {
+  // Frêne short, 0.2 mm, 200 cP, 5000 rpm (full factorial): Newton at rtol/10 converges
+  // to a fixed point of the map with |μ|max 0.9998; re-solved 100 times tighter it moves by
+  // 3.7e-3 c, the map's error over 1 − |μ|. That is no orbit located within
+  // steady_tolerance (1e-3 c): not converged, and the case says so.
+  const RunResult r = run(cell("frene_short", 2e-4, 0.2, 5000));
+  ASSERT_EQ(r.status, RunStatus::ok) << r.message;
+  EXPECT_EQ(lub::classification(r), "not_converged") << r.message;
+  EXPECT_GT(r.steady.orbit_error, 1e-3) << r.message;
+  EXPECT_NE(r.message.find("not located"), std::string::npos) << r.message;
+  ASSERT_FALSE(r.steady.multipliers.empty());
+  EXPECT_GT(std::abs(r.steady.multipliers.front()), 0.999);
+}
+
 TEST(SteadyCycle, AutoDoesNotDependOnMaxCyclesBeyondWhatItUses) {
   const RunResult a = run(reference("frene_long", "auto", 60));
   const RunResult b = run(reference("frene_long", "auto", 90));

@@ -58,6 +58,8 @@ const std::vector<ResultField>& metric_fields() {
          "the transient's distance still to go to its steady cycle, in clearances: delta rho / (1 - rho), or the period map's |(I - M)^-1 (P(z) - z)| where it confirmed or refused the transient's stop"},
         {"orbit_residual", "1", false, [](const RunResult& r) { return r.steady.orbit_residual; },
          "shooting: max |P(z) - z| over the states, each in its own unit (lengths in clearances)"},
+        {"orbit_error", "1", false, [](const RunResult& r) { return r.steady.orbit_error; },
+         "shooting: how far the orbit moves from rtol to rtol/100, max over the states each in its own unit (lengths in clearances)"},
         {"newton_iterations", "1", true, [](const RunResult& r) { return double(r.steady.newton_iterations); },
          "Newton iterations of shooting"},
         {"transient_cycles", "1", true, [](const RunResult& r) { return double(r.steady.transient_cycles); },

@@ -461,6 +461,8 @@ void SteadyRun::orbit_error_bars(Chart& chart, const StartState& base, PeriodMap
         << resolved.residual << " after " << resolved.iterations << " iterations)";
   }
   if (!msg.str().empty()) res_.message = res_.message.empty() ? msg.str() : res_.message + "; " + msg.str();
+  res_.steady.orbit_error = steady::scaled_distance(
+      z_tight, z, options.residual_scales.empty() ? options.scales : options.residual_scales);
   StartState tight_start = base;
   if (!chart.expand(base.t, z_tight.data(), tight_start.qv)) return;
   const SegmentResult measured = measure(tight_start, kTightFactor, false);
@@ -536,10 +538,11 @@ bool SteadyRun::solve_orbit(Chart& chart, const StartState& base, const std::vec
   // The fallback (simulation.shooting_fallback) serves a start from the transient only.
   const bool fallback = !from.valid() && sim_.shooting_fallback == ShootingFallback::anderson;
   steady::ShootingResult found = find_orbit(*period, chart.reduce(base.qv), options, fallback);
-  if (fallback && found.outcome != steady::ShootingOutcome::converged &&
+  if (!from.valid() && found.outcome != steady::ShootingOutcome::converged &&
       found.outcome != steady::ShootingOutcome::refused && found.residual >= 0 && found.residual <= kTightenBelow) {
     // Stalled at the map's own noise (near |μ| = 1 its fixed point moves by that noise
-    // over 1 − |μ|): Newton again on periods at rtol/10.
+    // over 1 − |μ|): Newton again on periods at rtol/10 (a start from the transient; on
+    // the full factorial 25 of 52 not-converged cells get an answer, docs/theory/steady-cycles.md).
     maps_at(kTightenFactor);
     const Eigen::VectorXd z = found.z;
     found = better_of(std::move(found), steady::solve_periodic_orbit(*period, z, options));
@@ -580,6 +583,17 @@ bool SteadyRun::solve_orbit(Chart& chart, const StartState& base, const std::vec
     max_eps = res_.metrics.max_eps;
     steps_per_period = static_cast<double>(res_.stats.steps - steps0) / std::max(1, sim_.metric_cycles);
     if (sim_.error_bars) orbit_error_bars(chart, base, *tight_period, found.z, monodromy.M, options);
+    if (steady.orbit_error > sim_.steady_tolerance) {
+      // Located no better than the tolerance a cycle is steady by: near |μ| = 1 a fixed
+      // point of the map's error (Frêne short near the wall, |μ|max 0.9999: 0.05–0.3 c).
+      std::ostringstream msg;
+      msg << "the orbit moves by " << steady.orbit_error << " clearances when its periods are integrated 100 times tighter (|mu|max "
+          << dominant << "; steady_tolerance " << sim_.steady_tolerance
+          << "): not located";
+      res_.message = res_.message.empty() ? msg.str() : msg.str() + "; " + res_.message;
+      steady.kind = SteadyClass::not_converged;
+      return false;
+    }
   }
   StartState orbit = base;
   if (!chart.expand(base.t, found.z.data(), orbit.qv)) return final;

@@ -109,6 +109,11 @@ struct SteadyCycle {
   /// Shooting: max_i |P(z)_i − z_i| / s_i at the orbit found (or the best iterate); a
   /// confirmed transient: at its end
   double orbit_residual = std::numeric_limits<double>::quiet_NaN();
+  /// Shooting with error bars: how far the orbit moves from rtol to rtol/100,
+  /// max_i |z*_i − z*_tight,i| / s_i [clearances for lengths]: where the dominant multiplier
+  /// is close to 1 the map's error over 1 − |μ|. Above steady_tolerance the orbit is not
+  /// located (not_converged).
+  double orbit_error = std::numeric_limits<double>::quiet_NaN();
   int newton_iterations = 0;
   int transient_cycles = 0;        ///< cycles integrated before shooting (or in all, transient)
   long long periods_integrated = 0; ///< crank periods integrated in all (transient, maps, error bars)
