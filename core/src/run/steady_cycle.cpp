@@ -461,8 +461,14 @@ void SteadyRun::orbit_error_bars(Chart& chart, const StartState& base, PeriodMap
         << resolved.residual << " after " << resolved.iterations << " iterations)";
   }
   if (!msg.str().empty()) res_.message = res_.message.empty() ? msg.str() : res_.message + "; " + msg.str();
+  // How far the orbit moves: to the re-solve's orbit, or, where it stalled, to where one
+  // more Newton step from its last iterate points (the residual left there over 1 − |μ|:
+  // a re-solve whose line search fails at once has not moved, and is no evidence).
+  Eigen::VectorXd z_located = z_tight;
+  if (resolved.outcome != steady::ShootingOutcome::converged && resolved.Pz.size() == z.size())
+    z_located = resolved.z - M_minus_I.fullPivLu().solve(resolved.Pz - resolved.z);
   res_.steady.orbit_error = steady::scaled_distance(
-      z_tight, z, options.residual_scales.empty() ? options.scales : options.residual_scales);
+      z_located, z, options.residual_scales.empty() ? options.scales : options.residual_scales);
   StartState tight_start = base;
   if (!chart.expand(base.t, z_tight.data(), tight_start.qv)) return;
   const SegmentResult measured = measure(tight_start, kTightFactor, false);
@@ -542,7 +548,7 @@ bool SteadyRun::solve_orbit(Chart& chart, const StartState& base, const std::vec
       found.outcome != steady::ShootingOutcome::refused && found.residual >= 0 && found.residual <= kTightenBelow) {
     // Stalled at the map's own noise (near |μ| = 1 its fixed point moves by that noise
     // over 1 − |μ|): Newton again on periods at rtol/10 (a start from the transient; on
-    // the full factorial 25 of 52 not-converged cells get an answer, docs/theory/steady-cycles.md).
+    // the full factorial 19 of 52 not-converged cells get an answer, docs/theory/steady-cycles.md).
     maps_at(kTightenFactor);
     const Eigen::VectorXd z = found.z;
     found = better_of(std::move(found), steady::solve_periodic_orbit(*period, z, options));
@@ -585,7 +591,7 @@ bool SteadyRun::solve_orbit(Chart& chart, const StartState& base, const std::vec
     if (sim_.error_bars) orbit_error_bars(chart, base, *tight_period, found.z, monodromy.M, options);
     if (steady.orbit_error > sim_.steady_tolerance) {
       // Located no better than the tolerance a cycle is steady by: near |μ| = 1 a fixed
-      // point of the map's error (Frêne short near the wall, |μ|max 0.9999: 0.05–0.3 c).
+      // point of the map's error (Frêne short near the wall, |μ|max 0.9999: 5e-3–1e-2 c).
       std::ostringstream msg;
       msg << "the orbit moves by " << steady.orbit_error << " clearances when its periods are integrated 100 times tighter (|mu|max "
           << dominant << "; steady_tolerance " << sim_.steady_tolerance
