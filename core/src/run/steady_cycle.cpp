@@ -828,12 +828,13 @@ RunResult SteadyRun::run() {
           if (converged) {
             // The transient's own test, confirmed by the period map at its end.
             const std::string shooting = res_.message;
+            res_.message.clear();
             classify_transient(true, true);
             if (steady.kind == SteadyClass::periodic) {
               res_.message = "periodic by the transient's contraction estimate, confirmed by the period map; " + shooting;
               if (sim_.error_bars) transient_error_bars();
             } else {
-              res_.message += "; " + shooting;
+              res_.message = res_.message.empty() ? shooting : res_.message + "; " + shooting;
             }
           } else if (transient_drifts()) {
             steady.kind = SteadyClass::drifting;
