@@ -214,6 +214,20 @@ class SteadyRun {
   void orbit_error_bars(Chart& chart, const StartState& base, PeriodMap& tight_period, const Eigen::VectorXd& z,
                         const Eigen::MatrixXd& monodromy, const steady::ShootingOptions& options);
   bool transient_drifts() const;
+  /// The period map at rtol × factor and its twin at rtol × factor/100 (differences, error
+  /// bars), from `base`, within `steps` integrator steps a period (10 × that for the
+  /// tight one) and the run's budget of periods.
+  void period_maps(std::optional<PeriodMap>& period, std::optional<PeriodMap>& tight, Chart& chart,
+                   const StartState& base, const std::vector<double>& winding, double factor, long long steps);
+  /// How much each coordinate advances over a period, from the transient's last two boundaries.
+  std::vector<double> transient_winding() const {
+    return detail::winding_per_period(rm_.model, boundaries_[boundaries_.size() - 2], boundaries_.back());
+  }
+  /// A period map's step budget from the transient: 20 times its steps per cycle (its first
+  /// cycles, from rest, included).
+  long long transient_step_budget() const {
+    return 20 * res_.stats.steps / std::max<long long>(1, static_cast<long long>(res_.cycles.size())) + 1000;
+  }
   /// The period map's word on a transient its contraction estimate calls steady: from the
   /// last cycle boundary z, P(z) − z at rtol and the monodromy M (central differences at
   /// rtol/100, as shooting's) put the orbit at δ = (I − M)⁻¹ (P(z) − z), Newton's step.
@@ -425,6 +439,7 @@ void SteadyRun::orbit_error_bars(Chart& chart, const StartState& base, PeriodMap
   // monodromy's M − I: near a multiplier close to 1 the orbit moves by the map's error
   // divided by 1 − |μ|, which one Newton step estimates only to first order.
   const Eigen::MatrixXd M_minus_I = monodromy - Eigen::MatrixXd::Identity(chart.size(), chart.size());
+  const Eigen::FullPivLU<Eigen::MatrixXd> newton(M_minus_I);  // a Newton step: −newton.solve(P(z) − z)
   steady::ShootingOptions tight = options;
   tight.jacobian_map = nullptr;
   tight.initial_jacobian = &M_minus_I;
@@ -456,7 +471,7 @@ void SteadyRun::orbit_error_bars(Chart& chart, const StartState& base, PeriodMap
       if (tight_period.refused()) budget_.stopped(spent(), "no error bars");
       return;
     }
-    z_tight = z - M_minus_I.fullPivLu().solve(tight_end - z);
+    z_tight = z - newton.solve(tight_end - z);
     msg << "error bars from one Newton step at rtol/100 (its re-solve: " << resolved.message << ", residual "
         << resolved.residual << " after " << resolved.iterations << " iterations)";
   }
@@ -466,7 +481,7 @@ void SteadyRun::orbit_error_bars(Chart& chart, const StartState& base, PeriodMap
   // a re-solve whose line search fails at once has not moved, and is no evidence).
   Eigen::VectorXd z_located = z_tight;
   if (resolved.outcome != steady::ShootingOutcome::converged && resolved.Pz.size() == z.size())
-    z_located = resolved.z - M_minus_I.fullPivLu().solve(resolved.Pz - resolved.z);
+    z_located = resolved.z - newton.solve(resolved.Pz - resolved.z);
   res_.steady.orbit_error = steady::scaled_distance(
       z_located, z, options.residual_scales.empty() ? options.scales : options.residual_scales);
   StartState tight_start = base;
@@ -487,13 +502,20 @@ void SteadyRun::shoot_from_transient() {
     steady.kind = SteadyClass::periodic;
     return;
   }
-  const std::vector<double> winding =
-      detail::winding_per_period(rm_.model, boundaries_[boundaries_.size() - 2], boundaries_.back());
-  // 20 times the transient's steps per cycle (its first cycles, from rest, included).
-  const long long budget =
-      20 * res_.stats.steps / std::max<long long>(1, static_cast<long long>(res_.cycles.size())) + 1000;
   const double max_eps = res_.cycles.empty() ? kNaN : res_.cycles.back().max_eps;
-  solve_orbit(chart, base, winding, budget, shooting_options(chart, max_eps), true, OrbitSeed{});
+  solve_orbit(chart, base, transient_winding(), transient_step_budget(), shooting_options(chart, max_eps), true,
+              OrbitSeed{});
+}
+
+void SteadyRun::period_maps(std::optional<PeriodMap>& period, std::optional<PeriodMap>& tight, Chart& chart,
+                            const StartState& base, const std::vector<double>& winding, double factor,
+                            long long steps) {
+  period.emplace(rm_, chart, base, winding, factor, res_.stats, res_.steady.periods_integrated);
+  period->set_step_budget(steps);
+  period->set_period_budget(budget_.run_limit());
+  tight.emplace(rm_, chart, base, winding, factor * kTightFactor, res_.stats, res_.steady.periods_integrated);
+  tight->set_step_budget(10 * steps);
+  tight->set_period_budget(budget_.run_limit());
 }
 
 /// A second Newton after `first` failed: it, with first's iterations and maps (and `extra`
@@ -532,12 +554,7 @@ bool SteadyRun::solve_orbit(Chart& chart, const StartState& base, const std::vec
   // and the error bars.
   std::optional<PeriodMap> period, tight_period;
   auto maps_at = [&](double factor) {
-    period.emplace(rm_, chart, base, winding, factor, res_.stats, steady.periods_integrated);
-    period->set_step_budget(budget);
-    period->set_period_budget(budget_.run_limit());
-    tight_period.emplace(rm_, chart, base, winding, factor * kTightFactor, res_.stats, steady.periods_integrated);
-    tight_period->set_step_budget(10 * budget);
-    tight_period->set_period_budget(budget_.run_limit());
+    period_maps(period, tight_period, chart, base, winding, factor, budget);
     options.jacobian_map = &*tight_period;
   };
   maps_at(1.0);
@@ -643,16 +660,10 @@ bool SteadyRun::confirm_transient() {
   const StartState base = boundaries_.back();
   Chart chart(rm_, base, ShootingCoordinates::independent);
   if (chart.size() == 0) return true;  // everything follows the drivers: periodic from the start
-  const std::vector<double> winding =
-      detail::winding_per_period(rm_.model, boundaries_[boundaries_.size() - 2], boundaries_.back());
-  const long long steps =
-      20 * res_.stats.steps / std::max<long long>(1, static_cast<long long>(res_.cycles.size())) + 1000;
-  PeriodMap period(rm_, chart, base, winding, 1.0, res_.stats, steady.periods_integrated);
-  PeriodMap tight(rm_, chart, base, winding, kTightFactor, res_.stats, steady.periods_integrated);
-  period.set_step_budget(steps);
-  tight.set_step_budget(10 * steps);
-  period.set_period_budget(budget_.run_limit());
-  tight.set_period_budget(budget_.run_limit());
+  std::optional<PeriodMap> period_map, tight_map;
+  period_maps(period_map, tight_map, chart, base, transient_winding(), 1.0, transient_step_budget());
+  PeriodMap& period = *period_map;
+  PeriodMap& tight = *tight_map;
   const steady::ShootingOptions options = shooting_options(chart, res_.cycles.back().max_eps);
   const Eigen::VectorXd z = chart.reduce(base.qv);
   Eigen::VectorXd Pz(z.size());

@@ -155,8 +155,8 @@ struct NameTable<ShootingCoordinates> {
 enum class ShootingFallback {
   none,      ///< more transient, then Newton once more (the default)
   /// first Anderson-accelerated periods from the same start and Newton from where they got
-  /// to, Newton again on periods at rtol/10 where it stalls at the map's noise, and
-  /// difference steps that fail retried 10 and 100 times smaller
+  /// to, and difference steps that fail retried 10 and 100 times smaller (a Newton stalled
+  /// at the map's noise runs again at rtol/10 with either)
   anderson,
 };
 template <>
