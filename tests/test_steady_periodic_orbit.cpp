@@ -324,3 +324,107 @@ TEST(Monodromy, AStepThroughTheWallIsTakenAgainSmaller) {
 }
 
 }  // namespace
+
+namespace {
+
+// A curved slow manifold onto which one period projects: z = (a, b),
+//   a' = a* + μ (a − a*),   b' = κ a'²,
+// μ = 0.9999 (a multiplier close to 1) and 0 (the squeeze film's ~1e-10): every image
+// lies on b = κ a², the fixed point is (a*, κ a*²). A Newton step from a point of the
+// manifold 1e-2 from a* lands on a* but leaves the manifold by κ·(1e-2)²: its residual
+// (1e-4) is 100 times the start's (μ − 1)·1e-2 ≈ 1e-6 (Frêne short near the wall, the
+// error bars' re-solve: |μ| 0.99991, a step of 7e-3 c, residuals 1e-6 → 6e-6 c).
+class CurvedManifoldMap final : public lub::steady::CycleMap {
+ public:
+  static constexpr double kA = 0.3, kMu = 0.9999, kKappa = 1.0;
+  int dim() const override { return 2; }
+  int apply(const double* z, double* Pz) override {
+    ++maps;
+    Pz[0] = kA + kMu * (z[0] - kA);
+    Pz[1] = kKappa * Pz[0] * Pz[0];
+    return 0;
+  }
+  static Eigen::Vector2d on_manifold(double a) { return {a, kKappa * a * a}; }
+  /// ∂P/∂z at z.
+  static Eigen::Matrix2d monodromy(const Eigen::Vector2d& z) {
+    const double a1 = kA + kMu * (z(0) - kA);
+    Eigen::Matrix2d M;
+    M << kMu, 0.0, 2.0 * kKappa * a1 * kMu, 0.0;
+    return M;
+  }
+  long long maps = 0;
+};
+
+TEST(NewtonPicard, ConvergesAlongACurvedSlowManifoldWhereALineSearchStalls) {
+  const Eigen::Vector2d z0 = CurvedManifoldMap::on_manifold(CurvedManifoldMap::kA + 1e-2);
+  const Eigen::MatrixXd J = CurvedManifoldMap::monodromy(z0) - Eigen::Matrix2d::Identity();
+  const Eigen::Vector2d fixed = CurvedManifoldMap::on_manifold(CurvedManifoldMap::kA);
+
+  // The error bars' re-solve as it was: KINSOL, chord steps on the start's Jacobian and
+  // a line search, six iterations. Its steps are cut to a fraction of the way.
+  CurvedManifoldMap kin_map;
+  lub::steady::ShootingOptions so;
+  so.scales = {1.0, 1.0};
+  so.tolerance = 1e-11;
+  so.step = 1e-4;
+  so.max_iterations = 6;
+  so.initial_jacobian = &J;
+  so.noise_factor = 1.0;
+  const auto kin = lub::steady::solve_periodic_orbit(kin_map, z0, so);
+  EXPECT_NE(kin.outcome, lub::steady::ShootingOutcome::converged);
+  EXPECT_GT((kin.z - fixed).lpNorm<Eigen::Infinity>(), 1e-4);
+
+  // Newton–Picard: the period after the Newton point puts it back on the manifold; the
+  // map is linear along it, so one iteration lands on the fixed point to round-off.
+  CurvedManifoldMap np_map;
+  lub::steady::NewtonPicardOptions no;
+  no.residual_scales = {1.0, 1.0};
+  no.tolerance = 1e-11;
+  const auto np = lub::steady::newton_picard(np_map, z0, J, no);
+  ASSERT_EQ(np.outcome, lub::steady::ShootingOutcome::converged) << np.message;
+  EXPECT_FALSE(np.at_noise_floor);
+  EXPECT_EQ(np.iterations, 1);
+  EXPECT_EQ(np.maps, 3);  // the start's period, the Newton point's, the new iterate's
+  EXPECT_LT((np.z - fixed).lpNorm<Eigen::Infinity>(), 1e-12);
+}
+
+// P(z) = 1 + μ (z − 1) on z <= 1 + 1e-2 (beyond it the period fails: the wall).
+class WalledLineMap final : public lub::steady::CycleMap {
+ public:
+  static constexpr double kMu = 0.5;
+  int dim() const override { return 1; }
+  int apply(const double* z, double* Pz) override {
+    ++maps;
+    if (z[0] > 1.0 + 1e-2) {
+      ++failures;
+      return 1;
+    }
+    Pz[0] = 1.0 + kMu * (z[0] - 1.0);
+    return 0;
+  }
+  long long maps = 0;
+  int failures = 0;
+};
+
+TEST(NewtonPicard, ANewtonPointBeyondTheWallIsPulledBackAndAFailingStartReported) {
+  // A chord Jacobian of half the slope doubles Newton's step: from 1 − 2e-2 its point
+  // 1 + 2e-2 lies beyond the wall; halved, it is the fixed point.
+  Eigen::MatrixXd J(1, 1);
+  J(0, 0) = 0.5 * (WalledLineMap::kMu - 1.0);
+  lub::steady::NewtonPicardOptions no;
+  no.residual_scales = {1.0};
+  no.tolerance = 1e-12;
+  WalledLineMap P;
+  const auto np = lub::steady::newton_picard(P, Eigen::VectorXd::Constant(1, 1.0 - 2e-2), J, no);
+  ASSERT_EQ(np.outcome, lub::steady::ShootingOutcome::converged) << np.message;
+  EXPECT_EQ(P.failures, 1);
+  EXPECT_EQ(np.maps, 4);  // the start, the refused point, the halved one, the new iterate
+  EXPECT_NEAR(np.z(0), 1.0, 1e-15);
+
+  WalledLineMap Q;
+  const auto bad = lub::steady::newton_picard(Q, Eigen::VectorXd::Constant(1, 1.1), J, no);
+  EXPECT_EQ(bad.outcome, lub::steady::ShootingOutcome::left_domain);
+  EXPECT_EQ(bad.maps, 1);
+}
+
+}  // namespace

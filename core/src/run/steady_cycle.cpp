@@ -447,7 +447,23 @@ void SteadyRun::orbit_error_bars(Chart& chart, const StartState& base, PeriodMap
   // Its residual tolerance scaled with the map's error, like its rtol: at the loose
   // tolerance z* would pass at once, however far the tight orbit lies.
   tight.tolerance = options.tolerance * kTightFactor;
-  const steady::ShootingResult resolved = steady::solve_periodic_orbit(tight_period, z, tight);
+  steady::ShootingResult resolved = steady::solve_periodic_orbit(tight_period, z, tight);
+  if (resolved.outcome == steady::ShootingOutcome::not_converged && resolved.residual >= 0.0) {
+    // Its line search refuses the steps along a curved slow manifold (Frêne short near the
+    // wall: it stalled at its first iterate): Newton–Picard from its best iterate, each
+    // chord step followed by a period, and the better of the two.
+    steady::NewtonPicardOptions np;
+    np.residual_scales = tight.residual_scales.empty() ? tight.scales : tight.residual_scales;
+    np.tolerance = tight.tolerance;
+    np.noise_factor = tight.noise_factor;
+    np.max_iterations = kErrorBarIterations;
+    steady::ShootingResult again = steady::newton_picard(tight_period, resolved.z, M_minus_I, np);
+    again.iterations += resolved.iterations;
+    again.maps += resolved.maps;
+    if (again.outcome == steady::ShootingOutcome::converged || again.outcome == steady::ShootingOutcome::refused ||
+        (again.residual >= 0.0 && again.residual < resolved.residual))
+      resolved = std::move(again);
+  }
   if (resolved.outcome == steady::ShootingOutcome::refused) {
     budget_.stopped(spent(), "no error bars");
     return;
@@ -459,8 +475,7 @@ void SteadyRun::orbit_error_bars(Chart& chart, const StartState& base, PeriodMap
   } else if (resolved.outcome == steady::ShootingOutcome::not_converged && resolved.iterations >= 1 &&
              resolved.residual >= 0.0) {
     // Stalled above shooting_tolerance/100 (the tight map's own noise: 1e-8–1e-7 on the
-    // full factorial's orbits, in 22 of 55): its last iterate, each Newton step a decrease,
-    // is the closest the re-solve got, closer than its first step.
+    // full factorial's orbits): its best iterate is the closest the re-solve got.
     z_tight = resolved.z;
     msg << "error bars: the orbit at rtol/100 re-solved to a residual of " << resolved.residual << " ("
         << resolved.message << " after " << resolved.iterations << " iterations)";

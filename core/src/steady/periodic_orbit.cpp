@@ -379,4 +379,65 @@ ShootingResult anderson_fixed_point(CycleMap& P, const Eigen::VectorXd& z0, cons
   return out;
 }
 
+ShootingResult newton_picard(CycleMap& P, const Eigen::VectorXd& z0, const Eigen::MatrixXd& jacobian,
+                             const NewtonPicardOptions& opt) {
+  const int n = P.dim();
+  if (z0.size() != n || static_cast<int>(opt.residual_scales.size()) != n || jacobian.rows() != n ||
+      jacobian.cols() != n)
+    throw std::invalid_argument("newton_picard: z0, scales and the Jacobian must have the map's dimension");
+  const Eigen::FullPivLU<Eigen::MatrixXd> lu(jacobian);
+  ShootingResult out;
+  out.z = z0;
+  bool refused = false;
+  auto period = [&](const Eigen::VectorXd& x, Eigen::VectorXd& Px) {
+    ++out.maps;
+    const int flag = P.apply(x.data(), Px.data());
+    refused = refused || flag < 0;
+    return flag;
+  };
+  Eigen::VectorXd z = z0, Pz(n), y(n), next(n);
+  if (period(z, Pz) != 0) {
+    out.outcome = refused ? ShootingOutcome::refused : ShootingOutcome::left_domain;
+    out.message = "Newton-Picard: the period from the start failed";
+    return out;
+  }
+  double best = scaled_distance(Pz, z, opt.residual_scales);
+  out.Pz = Pz;
+  int since_best = 0;
+  while (out.iterations < opt.max_iterations && best > opt.tolerance) {
+    Eigen::VectorXd d = -lu.solve(Pz - z);
+    int flag = 1;
+    for (int halvings = 0; halvings < 5 && flag > 0; ++halvings, d *= 0.5) {
+      y = z + d;
+      flag = period(y, next);
+    }
+    if (flag != 0) break;
+    ++out.iterations;
+    z = next;
+    if (period(z, Pz) != 0) break;
+    const double r = scaled_distance(Pz, z, opt.residual_scales);
+    if (r < best) {
+      best = r;
+      out.z = z;
+      out.Pz = Pz;
+      since_best = 0;
+    } else if (++since_best >= opt.stall) {
+      break;
+    }
+  }
+  out.residual = best;
+  if (best <= opt.tolerance) {
+    out.outcome = ShootingOutcome::converged;
+  } else if (refused) {
+    out.outcome = ShootingOutcome::refused;
+  } else if (best <= opt.noise_factor * opt.tolerance) {
+    out.outcome = ShootingOutcome::converged;
+    out.at_noise_floor = true;
+  } else {
+    out.outcome = ShootingOutcome::not_converged;
+    out.message = "Newton-Picard on P(z) = z: stalled";
+  }
+  return out;
+}
+
 }  // namespace lub::steady

@@ -135,6 +135,32 @@ struct AndersonOptions {
 /// tolerance; `maps` the periods spent; `iterations` the steps taken.
 ShootingResult anderson_fixed_point(CycleMap& P, const Eigen::VectorXd& z0, const AndersonOptions& opt);
 
+/// Newton–Picard iteration on a fixed Jacobian J ≈ M − I (chord steps), each Newton
+/// point followed by one period: z_{k+1} = P(z_k − J⁻¹ (P(z_k) − z_k)). Where the period
+/// map contracts some directions to nothing (the squeeze film's: multipliers ~1e-10)
+/// and others hardly at all (|μ| ≈ 1), its orbits lie on a curved manifold that one
+/// period projects onto. A Newton step along the manifold leaves it by the curvature ×
+/// the step², so the residual at the Newton point grows and a line search refuses the
+/// step: the error bars' re-solve by KINSOL stalled at its first iterate on Frêne short
+/// near the wall (|μ| 0.99991 and 0.99984, a step of 7e-3 c leaving the manifold by 6e-6 c
+/// against a residual of 1e-6 c). The period after the step puts the iterate back on the
+/// manifold, as Newton–Picard methods treat the fast directions by Picard iteration
+/// (Lust, Roose, Spence & Champneys 1998). Two periods an iteration.
+struct NewtonPicardOptions {
+  std::vector<double> residual_scales;  ///< r_i
+  double tolerance = 1e-11;             ///< converged when max_i |P(z)_i − z_i| / r_i <= tolerance
+  /// A stop (stall or iteration limit) within this factor of the tolerance is the map's
+  /// own noise: converged, at_noise_floor (ShootingOptions::noise_factor).
+  double noise_factor = 1000.0;
+  int max_iterations = 6;
+  int stall = 2;  ///< iterations without a smaller residual before it stops
+};
+/// The best iterate (smallest residual) and its image; `maps` the periods spent.
+/// A Newton point whose period fails (beyond the wall) is pulled back, the step halved up
+/// to four times. `outcome` left_domain if the start's period fails.
+ShootingResult newton_picard(CycleMap& P, const Eigen::VectorXd& z0, const Eigen::MatrixXd& jacobian,
+                             const NewtonPicardOptions& opt);
+
 /// max_i |a_i − b_i| / s_i.
 double scaled_distance(const Eigen::VectorXd& a, const Eigen::VectorXd& b, const std::vector<double>& scales);
 
