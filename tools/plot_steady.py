@@ -86,7 +86,11 @@ def draw_edges(axs, layout, cases, edges):
     return drawn
 
 
-def grid_panels(cases, value, title, out, cmap=None, norm=None, categorical=False, edges=None):
+def grid_panels(cases, value, title, out, cmap=None, norm=None, categorical=False, edges=None, label=None,
+                annotate=None):
+    """One panel per force law and crank speed, clearance x viscosity in each; `value(row)` the
+    cell's number (NaN: blank), on one colour scale (`norm`) for all panels; `annotate(v)`
+    the text written in a cell with a value."""
     laws = list(dict.fromkeys(cases["force_law"]))
     speeds = sorted(set(cases["speed_rpm"]), reverse=True)
     clearances = sorted(set(cases["clearance_m"]), reverse=True)
@@ -100,6 +104,11 @@ def grid_panels(cases, value, title, out, cmap=None, norm=None, categorical=Fals
             for _, r in sel.iterrows():
                 img[clearances.index(r["clearance_m"]), viscosities.index(r["viscosity_Pa_s"])] = value(r)
             im = ax.imshow(img, cmap=cmap, norm=norm, aspect="auto")
+            if annotate is not None:
+                for (y, x), v in np.ndenumerate(img):
+                    if np.isfinite(v):
+                        ax.text(x, y, annotate(v), ha="center", va="center", fontsize=6,
+                                color="black" if norm is None or norm(v) > 0.5 else "white")
             ax.set_xticks(range(len(viscosities)), [f"{v * 1e3:g}" for v in viscosities], fontsize=7)
             ax.set_yticks(range(len(clearances)), [f"{c * 1e3:g}" for c in clearances], fontsize=7)
             if i == len(laws) - 1:
@@ -121,7 +130,7 @@ def grid_panels(cases, value, title, out, cmap=None, norm=None, categorical=Fals
         fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=8)
         fig.subplots_adjust(bottom=0.12 if not drawn else 0.16)
     else:
-        fig.colorbar(im, ax=axs, shrink=0.6, label="|mu|max (dominant Floquet multiplier)")
+        fig.colorbar(im, ax=axs, shrink=0.6, label=label, extend="max")
     fig.suptitle(title, fontsize=10)
     fig.savefig(out, dpi=110)
     plt.close(fig)
@@ -188,8 +197,15 @@ def main():
                 f"steady-cycle classification (simulation.steady = {'continuation' if continued else 'auto'})",
                 os.path.join(a.outdir, "steady_classification.png"), cmap=cmap, norm=norm, categorical=True,
                 edges=edges)
-    grid_panels(cases, lambda r: r["multiplier_1_modulus"], "dominant Floquet multiplier |mu|max (periodic cases)",
-                os.path.join(a.outdir, "steady_multiplier.png"), cmap="viridis")
+    # One scale for every panel: |mu|max in [0, 1] (a stable orbit), above 1 red (unstable);
+    # only where an orbit was found and located (a not-located fixed point has multipliers too).
+    from matplotlib.colors import Normalize
+    orbit = ("periodic", "periodic_unstable")
+    grid_panels(cases, lambda r: r["multiplier_1_modulus"] if r["classification"] in orbit else np.nan,
+                "dominant Floquet multiplier |mu|max of the periodic orbits (blank: no orbit)",
+                os.path.join(a.outdir, "steady_multiplier.png"),
+                cmap=plt.get_cmap("viridis").with_extremes(over="#d62828"), norm=Normalize(0.0, 1.0),
+                label="|mu|max (red: > 1, unstable)", annotate=lambda v: f"{v:.4f}" if v > 0.99 else f"{v:.3f}")
     if a.orbit:
         orbit_figure(os.path.join(a.outdir, "steady_frene_long_orbit.png"))
 
