@@ -63,8 +63,8 @@ class CvodeIntegrator final : public Integrator {
       ls_ = SUNLinSol_Dense(y_, A_, ctx_);
       check(CVodeSetLinearSolver(mem_, ls_, A_), "CVodeSetLinearSolver");
       if (s.user_jacobian) check(CVodeSetJacFn(mem_, detail::jac_cb), "CVodeSetJacFn");
-      if (s.jacobian_every_step) {
-        check(CVodeSetJacEvalFrequency(mem_, 1), "CVodeSetJacEvalFrequency");
+      if (s.jacobian_steps > 0) {
+        check(CVodeSetJacEvalFrequency(mem_, s.jacobian_steps), "CVodeSetJacEvalFrequency");
         check(CVodeSetLSetupFrequency(mem_, 1), "CVodeSetLSetupFrequency");
       }
       if (s.projection) {

@@ -82,8 +82,12 @@ IntegrationPlan plan_integration(const Scene& scene, const Model& m, double fact
   // with reuse, none with a fresh Jacobian). Not with switching none: difference quotients
   // across the printed law's jump make a fresh Jacobian worse than a reused one (the hard
   // case law_pinkus_sternlicht_no_events, tests/test_stress_hard_cases.cpp).
-  is.jacobian_every_step = plan.formulation == Formulation::partitioned || plan.formulation == Formulation::joint ||
-                           (sol.projection && sol.switching == Switching::events);
+  // Joint coordinates: a fresh Jacobian every kJointJacobianSteps steps, a new iteration
+  // matrix every step (integration_plan.hpp).
+  if (plan.formulation == Formulation::partitioned || (sol.projection && sol.switching == Switching::events))
+    is.jacobian_steps = 1;
+  else if (plan.formulation == Formulation::joint)
+    is.jacobian_steps = kJointJacobianSteps;
   return plan;
 }
 

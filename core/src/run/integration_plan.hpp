@@ -43,6 +43,18 @@ class Tolerances {
   std::vector<double> atol_full_;  ///< per component of (q, v)
 };
 
+/// Steps a Jacobian serves in joint coordinates (IntegratorSettings::jacobian_steps). The
+/// squeeze film's stiff mode turns with the crank (~1.3° a step: Frêne long at rtol 1e-8
+/// takes 281 steps a cycle), so a Jacobian three steps old is a few degrees stale while
+/// the iteration matrix I − γJ follows every step. Measured with the reuse varied by hand
+/// (docs/theory/joint-coordinates.md): a fresh Jacobian every step, every 3 and every 5
+/// steps on the printed law's reference case, 20 cycles: 0, 6 and 48 Newton convergence
+/// failures in ~18 600 steps; per step (callgrind, 4 cycles) 38.7k → 32.0k instructions
+/// (Frêne long), 40.2k → 33.1k (printed law with events); the full factorial with
+/// "/solver/formulation": "joint" has 0 solver_failure either way (266 s → 144 s at -np 2).
+/// CVODE's own reuse (up to 51 steps) doubled the reference case's steps.
+constexpr int kJointJacobianSteps = 3;
+
 struct IntegrationPlan {
   IntegratorSettings settings;  ///< t_stop and atol aside (the run loop sets them)
   Formulation formulation = Formulation::baumgarte;

@@ -90,9 +90,10 @@ struct IntegratorSettings {
   /// Newton methods: the system's jacobian() (cvode_bdf, arkode_dirk) or dae_jacobian()
   /// (ida) instead of SUNDIALS' dense difference quotients.
   bool user_jacobian = false;
-  /// A fresh Jacobian and iteration matrix at every step (cvode_bdf), instead of CVODE's
-  /// reuse over up to 20/51 steps.
-  bool jacobian_every_step = false;
+  /// Steps a Jacobian serves (cvode_bdf): n >= 1 a fresh one every n steps (and on a
+  /// convergence failure) and a new iteration matrix I − γJ every step; 0 CVODE's own
+  /// reuse (a Jacobian up to 51 steps, the iteration matrix up to 20).
+  int jacobian_steps = 0;
 };
 
 enum class StepOutcome { step, root, failure };
