@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,11 @@ struct ChangedCell {
   double clearance_m, viscosity_Pa_s, speed_rpm;
   const char* label;
 };
+// Its name in test listings (gtest prints a struct's bytes otherwise: its pointers, which
+// change from run to run).
+void PrintTo(const ChangedCell& c, std::ostream* os) {
+  *os << c.law << ' ' << c.clearance_m << " m " << c.viscosity_Pa_s << " Pa s " << c.speed_rpm << " rpm: " << c.label;
+}
 
 json cell(const ChangedCell& c, const std::string& steady, double rtol, int max_cycles) {
   json doc = lub::read_json_file(std::string(LUB_SOURCE_DIR) + "/configs/scenes/slider_crank.json");
