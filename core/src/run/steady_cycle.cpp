@@ -453,7 +453,7 @@ void SteadyRun::orbit_error_bars(Chart& chart, const StartState& base, PeriodMap
     // wall: it stalled at its first iterate): Newton–Picard from its best iterate, each
     // chord step followed by a period, and the better of the two.
     steady::NewtonPicardOptions np;
-    np.residual_scales = tight.residual_scales.empty() ? tight.scales : tight.residual_scales;
+    np.residual_scales = tight.residual_units();
     np.tolerance = tight.tolerance;
     np.noise_factor = tight.noise_factor;
     np.max_iterations = kErrorBarIterations;
@@ -497,8 +497,7 @@ void SteadyRun::orbit_error_bars(Chart& chart, const StartState& base, PeriodMap
   Eigen::VectorXd z_located = z_tight;
   if (resolved.outcome != steady::ShootingOutcome::converged && resolved.Pz.size() == z.size())
     z_located = resolved.z - newton.solve(resolved.Pz - resolved.z);
-  res_.steady.orbit_error = steady::scaled_distance(
-      z_located, z, options.residual_scales.empty() ? options.scales : options.residual_scales);
+  res_.steady.orbit_error = steady::scaled_distance(z_located, z, options.residual_units());
   StartState tight_start = base;
   if (!chart.expand(base.t, z_tight.data(), tight_start.qv)) return;
   const SegmentResult measured = measure(tight_start, kTightFactor, false);
@@ -551,7 +550,7 @@ steady::ShootingResult SteadyRun::find_orbit(PeriodMap& period, const Eigen::Vec
   // manifold. Anderson-accelerated periods from the same start (one period a step,
   // following the flow), then Newton again from where they got to.
   steady::AndersonOptions ao;
-  ao.residual_scales = options.residual_scales.empty() ? options.scales : options.residual_scales;
+  ao.residual_scales = options.residual_units();
   ao.max_maps = kAndersonPeriods;
   ao.tolerance = kAndersonHandOver;
   const steady::ShootingResult accelerated = steady::anderson_fixed_point(period, z0, ao);

@@ -223,7 +223,7 @@ ShootingResult solve_periodic_orbit(CycleMap& P, const Eigen::VectorXd& z0, cons
   if (opt.initial_jacobian && (opt.initial_jacobian->rows() != n || opt.initial_jacobian->cols() != n))
     throw std::invalid_argument("solve_periodic_orbit: the initial Jacobian must be n x n");
   pb.initial = opt.initial_jacobian;
-  pb.residual_scales = opt.residual_scales.empty() ? opt.scales : opt.residual_scales;
+  pb.residual_scales = opt.residual_units();
 
   // Destroyed in reverse order of declaration: KINSOL's memory first, the context last.
   OwnedContext ctx;

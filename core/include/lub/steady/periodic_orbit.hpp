@@ -60,6 +60,8 @@ struct ShootingOptions {
   /// The residual's units r_i (empty: s_i), where a coordinate stretches what the
   /// tolerance should measure (the wall coordinates near the wall).
   std::vector<double> residual_scales;
+  /// The units the residual is measured in: residual_scales, or scales where it is empty.
+  const std::vector<double>& residual_units() const { return residual_scales.empty() ? scales : residual_scales; }
   double tolerance = 1e-9;        ///< converged when max_i |P(z)_i − z_i| / r_i <= tolerance
   double step = 1e-4;             ///< difference step of the Newton Jacobians, × s_i
   int max_iterations = 25;        ///< Newton iterations
