@@ -213,6 +213,12 @@ class SteadyRun {
   /// monodromy's M − I) and measured there.
   void orbit_error_bars(Chart& chart, const StartState& base, PeriodMap& tight_period, const Eigen::VectorXd& z,
                         const Eigen::MatrixXd& monodromy, const steady::ShootingOptions& options);
+  /// The error bars could not be measured (`why`, a solver's message): the case says so.
+  /// An orbit whose accuracy is unknown is no steady result: a periodic label becomes
+  /// not_converged, except where a budget the user set stopped the measurement
+  /// (`budget`: solver.max_steps or max_wall_time_s; simulation.max_periods says so
+  /// itself), which keeps the orbit with NaN error bars, as the budget's docs say.
+  void error_bars_failed(const std::string& why, bool budget);
   bool transient_drifts() const;
   /// The period map at rtol × factor and its twin at rtol × factor/100 (differences, error
   /// bars), from `base`, within `steps` integrator steps a period (10 × that for the
@@ -483,7 +489,10 @@ void SteadyRun::orbit_error_bars(Chart& chart, const StartState& base, PeriodMap
     // Not one step taken: one Newton step, as the first-order estimate.
     Eigen::VectorXd tight_end(chart.size());
     if (tight_period.apply(z.data(), tight_end.data()) != 0) {
-      if (tight_period.refused()) budget_.stopped(spent(), "no error bars");
+      if (tight_period.refused())
+        budget_.stopped(spent(), "no error bars");
+      else
+        error_bars_failed("the period at rtol/100 failed: " + tight_period.last_failure(), false);
       return;
     }
     z_tight = z - newton.solve(tight_end - z);
@@ -499,9 +508,23 @@ void SteadyRun::orbit_error_bars(Chart& chart, const StartState& base, PeriodMap
     z_located = resolved.z - newton.solve(resolved.Pz - resolved.z);
   res_.steady.orbit_error = steady::scaled_distance(z_located, z, options.residual_units());
   StartState tight_start = base;
-  if (!chart.expand(base.t, z_tight.data(), tight_start.qv)) return;
+  if (!chart.expand(base.t, z_tight.data(), tight_start.qv)) {
+    error_bars_failed("the orbit at rtol/100 lies outside the coordinates' chart", false);
+    return;
+  }
   const SegmentResult measured = measure(tight_start, kTightFactor, false);
-  if (measured.res.status == RunStatus::ok) set_errors(res_.metrics, measured.res.metrics);
+  if (measured.res.status == RunStatus::ok)
+    set_errors(res_.metrics, measured.res.metrics);
+  else if (budget_.note().empty())
+    error_bars_failed("the orbit's measurement at rtol/100 failed (" + measured.res.message + ")",
+                      measured.res.status == RunStatus::budget_exceeded);
+}
+
+void SteadyRun::error_bars_failed(const std::string& why, bool budget) {
+  const std::string msg = "error bars not measured: " + why;
+  res_.message = res_.message.empty() ? msg : msg + "; " + res_.message;
+  if (!budget && (res_.steady.kind == SteadyClass::periodic || res_.steady.kind == SteadyClass::periodic_unstable))
+    res_.steady.kind = SteadyClass::not_converged;
 }
 
 void SteadyRun::shoot_from_transient() {
@@ -619,7 +642,10 @@ bool SteadyRun::solve_orbit(Chart& chart, const StartState& base, const std::vec
     if (!measure_orbit(chart, base, found.z)) return false;
     max_eps = res_.metrics.max_eps;
     steps_per_period = static_cast<double>(res_.stats.steps - steps0) / std::max(1, sim_.metric_cycles);
-    if (sim_.error_bars) orbit_error_bars(chart, base, *tight_period, found.z, monodromy.M, options);
+    if (sim_.error_bars) {
+      orbit_error_bars(chart, base, *tight_period, found.z, monodromy.M, options);
+      if (steady.kind == SteadyClass::not_converged) return false;
+    }
     if (steady.orbit_error > sim_.steady_tolerance) {
       // Located no better than the tolerance a cycle is steady by: near |μ| = 1 a fixed
       // point of the map's error (Frêne short near the wall, |μ|max 0.9999: 5e-3–1e-2 c).
@@ -763,6 +789,9 @@ void SteadyRun::transient_error_bars() {
       set_errors(res_.metrics, tight.res.metrics, &extra);
     } else if (tight.res.status == RunStatus::ok) {
       set_errors(res_.metrics, tight.res.metrics);
+    } else if (k - 1 - m >= 0 && budget_.note().empty()) {
+      error_bars_failed("the metric cycles at rtol/100 failed (" + tight.res.message + ")",
+                        tight.res.status == RunStatus::budget_exceeded);
     }
   }
 }
