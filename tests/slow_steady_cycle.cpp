@@ -49,7 +49,12 @@ TEST(SlowSteadyCycle, FreneLongLongTransientEndsOnTheShootingOrbit) {
 }
 
 // A full-factorial cell (configs/grids/full_factorial.json) whose label the steady stage
-// changed: `not_converged` on e5ef3a1 (Newton stalled at the map's noise), now `label`.
+// changed: `not_converged` on e5ef3a1 (Newton stalled at the map's noise), now `label` on
+// the default (joint) formulation. On the partitioned one, the grid's before joint
+// coordinates became the default, two differ by the borderline drifting <-> not_converged
+// flip (Frene long 0.05 mm 40 cP 5000 rpm: drifting; Frene short 0.1 mm 100 cP 5000 rpm:
+// not_converged); both are checked the same way, against a tight transient that settles on
+// no orbit.
 struct ChangedCell {
   const char* law;
   double clearance_m, viscosity_Pa_s, speed_rpm;
@@ -67,7 +72,6 @@ json cell(const ChangedCell& c, const std::string& steady, double rtol, int max_
   doc["joints"][3]["journal_radius_m"] = 0.0100 - c.clearance_m;
   doc["joints"][3]["viscosity_Pa_s"] = c.viscosity_Pa_s;
   doc["drivers"][0]["speed_rpm"] = c.speed_rpm;
-  doc["solver"]["formulation"] = "partitioned";
   doc["solver"]["rtol"] = rtol;
   doc["simulation"]["steady"] = steady;
   doc["simulation"]["max_cycles"] = max_cycles;
@@ -113,10 +117,10 @@ INSTANTIATE_TEST_SUITE_P(
                     ChangedCell{"frene_short", 5e-4, 0.4, 2500, "drifting"},
                     ChangedCell{"frene_short", 2e-4, 0.2, 500, "drifting"},
                     ChangedCell{"frene_short", 1e-4, 0.2, 500, "drifting"},
-                    ChangedCell{"frene_long", 5e-5, 0.04, 5000, "drifting"},
+                    ChangedCell{"frene_long", 5e-5, 0.04, 5000, "not_converged"},
                     ChangedCell{"frene_short", 2e-4, 0.2, 5000, "not_converged"},
                     ChangedCell{"frene_short", 1e-4, 0.2, 5000, "not_converged"},
-                    ChangedCell{"frene_short", 1e-4, 0.1, 5000, "not_converged"},
+                    ChangedCell{"frene_short", 1e-4, 0.1, 5000, "drifting"},
                     ChangedCell{"frene_short", 1e-4, 0.1, 500, "not_converged"}),
     [](const testing::TestParamInfo<ChangedCell>& i) { return std::to_string(i.index); });
 

@@ -250,6 +250,9 @@ struct HardCase {
   /// The convergence check's second tolerance (the scene's own rtol is the first); 0: no
   /// check (a response that does not converge at the tolerances a test can afford).
   double other_rtol;
+  /// The bound on max ε's change between the two tolerances, where it is not the common
+  /// one (2e-5; 2e-4 in contact): a case whose max ε scatters more under round-off.
+  double max_eps_bound = 0.0;
 };
 
 void PrintTo(const HardCase& c, std::ostream* os) { *os << c.scene; }
@@ -280,7 +283,13 @@ const std::vector<HardCase>& hard_cases() {
       // collapse time).
       {"clearance_2mm", RunStatus::film_collapse, 1e-9},
       {"law_frene_long", RunStatus::ok, 1e-9},
-      {"law_frene_short", RunStatus::ok, 1e-9},
+      // Frêne short's 6-cycle transient still sinks along a slow manifold (contraction
+      // 0.995): its max ε (0.70149) scatters under round-off. Against rtol 1e-11, its error
+      // at rtol 1e-8 × (1, 1 ± 1e-8, 1 ± 1e-2, 1 ± 1e-1) measured 0.5e-5–2.0e-5
+      // (partitioned) and 0.3e-5–2.6e-5 (joint): the same spread, 2e-5 sits inside it.
+      // Bound 3x the largest (lubsim configs/scenes/hard/law_frene_short.json
+      // --set /solver/rtol=R, each formulation).
+      {"law_frene_short", RunStatus::ok, 1e-9, 8e-5},
       // Switching none at a loose tolerance (1e-7, with projection: no drift): completes.
       // The chattering solution converges only to first order across the jump: no
       // convergence check; it is compared with the event-switching answer instead
@@ -423,7 +432,8 @@ TEST_P(ConvergingHardCaseTest, AgreesAtAnotherTolerance) {
   if (ma.max_eps < 1e-3)
     EXPECT_LT(mb.max_eps, 1e-3) << c.scene;
   else
-    EXPECT_NEAR(ma.max_eps, mb.max_eps, a.scene.contact ? 2e-4 : 2e-5) << c.scene;
+    EXPECT_NEAR(ma.max_eps, mb.max_eps, c.max_eps_bound > 0 ? c.max_eps_bound : a.scene.contact ? 2e-4 : 2e-5)
+        << c.scene;
   // Contact impacts are shorter than any film event: their peak force converges more
   // slowly (8e-4 measured between 1e-8 and 1e-9 at 40 cP); 3e-3 with contact.
   EXPECT_NEAR(ma.peak_reaction_N / mb.peak_reaction_N, 1.0, a.scene.contact ? 3e-3 : 3e-4) << c.scene;

@@ -105,9 +105,9 @@ TEST_P(LongRun, EndsWithoutSolverFailureOrDrift) {
   doc["outputs"]["channels"] = json::array();
   const lub::Scene scene = lub::parse_scene(doc);
   // Defaults only, beyond what the case varies: the paper's scene sets rtol 1e-8 and the
-  // Baumgarte constants (unused by the partitioned default); formulation, tolerances per
+  // Baumgarte constants (unused by the joint default); formulation, tolerances per
   // state, eps_limit and the drift limit are the defaults.
-  ASSERT_EQ(scene.solver.formulation, lub::Formulation::partitioned);
+  ASSERT_EQ(scene.solver.formulation, lub::Formulation::joint);
   const RunResult r = lub::run_scene(scene);
   std::printf(
       "%-40s %-14s cycles %4d  h_min %10.4g m  max_eps %.6f  peak_F %10.4g N  drift %.2g m  steps %9lld  %.2f s\n",
@@ -130,9 +130,10 @@ TEST_P(LongRun, EndsWithoutSolverFailureOrDrift) {
   for (const double x : {r.metrics.min_film_thickness_m, r.metrics.max_eps, r.metrics.peak_reaction_N,
                          r.metrics.peak_acceleration_m_s2, r.metrics.periodicity})
     EXPECT_TRUE(std::isfinite(x));
-  // No drift: the partitioned formulation solves Φ = 0 to 1e-13 m at every evaluation,
-  // and the observers' states too (bound: 1e-12 m). The ideal mechanism has no degree of
-  // freedom and runs on baumgarte (nothing to partition): its drift is bounded by
+  // No drift: the joint formulation has no constraint to drift from (positions by forward
+  // kinematics of the tree), and the observers' absolute states satisfy Φ = 0 to round-off
+  // (bound: 1e-12 m). The ideal mechanism closes a loop of ideal joints and has no degree
+  // of freedom: it runs on baumgarte (nothing to partition), its drift bounded by
   // Baumgarte's terms, not removed; bound 1e-5 of the crank (5e-7 m... measured below).
   if (std::string(c.law) != "ideal")
     EXPECT_LT(r.stats.max_position_drift, 1e-12);

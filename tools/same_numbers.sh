@@ -22,6 +22,7 @@ cases() {  # name, then lubsim arguments
   echo "printed_auto $S --set /simulation/steady=auto"
   echo "transient_error_bars $S --set /simulation/error_bars=true"
   echo "baumgarte_auto $S --set /solver/formulation=baumgarte --set /simulation/steady=auto"
+  echo "partitioned_auto $S --set /solver/formulation=partitioned --set /simulation/steady=auto"
   echo "ggl_ida $S --set /solver/method=ida --set /solver/formulation=ggl"
   echo "arkode_dirk $S --set /solver/method=arkode_dirk --set /joints/3/force_law=frene_long"
   echo "projection $S --set /solver/formulation=baumgarte --set /solver/projection=true"

@@ -32,8 +32,8 @@ def label(cases, i):
     name = method
     if method == "ida" or form == "ggl":
         name += " ggl"
-    elif form == "partitioned":
-        name += " partitioned"
+    elif form in ("partitioned", "joint"):
+        name += " " + form
     elif proj in ("true", True, 1):
         name += " projection"
     else:

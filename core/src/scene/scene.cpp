@@ -224,7 +224,10 @@ SolverSpec parse_solver(const json& j) {
   s.max_steps = r.integer_or("max_steps", s.max_steps, 1, 1'000'000'000'000LL);
   s.switching = r.choice_of<Switching>("switching", Switching::events);
   const bool ida = s.method == Method::ida;
-  s.formulation = r.choice_of<Formulation>("formulation", ida ? Formulation::ggl : Formulation::partitioned);
+  // Joint coordinates by default: where the ideal joints form a tree (every scene with a
+  // lubricated joint in configs/scenes/) no constraint is left to solve or to drift; a loop
+  // of ideal joints runs on the partitioned formulation (docs/theory/joint-coordinates.md).
+  s.formulation = r.choice_of<Formulation>("formulation", ida ? Formulation::ggl : Formulation::joint);
   const json form(std::string(name_of(s.formulation)));
   const bool partitioned = s.formulation == Formulation::partitioned || s.formulation == Formulation::joint;
   if (s.formulation == Formulation::ggl && !ida)

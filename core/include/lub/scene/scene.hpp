@@ -93,12 +93,14 @@ struct SolverSpec {
   /// Project positions and velocities onto Φ = 0, Φ̇ = 0 after every step (CVODE's
   /// projection, cvode_bdf only), on top of Baumgarte: constraint drift at round-off.
   bool projection = false;
-  /// solver.formulation: partitioned (the default: generalised coordinate partitioning;
-  /// only the mechanism's degrees of freedom are integrated, dependent coordinates solved
-  /// from Φ = 0; no drift, so long runs hold) or "baumgarte" (all coordinates, Baumgarte's
+  /// solver.formulation: joint (the default: the coordinates of the tree of ideal joints
+  /// the lubricated joints leave, no constraint equation; a loop of ideal joints runs
+  /// partitioned), "partitioned" (generalised coordinate partitioning; only the
+  /// mechanism's degrees of freedom are integrated, dependent coordinates solved from
+  /// Φ = 0; no drift, so long runs hold) or "baumgarte" (all coordinates, Baumgarte's
   /// terms: the paper's method; its drift ends long runs at simulation.drift_limit_m) or
   /// "ggl" (Gear–Gupta–Leimkuhler index-2 DAE in (q, v, λ, μ), method ida only, its default).
-  Formulation formulation = Formulation::partitioned;
+  Formulation formulation = Formulation::joint;
   /// solver.jacobian (Newton methods: cvode_bdf, arkode_dirk, ida): structured (the
   /// partitioned formulation's Jacobian on its degrees of freedom, the baumgarte
   /// formulation's, or the GGL DAE's iteration matrix, from the film elements' derivatives
