@@ -30,6 +30,8 @@
 #include "lub/mechanism/builder.hpp"
 #include "lub/run/run.hpp"
 #include "mechanism/constraints.hpp"
+#include "run/period_map.hpp"
+#include "run/segment.hpp"
 
 namespace {
 
@@ -293,6 +295,73 @@ TEST(JointFormulation, NearTheWallTheJacobianHoldsNewton) {
   });
   EXPECT_EQ(r.status, lub::RunStatus::ok) << r.message;
   EXPECT_GT(r.metrics.max_eps, 0.999);
+}
+
+// Shooting in joint coordinates (simulation.shooting_coordinates = independent on the
+// joint formulation): the chart's coordinates are the tree's (the rod's angle, the
+// slider's travel, their rates), every z is a consistent state by forward kinematics (no
+// Newton, nothing to fail), and z -> state -> z is the identity to round-off.
+TEST(JointChart, ItsCoordinatesAreTheTreesAndEveryPointIsAConsistentState) {
+  nlohmann::json doc = lub::read_json_file(std::string(LUB_SOURCE_DIR) + "/configs/scenes/slider_crank.json");
+  doc["outputs"]["channels"] = nlohmann::json::array();
+  const lub::Scene scene = lub::parse_scene(doc);
+  ASSERT_EQ(scene.solver.formulation, lub::Formulation::joint);
+  lub::detail::RunModel rm(scene);
+  lub::detail::SegmentOptions o;
+  o.cycles = 1;
+  o.series = false;
+  const lub::detail::StartState x = lub::detail::run_segment(rm, o).end;
+  lub::detail::Chart chart(rm, x, lub::ShootingCoordinates::independent);
+  ASSERT_EQ(chart.size(), 4);
+  EXPECT_FALSE(chart.wall());
+  EXPECT_EQ(chart.independent(), (std::vector<int>{lub::detail::Chart::kJointChart, lub::detail::Chart::kJointChart - 1}));
+  const lub::Model& m = rm.model;
+  const Eigen::VectorXd z0 = chart.reduce(x.qv);
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  for (int trial = 0; trial < 6; ++trial) {
+    // Within a clearance of the start (units: lengths in clearances, rates × Ω).
+    Eigen::VectorXd z = z0;
+    for (int i = 0; i < 4; ++i) z(i) += (trial == 0 ? 0.0 : 0.3) * U(rng) * chart.units()[static_cast<size_t>(i)];
+    std::vector<double> qv(x.qv.size());
+    ASSERT_TRUE(chart.expand(x.t, z.data(), qv));
+    if (trial == 0) {
+      for (size_t i = 0; i < qv.size(); ++i) EXPECT_NEAR(qv[i], x.qv[i], 1e-12 * std::max(1.0, std::abs(x.qv[i]))) << i;
+    }
+    const Eigen::Map<const Eigen::VectorXd> q(qv.data(), m.nq), v(qv.data() + m.nq, m.nq);
+    const Rows r = constraint_rows(m, x.t, q, v);
+    EXPECT_LE(r.Phi.cwiseAbs().maxCoeff(), 1e-15) << "positions";
+    EXPECT_LE(r.Phi_dot.cwiseAbs().maxCoeff(), 1e-12) << "velocities";
+    const Eigen::VectorXd back = chart.reduce(qv);
+    for (int i = 0; i < 4; ++i)
+      EXPECT_NEAR(back(i), z(i), 1e-15 * std::max(1.0, std::abs(z(i)))) << "coordinate " << i;
+  }
+}
+
+// Shooting in joint coordinates finds the orbit shooting found in the partitioned
+// formulation's coordinates before joint coordinates became the default: Newton's unknowns
+// and the integration change, the orbit and its multipliers (invariant under a change of
+// coordinates) must not, beyond their error bars.
+TEST(JointChart, FindsThePartitionedFormulationsOrbit) {
+  for (const char* law : {"pinkus_sternlicht", "frene_long"}) {
+    auto shoot = [&](const char* formulation) {
+      nlohmann::json d = lub::read_json_file(std::string(LUB_SOURCE_DIR) + "/configs/scenes/slider_crank.json");
+      d["solver"]["formulation"] = formulation;
+      d["outputs"]["channels"] = nlohmann::json::array();
+      d["joints"][3]["force_law"] = law;
+      d["simulation"]["steady"] = "auto";
+      d["simulation"]["max_cycles"] = 40;
+      return lub::run_scene(lub::parse_scene(d));
+    };
+    const lub::RunResult j = shoot("joint"), p = shoot("partitioned");
+    ASSERT_EQ(lub::classification(j), "periodic") << law << ": " << j.message;
+    ASSERT_EQ(lub::classification(p), "periodic") << law << ": " << p.message;
+    EXPECT_NEAR(j.metrics.min_film_thickness_m, p.metrics.min_film_thickness_m,
+                j.metrics.min_film_thickness_m_error + p.metrics.min_film_thickness_m_error)
+        << law;
+    EXPECT_NEAR(j.metrics.max_eps, p.metrics.max_eps, j.metrics.max_eps_error + p.metrics.max_eps_error) << law;
+    EXPECT_NEAR(std::abs(j.steady.multipliers.front()), std::abs(p.steady.multipliers.front()), 1e-3) << law;
+  }
 }
 
 }  // namespace

@@ -18,18 +18,30 @@ Workspace& reset_chart_workspace(RunModel& rm) {
   rm.chart_ws.reset(rm.model);
   return rm.chart_ws;
 }
+/// The joint tree's coordinates where the joint formulation integrates the periods (the
+/// plan's choice, its fall-backs included), else the partitioned ones.
+Formulation chart_formulation(const RunModel& rm) {
+  return plan_integration(rm.scene, rm.model, 1.0).formulation == Formulation::joint ? Formulation::joint
+                                                                                 : Formulation::partitioned;
+}
 }  // namespace
 
 Chart::Chart(RunModel& rm, const StartState& x, ShootingCoordinates kind)
     : model_(rm.model), sys_(rm.model, reset_chart_workspace(rm), rm.stab, rm.scene.simulation.eps_limit, false,
-                             Formulation::partitioned) {
-  sys_.partition(x.t, x.qv.data());
+                             chart_formulation(rm)) {
+  const bool joint = sys_.formulation() == Formulation::joint;
+  if (!joint) sys_.partition(x.t, x.qv.data());
   n_ = sys_.size();
   const Eigen::VectorXd full = state_units(rm.scene, rm.model);
   units_.assign(static_cast<size_t>(n_), 0.0);
-  sys_.reduce(full.data(), units_.data());
+  sys_.reduce_units(full.data(), units_.data());
   residual_units_ = units_;
-  ids_ = sys_.independent();
+  if (joint) {
+    ids_.resize(static_cast<size_t>(n_ / 2));
+    for (int i = 0; i < n_ / 2; ++i) ids_[static_cast<size_t>(i)] = kJointChart - i;
+  } else {
+    ids_ = sys_.independent();
+  }
   if (kind != ShootingCoordinates::wall || !wall_applies(x)) return;
   // The wall chart: w in units of 1, ẇ in the driver's rate (the unit of a rate is the
   // length's times it, state_units).
@@ -37,6 +49,8 @@ Chart::Chart(RunModel& rm, const StartState& x, ShootingCoordinates kind)
   const double rate = units_[static_cast<size_t>(m)] / units_[0];
   Eigen::VectorXd u, u_dot;
   film_state(x.qv.data(), u, u_dot);
+  // One code per coordinate, as independent() has one index per coordinate (m of them).
+  ids_.assign(static_cast<size_t>(m), 0);
   for (int i = 0; i < m; ++i) {
     const double stretch = wall_stretch(u.segment<2>(2 * (i / 2)).norm());
     units_[static_cast<size_t>(i)] = 1.0;
@@ -44,7 +58,6 @@ Chart::Chart(RunModel& rm, const StartState& x, ShootingCoordinates kind)
     residual_units_[static_cast<size_t>(i)] = stretch;
     residual_units_[static_cast<size_t>(m + i)] = rate * stretch;
     ids_[static_cast<size_t>(i)] = -1 - i;
-    ids_[static_cast<size_t>(m + i)] = -1 - m - i;
   }
   wall_ = true;
 }

@@ -16,9 +16,12 @@
 namespace lub::detail {
 
 /// The coordinates shooting works in (simulation.shooting_coordinates), each in its own unit:
-///  - independent: the partitioned formulation's independent coordinates and velocities,
-///    partitioned once at the state where shooting starts (whatever formulation
-///    integrates the periods);
+///  - independent: the mechanism's own degrees of freedom and their rates. Where the joint
+///    formulation integrates the periods, its tree's coordinates (a revolute's body angle,
+///    a slide's travel): every z is a consistent state by forward kinematics, no chart to
+///    fix. Otherwise the partitioned formulation's independent coordinates and velocities,
+///    partitioned once at the state where shooting starts, the dependent ones recovered by
+///    Newton;
 ///  - wall: each lubricated joint's wall coordinates w and their rates ẇ
 ///    (wall_coordinates.hpp), where the journals' eccentricities are a complete set of
 ///    coordinates (the drivers move everything else: 2 per film, a regular map from the
@@ -40,10 +43,13 @@ class Chart {
   /// Newton starts from the partition's state every time, so the map is a function of z).
   bool expand(double t, const double* z, std::vector<double>& qv);
   /// The chart's coordinates, which a seed's monodromy must share: the independent
-  /// coordinates (indices of q) the chart was partitioned with, or −1, −2, … (wall).
+  /// coordinates (indices of q) the chart was partitioned with, −1, −2, … (wall), or
+  /// kJointChart − i for the joint tree's coordinate i.
   const std::vector<int>& independent() const { return ids_; }
   /// Whether the chart is the wall-safe one.
   bool wall() const { return wall_; }
+  /// independent()'s code for the joint tree's coordinate 0 (then −1 for each next one).
+  static constexpr int kJointChart = -1000;
 
  private:
   /// The wall chart applies at x: 2 coordinates per film, every ε < 1, a regular map.
