@@ -256,6 +256,7 @@ int MultibodySystem::forward_difference_jacobian(double t, const double* y, cons
     dq_y_[j] = yj + srur * (absolute ? scale : std::max(std::abs(yj), scale));
     const double inc = dq_y_[j] - yj;
     const int rc = rhs(t, dq_y_.data(), dq_f_.data());
+    ++ws_.counters.rhs_jacobian;
     dq_y_[j] = yj;
     if (rc != 0) return rc;
     for (int i = 0; i < n; ++i) Jout[static_cast<size_t>(j) * n + i] = (dq_f_[i] - fy[i]) / inc;

@@ -119,7 +119,7 @@ const std::vector<ResultField>& solver_fields() {
       {"steps", "1", true, [](const RunResult& r) { return double(r.stats.steps); }, "integrator steps"},
       {"rhs_evals", "1", true, [](const RunResult& r) { return double(r.stats.rhs_evals); }, "right-hand-side evaluations"},
       {"rhs_evals_jacobian", "1", true, [](const RunResult& r) { return double(r.stats.rhs_evals_jacobian); },
-       "right-hand-side evaluations for difference-quotient Jacobians"},
+       "right-hand-side evaluations for difference-quotient Jacobians (SUNDIALS' and the joint formulation's own)"},
       {"jacobian_evals", "1", true, [](const RunResult& r) { return double(r.stats.jacobian_evals); }, "Jacobian evaluations"},
       {"film_law_evals_jacobian", "1", true, [](const RunResult& r) { return double(r.stats.film_law_evals_jacobian); },
        "force-law evaluations for structured Jacobians"},

@@ -417,6 +417,7 @@ SegmentResult Runner::finish(double t) {
   res_.stats.gravity_evals = ws_.counters.gravity + obs_ws_.counters.gravity;
   res_.stats.film_law_evals = ws_.counters.film + obs_ws_.counters.film;
   res_.stats.film_law_evals_jacobian = ws_.counters.film_jacobian;
+  res_.stats.rhs_evals_jacobian += ws_.counters.rhs_jacobian;
 
   // Steady-cycle metrics over the last metric_cycles cycles (metrics.cpp).
   Metrics& mt = res_.metrics;

@@ -132,6 +132,9 @@ struct EvalCounters {
   long long gravity = 0;
   long long film = 0;
   long long film_jacobian = 0;  ///< force-law calls spent on structured Jacobians
+  /// Right-hand sides spent on the system's own difference Jacobians (joint coordinates; a
+  /// sliding film's partitioned Jacobian): SUNDIALS counts only its own difference quotients.
+  long long rhs_jacobian = 0;
 };
 
 /// Preallocated buffers; one per thread of work, reused for every case of the same model.
