@@ -14,8 +14,10 @@ Writes PNGs (Agg backend, no display needed):
   figNN_<study>_film.png        minimum film thickness against crank angle (safe film dotted)
   figNN_<study>_phase.png       phase portrait: eps_dot against eps
 for each one-axis sub-grid of the study (clearance, viscosity, speed, force_law: the
-paper's Figs. 6-21). Series are the last stored cycles of each case (the grid's
-outputs.last_cycles); a case that did not complete shows its status instead.
+paper's Figs. 6-21). Series are what the study stored for each case: a periodic case's
+periodic orbit (the metric cycles; docs/reference/study-file.md), otherwise the run's last
+cycles, marked in the panel as a transient with its classification; a case that did not
+complete shows its status instead.
 """
 import argparse
 import math
@@ -33,6 +35,9 @@ from lubjoint import study as study_reader  # noqa: E402  (PYTHONPATH=build/pyth
 # Paper figure numbers of the four studies (reaction, orbit, film, phase).
 FIRST_FIGURE = {"clearance": 6, "viscosity": 10, "speed": 14, "force_law": 18}
 # Channels each panel needs (configs/grids/paper.json stores them all).
+# Classifications whose stored channels are a steady cycle (the periodic orbit shooting found,
+# or a transient the period map confirmed); the others' are a transient's last cycles.
+STEADY = ("periodic", "periodic_unstable")
 NEEDS = {"reaction": ["reaction_force"], "orbit": ["e_x", "e_y"], "film": ["h_min"], "phase": ["eps", "eps_dot"]}
 AXIS_WORDS = {"clearance_m": "clearance sizes", "viscosity_Pa_s": "lubricant viscosities",
               "speed_rpm": "crank speeds", "force_law": "hydrodynamic force models"}
@@ -152,6 +157,10 @@ class Figures:
         getattr(self, what)(ax, cid, s)
         if self.value("status", cid) != "ok":
             ax.text(0.02, 0.02, self.value("status", cid), transform=ax.transAxes, fontsize=7, color="firebrick")
+        elif "classification" in self.c.columns and self.value("classification", cid) not in STEADY:
+            # No steady cycle: the stored channels are the run's last cycles, a transient.
+            ax.text(0.02, 0.02, f"{self.value('classification', cid)}: last cycles of a transient, no steady cycle",
+                    transform=ax.transAxes, fontsize=7, color="firebrick")
         ax.grid(True, lw=0.3, alpha=0.5)
 
     # --- figures -------------------------------------------------------------------------

@@ -43,7 +43,11 @@ CaseResult run_guarded(int case_id, int rank, const SceneOf& scene, const Run& r
     const bool steady = out.classification == "periodic" || out.classification == "periodic_unstable";
     for (std::size_t i = 0; i < fields.size(); ++i)
       if (steady || !fields[i].steady_metric) out.values[i] = fields[i].get(r);
-    out.series = std::move(r.series);
+    // The channels of what the metrics describe: the periodic orbit shooting found (over
+    // the metric cycles), not the transient it started from, which near |μ| = 1 is far from
+    // it (Frêne long: 0.4 c from cycle to cycle). Otherwise the transient's last cycles
+    // (a transient the period map confirmed periodic, or a case without a steady cycle).
+    out.series = steady && !r.orbit.names.empty() ? std::move(r.orbit) : std::move(r.series);
     if (r.orbit_seed.valid()) out.orbit_seed = pack_seed(r.orbit_seed);
   } catch (const InputError& e) {
     out.status = "invalid_scene";

@@ -27,7 +27,10 @@ struct CaseResult {
   std::string classification;
   std::vector<double> values;
   std::string revision;         ///< build revision of the program that computed it
-  Series series;                ///< the scene's channels ("t" first); empty if none
+  /// The scene's channels ("t" first); empty if none. A periodic or periodic_unstable case
+  /// found by shooting: the periodic orbit's, over the metric cycles; otherwise the run's
+  /// last cycles.
+  Series series;
   /// The periodic orbit found, packed (pack_seed, lub/run/run.hpp): what a neighbouring
   /// case continues from. Empty: none.
   std::vector<double> orbit_seed;
