@@ -42,6 +42,9 @@ using detail::SegmentResult;
 using detail::StartState;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// A periodic orbit was found, stable or not.
+bool is_orbit(SteadyClass k) { return k == SteadyClass::periodic || k == SteadyClass::periodic_unstable; }
 /// Cycles the contraction estimate and the drift fit look back on: a few turns of a
 /// complex dominant pair, few enough to follow a rate that changes as the orbit closes in.
 constexpr int kWindow = 10;
@@ -523,7 +526,7 @@ void SteadyRun::orbit_error_bars(Chart& chart, const StartState& base, PeriodMap
 void SteadyRun::error_bars_failed(const std::string& why, bool budget) {
   const std::string msg = "error bars not measured: " + why;
   res_.message = res_.message.empty() ? msg : msg + "; " + res_.message;
-  if (!budget && (res_.steady.kind == SteadyClass::periodic || res_.steady.kind == SteadyClass::periodic_unstable))
+  if (!budget && is_orbit(res_.steady.kind))
     res_.steady.kind = SteadyClass::not_converged;
 }
 
@@ -873,12 +876,12 @@ RunResult SteadyRun::run() {
       // from where it ends. A transient that converged is periodic whatever shooting says;
       // one that drifts is drifting.
       const int left = sim_.max_cycles - static_cast<int>(res_.cycles.size());
-      if (steady.kind != SteadyClass::periodic && steady.kind != SteadyClass::periodic_unstable && left > 0 &&
+      if (!is_orbit(steady.kind) && left > 0 &&
           transient(left, [&](const std::vector<CycleMetrics>& cs) { return transient_steady(scene_, cs, tol); })) {
         finish_transient();
         const bool converged = transient_steady(scene_, res_.cycles, tol);
         shoot();
-        if (steady.kind != SteadyClass::periodic && steady.kind != SteadyClass::periodic_unstable) {
+        if (!is_orbit(steady.kind)) {
           if (converged) {
             // The transient's own test, confirmed by the period map at its end.
             const std::string shooting = res_.message;
@@ -948,8 +951,7 @@ constexpr double kMinPathStep = 1.0 / 32.0;
 constexpr double kThickFilm = 16.0;
 
 bool found_orbit(const RunResult& r) {
-  return r.status == RunStatus::ok &&
-         (r.steady.kind == SteadyClass::periodic || r.steady.kind == SteadyClass::periodic_unstable);
+  return r.status == RunStatus::ok && is_orbit(r.steady.kind);
 }
 
 /// Adds what `part` cost to `total`.
