@@ -243,6 +243,39 @@ lub::RunResult run_with(const std::string& scene, const std::string& formulation
 // The reference case on joint coordinates against the partitioned formulation: both stop
 // when two cycles repeat to simulation.steady_tolerance (1e-3, relative), so their metrics
 // agree to that (measured: min film 2.2e-4, peak reaction 5.6e-5, peak acceleration 1.1e-4).
+// forward_kinematics keeps the state it was last asked for (JointKinematics::at_t, at_y):
+// asked again it must give exactly what a fresh computation gives, and a call without J
+// and c must not let a later call with them find stale ones.
+TEST(JointKinematicsKept, TheSameStateGivesAFreshComputationsEntries) {
+  const lub::Scene scene =
+      lub::parse_scene(lub::read_json_file(std::string(LUB_SOURCE_DIR) + "/configs/scenes/slider_crank.json"));
+  const lub::Model m = lub::build_model(scene);
+  const auto tree = lub::build_joint_tree(m);
+  ASSERT_TRUE(tree);
+  const std::vector<double> th{0.3, 0.12}, thd{-20.0, 1.5}, th2{0.31, 0.12};
+  const double t = 0.004;
+  lub::JointKinematics fresh(m, *tree), kept(m, *tree);
+  lub::forward_kinematics(m, *tree, t, th.data(), thd.data(), fresh, true);
+  // Kept: positions only at (t, th), then another state, then (t, th) with J and c.
+  lub::forward_kinematics(m, *tree, t, th.data(), thd.data(), kept, false);
+  EXPECT_EQ(kept.q, fresh.q);
+  EXPECT_EQ(kept.v, fresh.v);
+  EXPECT_FALSE(kept.at_derivatives);
+  lub::forward_kinematics(m, *tree, t, th.data(), thd.data(), kept, true);
+  EXPECT_EQ(kept.J, fresh.J) << "J computed, not left from the call without derivatives";
+  EXPECT_EQ(kept.c, fresh.c);
+  lub::forward_kinematics(m, *tree, t, th2.data(), thd.data(), kept, true);
+  EXPECT_NE(kept.q, fresh.q) << "another state is computed";
+  lub::forward_kinematics(m, *tree, t + 1e-6, th.data(), thd.data(), kept, true);
+  EXPECT_NE(kept.q, fresh.q) << "another time moves the driven crank";
+  lub::forward_kinematics(m, *tree, t, th.data(), thd.data(), kept, true);
+  lub::forward_kinematics(m, *tree, t, th.data(), thd.data(), kept, false);  // kept, J and c too
+  EXPECT_EQ(kept.q, fresh.q);
+  EXPECT_EQ(kept.J, fresh.J);
+  EXPECT_EQ(kept.c, fresh.c);
+  EXPECT_TRUE(kept.at_derivatives);
+}
+
 TEST(JointFormulation, ReferenceCaseAgreesWithThePartitionedFormulation) {
   const lub::RunResult p = run_with("slider_crank.json", "partitioned");
   const lub::RunResult j = run_with("slider_crank.json", "joint");

@@ -2,6 +2,7 @@
 // lub/formulation/joint_tree.hpp.
 #include "lub/formulation/joint_tree.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <sstream>
@@ -125,7 +126,8 @@ std::optional<JointTree> build_joint_tree(const Model& m, std::string* why) {
 JointKinematics::JointKinematics(const Model& m, const JointTree& tree)
     : q(Eigen::VectorXd::Zero(m.nq)), v(Eigen::VectorXd::Zero(m.nq)), c(Eigen::VectorXd::Zero(m.nq)),
       J(Eigen::MatrixXd::Zero(m.nq, tree.ndof)), cphi(static_cast<size_t>(m.nb), 1.0),
-      sphi(static_cast<size_t>(m.nb), 0.0), trig_phi(static_cast<size_t>(m.nb), std::nan("")) {}
+      sphi(static_cast<size_t>(m.nb), 0.0), trig_phi(static_cast<size_t>(m.nb), std::nan("")),
+      at_y(2 * static_cast<size_t>(tree.ndof), 0.0) {}
 
 namespace {
 
@@ -166,6 +168,13 @@ void free_body(const TreeEdge& e, const double* theta, const double* theta_dot, 
 void forward_kinematics(const Model& m, const JointTree& tree, double t, const double* theta,
                         const double* theta_dot, JointKinematics& k, bool derivatives) {
   const int nd = tree.ndof;
+  if (t == k.at_t && (k.at_derivatives || !derivatives) && std::equal(theta, theta + nd, k.at_y.begin()) &&
+      std::equal(theta_dot, theta_dot + nd, k.at_y.begin() + nd))
+    return;
+  k.at_t = t;
+  std::copy(theta, theta + nd, k.at_y.begin());
+  std::copy(theta_dot, theta_dot + nd, k.at_y.begin() + nd);
+  k.at_derivatives = derivatives;
   double* q = k.q.data();
   double* v = k.v.data();
   double* a = k.c.data();

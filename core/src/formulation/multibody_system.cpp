@@ -99,7 +99,9 @@ void MultibodySystem::joint_expand(double t, const double* y, double* qv) {
   // same positions and velocities.
   Recovery& rc = integ_rec_;
   if (!rc.have_last || t != rc.last_t || !std::equal(y, y + 2 * nz_, rc.last_y.begin())) {
-    forward_kinematics(m_, *tree_, t, y, y + nz_, *kin_, false);
+    // With J and c: the observation that follows at this state (a step end, a phase
+    // point) then finds its kinematics done (forward_kinematics keeps the last state's).
+    forward_kinematics(m_, *tree_, t, y, y + nz_, *kin_, true);
     std::copy(kin_->q.data(), kin_->q.data() + nq, rc.qv.begin());
     std::copy(kin_->v.data(), kin_->v.data() + nq, rc.qv.begin() + nq);
     rc.last_t = t;

@@ -114,7 +114,7 @@ int MultibodySystem::switch_modes(const std::vector<int>& flags, double t, const
   return switches;
 }
 
-int MultibodySystem::resync_modes(double t, const double* y) {
+int MultibodySystem::resync_modes(double t, const double* y, const double* qv) {
   // A mismatch beyond round-off: 1e-6 1/s is far below any motion the film responds to
   // (the reference case's ε̇ swings over ±1e3 1/s).
   constexpr double kTol = 1e-6;
@@ -128,8 +128,12 @@ int MultibodySystem::resync_modes(double t, const double* y) {
       // (its root function was already past zero when the motion began, so no sign change
       // ever came). Leave by the side the force points to. Margin: 1e-9 of the jump, far
       // above the multiplier's round-off and far below any force the motion responds to.
+      // The sliding rows' multipliers from the equations the integrator solves, as in
+      // roots(): in joint coordinates the joint equations (every step while sliding).
       if (!evaluated) {
-        if (evaluate(m_, ws_, stab_, t, y, y + m_.nq, switch_acc_.data()) != EvalStatus::ok) continue;
+        const EvalStatus s = form_ == Formulation::joint ? joint_evaluate(ws_, t, y, switch_acc_.data())
+                                                         : evaluate(m_, ws_, stab_, t, qv, qv + m_.nq, switch_acc_.data());
+        if (s != EvalStatus::ok) continue;
         evaluated = true;
       }
       const auto [out_side, in_side] = sliding_exit_functions(static_cast<int>(k));
@@ -143,7 +147,7 @@ int MultibodySystem::resync_modes(double t, const double* y) {
       continue;
     }
     if (mode != FilmMode::outward && mode != FilmMode::inward) continue;
-    const double ed = film_kinematics(m_, static_cast<int>(k), y, y + m_.nq).state.eps_dot;
+    const double ed = film_kinematics(m_, static_cast<int>(k), qv, qv + m_.nq).state.eps_dot;
     FilmMode to = mode;
     if (mode == FilmMode::outward && ed < -kTol) to = FilmMode::inward;
     if (mode == FilmMode::inward && ed > kTol) to = FilmMode::outward;

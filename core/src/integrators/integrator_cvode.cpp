@@ -40,6 +40,9 @@ class CvodeIntegrator final : public Integrator {
     const sunindextype n = sys.size();
     y_ = N_VNew_Serial(n, ctx_);
     for (sunindextype i = 0; i < n; ++i) NV_Ith_S(y_, i) = y0[i];
+    // Fused vector operations (one call for CVODE's sums of several vectors): on 4 states a
+    // call costs more than its arithmetic. Same results, ~1 % fewer instructions a step.
+    N_VEnableFusedOps_Serial(y_, SUNTRUE);
     atol_ = N_VNew_Serial(n, ctx_);
     for (sunindextype i = 0; i < n; ++i) NV_Ith_S(atol_, i) = s.atol[i];
     mem_ = CVodeCreate(s.method == Method::cvode_adams ? CV_ADAMS : CV_BDF, ctx_);
@@ -125,6 +128,12 @@ class CvodeIntegrator final : public Integrator {
   void statistics(IntegratorStats& s) const override {
     current(s);
     s += base_;
+  }
+
+  long long steps() const override {
+    long v = 0;
+    CVodeGetNumSteps(mem_, &v);
+    return v + base_.steps;
   }
 
   // Counters since the last (re)initialisation: CVodeReInit resets them.

@@ -321,11 +321,11 @@ Stop Runner::check_drift_and_budgets(double t) {
         << " s: tighten solver.rtol, or use solver.projection = true or solver.formulation = partitioned";
     return fail(RunStatus::solver_failure, msg.str());
   }
-  integ_->statistics(res_.stats);
+  const long long steps = integ_->steps();  // the rest of the statistics once, in finish()
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0_).count();
-  if (opt_.max_steps > 0 && res_.stats.steps >= opt_.max_steps)
+  if (opt_.max_steps > 0 && steps >= opt_.max_steps)
     return fail(RunStatus::budget_exceeded, "the segment's budget of " + std::to_string(opt_.max_steps) + " steps" + at());
-  if (res_.stats.steps >= sol.max_steps)
+  if (steps >= sol.max_steps)
     return fail(RunStatus::budget_exceeded, "solver.max_steps = " + std::to_string(sol.max_steps) + " steps" + at());
   if (wall >= sol.max_wall_time_s)
     return fail(RunStatus::budget_exceeded, "solver.max_wall_time_s = " + std::to_string(sol.max_wall_time_s) + " s" + at());
@@ -379,7 +379,7 @@ Stop Runner::advance(double& t) {
     if (handle_root(t, have_state) == Stop::failed) return Stop::failed;
   } else if (have_state && sys_->partition_degraded()) {
     repartition(t);
-  } else if (int resynced = have_state && m_.n_switching > 0 ? sys_->resync_modes(t, yfull_.data()) : 0;
+  } else if (int resynced = have_state && m_.n_switching > 0 ? sys_->resync_modes(t, integ_->y(), yfull_.data()) : 0;
              resynced > 0) {
     // A free mode that no longer matches the sign of ε̇: a crossing the root finder could
     // not see (ε̇ left zero from an exact zero at a restart). Restart on the branch that applies.

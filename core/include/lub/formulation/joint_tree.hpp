@@ -70,10 +70,17 @@ struct JointKinematics {
   /// The angle each body's cphi, sphi were computed at (NaN: none yet): a body whose
   /// angle is unchanged keeps them (the same argument, the same values: no result changes).
   std::vector<double> trig_phi;
+  /// The (t, θ, θ̇) the entries above are for, and whether J and c are among them: the
+  /// run loop asks for the same state several times at a step end (the root function, the
+  /// step end's expansion, the observation), and gets the same values without the work.
+  double at_t = std::nan("");
+  std::vector<double> at_y;  ///< θ then θ̇ (2 ndof)
+  bool at_derivatives = false;
 };
 
 /// Positions and velocities of every body at (t, θ, θ̇) into k.q, k.v; with `derivatives`
-/// also J and c.
+/// also J and c. A call at the (t, θ, θ̇) of the last one (with derivatives if these are
+/// asked) leaves k as it is: the same state, the same entries.
 void forward_kinematics(const Model& m, const JointTree& tree, double t, const double* theta,
                         const double* theta_dot, JointKinematics& k, bool derivatives);
 

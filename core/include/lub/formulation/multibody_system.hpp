@@ -115,10 +115,11 @@ class MultibodySystem final : public OdeSystem {
   /// if the force that holds ε̇ = 0 lies within the jump, else across; out of sliding by
   /// the side the load points to. Returns the number of switches.
   int switch_modes(const std::vector<int>& flags, double t, const double* y);
-  /// Modes that no longer match the state at y = (q, v) (a crossing or a sliding exit the
-  /// root finder could not see), switched to the branch that applies. Returns the number
-  /// of switches (0: none; the integrator must be restarted otherwise).
-  int resync_modes(double t, const double* y);
+  /// Modes that no longer match the state (a crossing or a sliding exit the root finder
+  /// could not see), switched to the branch that applies: y the integrated state, qv its
+  /// consistent (q, v). Returns the number of switches (0: none; the integrator must be
+  /// restarted otherwise).
+  int resync_modes(double t, const double* y, const double* qv);
   /// The observers' evaluation in joint coordinates (joint formulation only): at the
   /// integrated state y = (θ, θ̇), the forces and films (a sliding film's force included)
   /// into `ws` and the absolute accelerations q̈ = J θ̈ + c (nq) into qdd — the equations

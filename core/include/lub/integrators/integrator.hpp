@@ -111,6 +111,12 @@ class Integrator {
   virtual const double* y() const = 0;
   /// Fills the integrator's counters (steps, evaluations, failures) into `s`.
   virtual void statistics(IntegratorStats& s) const = 0;
+  /// The steps taken so far (statistics().steps; the run loop's budget asks every step).
+  virtual long long steps() const {
+    IntegratorStats s;
+    statistics(s);
+    return s.steps;
+  }
   /// SUNDIALS' message after a failure.
   virtual std::string error_message() const = 0;
   /// Forgets the message of a failure the caller recovers from (a restart after it), so a
