@@ -18,7 +18,7 @@ PACKAGES=(
   python3-dev pybind11-dev
   python3-jsonschema python3-jsonpatch
   clang libclang-rt-14-dev clang-tidy
-  help2man
+  help2man valgrind
   python3-sphinx python3-myst-parser
   python3-nbconvert python3-ipykernel python3-nbformat jupyter-core jupyter-nbconvert
 )

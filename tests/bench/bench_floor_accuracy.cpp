@@ -15,6 +15,11 @@
 // to ≤ 1.5, and the per-step ratio at rtol 1e-8 to ≤ 2.
 //
 //   build/tests/bench/bench_floor_accuracy [--repeats N] [--formulation joint|partitioned|baumgarte] (default: joint)
+//
+// One point (for an instruction count under callgrind, tools/floor_instructions.py):
+//   build/tests/bench/bench_floor_accuracy --point LAW RTOL engine|floor [--formulation F]
+// runs one integration once and prints its steps per cycle and the eccentricity vector at
+// each cycle end [m]: "steps <n>" then "end <e_x> <e_y>" lines.
 #include <algorithm>
 #include <array>
 #include <ctime>
@@ -125,23 +130,46 @@ double cost_at(const std::vector<Point>& pts, double err) {
   return NAN;
 }
 
+struct Law {
+  const char* name;
+  lub::ForceLaw id;
+};
+const Law kLaws[] = {{"frene_long", lub::ForceLaw::frene_long},
+                     {"frene_short", lub::ForceLaw::frene_short},
+                     {"gumbel_long", lub::ForceLaw::gumbel_long},
+                     {"pinkus_sternlicht_continuous", lub::ForceLaw::pinkus_sternlicht_continuous},
+                     {"pinkus_sternlicht", lub::ForceLaw::pinkus_sternlicht}};
+
+/// --point: one run, its steps per cycle and cycle-end eccentricities. Exit 2 on bad input.
+int run_point(const std::string& law, double rtol, const std::string& side) {
+  const Law* found = nullptr;
+  for (const Law& l : kLaws)
+    if (law == l.name) found = &l;
+  if (!found || !(rtol > 0) || (side != "engine" && side != "floor")) {
+    std::fprintf(stderr, "--point LAW RTOL engine|floor: LAW one of the five laws, RTOL > 0 (got %s %g %s)\n",
+                 law.c_str(), rtol, side.c_str());
+    return 2;
+  }
+  Ends ends;
+  Point pt;
+  const bool ok = side == "engine" ? run_engine(law, rtol, 1, ends, pt) : run_floor(found->id, rtol, 1, ends, pt);
+  std::printf("steps %.2f\n", pt.steps_per_cycle);
+  for (const auto& e : ends) std::printf("end %.17g %.17g\n", e[0], e[1]);
+  return ok ? 0 : 1;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   int repeats = 3;
+  std::vector<std::string> point;
   for (int i = 1; i < argc; ++i)
     if (std::string(argv[i]) == "--repeats" && i + 1 < argc) repeats = std::atoi(argv[++i]);
     else if (std::string(argv[i]) == "--formulation" && i + 1 < argc) g_formulation = argv[++i];
+    else if (std::string(argv[i]) == "--point" && i + 3 < argc) point = {argv[i + 1], argv[i + 2], argv[i + 3]}, i += 3;
+  if (!point.empty()) return run_point(point[0], std::atof(point[1].c_str()), point[2]);
   const double c = floor_model::Params{}.geom.clearance_m();
-  struct Law {
-    const char* name;
-    lub::ForceLaw id;
-  };
-  const Law laws[] = {{"frene_long", lub::ForceLaw::frene_long},
-                      {"frene_short", lub::ForceLaw::frene_short},
-                      {"gumbel_long", lub::ForceLaw::gumbel_long},
-                      {"pinkus_sternlicht_continuous", lub::ForceLaw::pinkus_sternlicht_continuous},
-                      {"pinkus_sternlicht", lub::ForceLaw::pinkus_sternlicht}};
+  const auto& laws = kLaws;
   std::printf("Work-precision, %d cycles from eps = 0, best of %d; error = max |e - e_ref| / c at the cycle ends\n",
               kCycles, repeats);
   std::printf("engine: %s, CVODE BDF, its structured Jacobian (default) and SUNDIALS' difference quotients\n",
