@@ -129,6 +129,12 @@ JointKinematics::JointKinematics(const Model& m, const JointTree& tree)
       sphi(static_cast<size_t>(m.nb), 0.0), trig_phi(static_cast<size_t>(m.nb), std::nan("")),
       at_y(2 * static_cast<size_t>(tree.ndof), 0.0) {}
 
+bool JointKinematics::holds(double t, const double* theta, const double* theta_dot, bool derivatives) const {
+  const std::ptrdiff_t nd = static_cast<std::ptrdiff_t>(at_y.size() / 2);
+  return t == at_t && (at_derivatives || !derivatives) && std::equal(theta, theta + nd, at_y.begin()) &&
+         std::equal(theta_dot, theta_dot + nd, at_y.begin() + nd);
+}
+
 namespace {
 
 // The joint's coordinate, rate and (at θ̈ = 0) acceleration at t.
@@ -168,9 +174,7 @@ void free_body(const TreeEdge& e, const double* theta, const double* theta_dot, 
 void forward_kinematics(const Model& m, const JointTree& tree, double t, const double* theta,
                         const double* theta_dot, JointKinematics& k, bool derivatives) {
   const int nd = tree.ndof;
-  if (t == k.at_t && (k.at_derivatives || !derivatives) && std::equal(theta, theta + nd, k.at_y.begin()) &&
-      std::equal(theta_dot, theta_dot + nd, k.at_y.begin() + nd))
-    return;
+  if (k.holds(t, theta, theta_dot, derivatives)) return;
   k.at_t = t;
   std::copy(theta, theta + nd, k.at_y.begin());
   std::copy(theta_dot, theta_dot + nd, k.at_y.begin() + nd);

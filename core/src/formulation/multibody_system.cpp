@@ -37,6 +37,7 @@ MultibodySystem::MultibodySystem(const Model& m, Workspace& ws, const Stabilisat
     if (!tree_) throw std::runtime_error("solver.formulation = joint does not apply: " + why);
     nz_ = tree_->ndof;
     kin_.emplace(m, *tree_);
+    dense_kin_.emplace(m, *tree_);
     integ_rec_.last_y.assign(static_cast<size_t>(2 * nz_), 0.0);
     const int rows = m.n_switching;
     Mt_ = Eigen::MatrixXd::Zero(nz_, nz_);
@@ -93,8 +94,16 @@ void MultibodySystem::factor_dependent_block(Recovery& rc) {
   dense::lu(rc.lu.data(), nc, nc, rc.piv.data());
 }
 
-void MultibodySystem::joint_expand(double t, const double* y, double* qv) {
+void MultibodySystem::joint_expand(double t, const double* y, double* qv, Context who) {
   const int nq = m_.nq;
+  if (who == Context::observer) {
+    // With J and c: the observation that follows at this state finds them done.
+    JointKinematics& k = *dense_kin_;
+    forward_kinematics(m_, *tree_, t, y, y + nz_, k, true);
+    std::copy(k.q.data(), k.q.data() + nq, qv);
+    std::copy(k.v.data(), k.v.data() + nq, qv + nq);
+    return;
+  }
   // The same (t, y) again (the root function's at a step end, then the run loop's): the
   // same positions and velocities.
   Recovery& rc = integ_rec_;
@@ -114,7 +123,7 @@ void MultibodySystem::joint_expand(double t, const double* y, double* qv) {
 int MultibodySystem::expand(double t, const double* y, double* qv, Context who) {
   const int nq = m_.nq;
   if (form_ == Formulation::joint) {
-    joint_expand(t, y, qv);
+    joint_expand(t, y, qv, who);
     return 0;
   }
   if (form_ != Formulation::partitioned) {
@@ -262,9 +271,9 @@ bool MultibodySystem::joint_accelerations(Workspace& ws, double* thdd) {
   return true;
 }
 
-EvalStatus MultibodySystem::joint_evaluate(Workspace& ws, double t, const double* y, double* thdd) {
+EvalStatus MultibodySystem::joint_evaluate(Workspace& ws, double t, const double* y, double* thdd,
+                                           JointKinematics& k) {
   const int nq = m_.nq, nd = nz_;
-  JointKinematics& k = *kin_;
   forward_kinematics(m_, *tree_, t, y, y + nd, k, true);
   // The bodies' cos φ and sin φ are the forward kinematics': evaluate_forces' table
   // (body_trig) keeps them, the same values for the same angles.
@@ -317,17 +326,19 @@ EvalStatus MultibodySystem::joint_evaluate(Workspace& ws, double t, const double
 int MultibodySystem::joint_rhs(double t, const double* y, double* ydot) {
   const int nd = nz_;
   std::copy(y + nd, y + 2 * nd, ydot);
-  const EvalStatus s = joint_evaluate(ws_, t, y, ydot + nd);
+  const EvalStatus s = joint_evaluate(ws_, t, y, ydot + nd, *kin_);
   if (s == EvalStatus::singular) throw std::runtime_error("the joint-coordinate mass matrix is singular");
   return ode_flag(s);
 }
 
 EvalStatus MultibodySystem::joint_observation(double t, const double* y, Workspace& ws, double* qdd) {
   const int nq = m_.nq, nd = nz_;
-  const EvalStatus s = joint_evaluate(ws, t, y, acc_.data());
+  // A step end's state is the integrator's (kin_, from its root function or expansion);
+  // any other is an observer's inside a step (dense_kin_, from its expansion).
+  JointKinematics& k = kin_->holds(t, y, y + nd, true) ? *kin_ : *dense_kin_;
+  const EvalStatus s = joint_evaluate(ws, t, y, acc_.data(), k);
   if (s != EvalStatus::ok) return s;
   // q̈ = J θ̈ + c
-  const JointKinematics& k = *kin_;
   for (int i = 0; i < nq; ++i) qdd[i] = k.c(i);
   for (int j = 0; j < nd; ++j) {
     const double* Jj = k.J.data() + static_cast<long>(j) * nq;

@@ -32,7 +32,7 @@ int MultibodySystem::roots(double t, const double* y, double* g) {
     } else {
       if (!evaluated) {
         // The sliding rows' multipliers: in joint coordinates from the joint equations.
-        const EvalStatus s = form_ == Formulation::joint ? joint_evaluate(ws_, t, y, acc_.data())
+        const EvalStatus s = form_ == Formulation::joint ? joint_evaluate(ws_, t, y, acc_.data(), *kin_)
                                                          : evaluate(m_, ws_, stab_, t, q, v, acc_.data());
         if (s != EvalStatus::ok) return 1;
         evaluated = true;
@@ -131,7 +131,7 @@ int MultibodySystem::resync_modes(double t, const double* y, const double* qv) {
       // The sliding rows' multipliers from the equations the integrator solves, as in
       // roots(): in joint coordinates the joint equations (every step while sliding).
       if (!evaluated) {
-        const EvalStatus s = form_ == Formulation::joint ? joint_evaluate(ws_, t, y, switch_acc_.data())
+        const EvalStatus s = form_ == Formulation::joint ? joint_evaluate(ws_, t, y, switch_acc_.data(), *kin_)
                                                          : evaluate(m_, ws_, stab_, t, qv, qv + m_.nq, switch_acc_.data());
         if (s != EvalStatus::ok) continue;
         evaluated = true;

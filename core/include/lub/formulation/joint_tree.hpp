@@ -76,6 +76,8 @@ struct JointKinematics {
   double at_t = std::nan("");
   std::vector<double> at_y;  ///< θ then θ̇ (2 ndof)
   bool at_derivatives = false;
+  /// Whether the entries are those of (t, θ, θ̇) (and J, c with them if `derivatives`).
+  bool holds(double t, const double* theta, const double* theta_dot, bool derivatives) const;
 };
 
 /// Positions and velocities of every body at (t, θ, θ̇) into k.q, k.v; with `derivatives`

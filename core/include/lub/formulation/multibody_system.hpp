@@ -170,14 +170,19 @@ class MultibodySystem final : public OdeSystem {
   // joint: the tree, its kinematics, and the reduced system's scratch: M_θ = JᵀMJ (nd × nd),
   // Q (nd), the sliding rows' Jacobian A (rows × nd), M_θ⁻¹Aᵀ, their Schur complement.
   std::optional<JointTree> tree_;
-  std::optional<JointKinematics> kin_;
+  // kin_: the integrator's states (right-hand sides, roots, step ends); dense_kin_: the
+  // observers' states inside a step (phase points, output samples), so that those do not
+  // displace the step end's kinematics, which the root function computed and the step
+  // end's observation then finds (forward_kinematics keeps the last state of each).
+  std::optional<JointKinematics> kin_, dense_kin_;
   Eigen::MatrixXd Mt_, At_, Xt_, St_;
   Eigen::VectorXd Qt_, bt_;
   int joint_rhs(double t, const double* y, double* ydot);
-  /// expand() of the joint formulation: forward kinematics, the last (t, y) kept.
-  void joint_expand(double t, const double* y, double* qv);
-  /// θ̈ at y into thdd, the forces, films and sliding rows' λ into ws (kin_ at y).
-  EvalStatus joint_evaluate(Workspace& ws, double t, const double* y, double* thdd);
+  /// expand() of the joint formulation: forward kinematics, the last (t, y) kept; an
+  /// observer's state inside a step into dense_kin_.
+  void joint_expand(double t, const double* y, double* qv, Context who);
+  /// θ̈ at y into thdd, the forces, films and sliding rows' λ into ws (k at y).
+  EvalStatus joint_evaluate(Workspace& ws, double t, const double* y, double* thdd, JointKinematics& k);
   bool joint_accelerations(Workspace& ws, double* thdd);
 
   int partitioned_jacobian(double t, const double* y, const double* fy, double* J);
