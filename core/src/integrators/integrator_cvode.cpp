@@ -4,7 +4,6 @@
 #include <cvodes/cvodes_proj.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
-#include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
@@ -14,6 +13,7 @@
 #include <vector>
 
 #include "integrators/integrator_common.hpp"
+#include "integrators/small_dense_solver.hpp"
 #include "lub/integrators/integrator.hpp"
 
 namespace lub {
@@ -25,6 +25,8 @@ using detail::err_cb;
 using detail::quad_cb;
 using detail::rhs_cb;
 using detail::root_cb;
+using detail::small_dense_matrix;
+using detail::small_dense_solver;
 
 struct FreeCvode {
   void operator()(void* mem) const { CVodeFree(&mem); }
@@ -43,6 +45,9 @@ class CvodeIntegrator final : public Integrator {
     // Fused vector operations (one call for CVODE's sums of several vectors): on 4 states a
     // call costs more than its arithmetic. Same results, ~1 % fewer instructions a step.
     N_VEnableFusedOps_Serial(y_, SUNTRUE);
+    // And the linear sum and norm of every step, written for short vectors: CVODE's
+    // working vectors are clones of y_ and take its operations (small_dense_solver.hpp).
+    detail::use_small_vector_ops(y_);
     atol_ = N_VNew_Serial(n, ctx_);
     for (sunindextype i = 0; i < n; ++i) NV_Ith_S(atol_, i) = s.atol[i];
     mem_ = CVodeCreate(s.method == Method::cvode_adams ? CV_ADAMS : CV_BDF, ctx_);
@@ -62,8 +67,10 @@ class CvodeIntegrator final : public Integrator {
       nls_ = SUNNonlinSol_FixedPoint(y_, 0, ctx_);
       check(CVodeSetNonlinearSolver(mem_, nls_), "CVodeSetNonlinearSolver");
     } else {
-      A_ = SUNDenseMatrix(n, n, ctx_);
-      ls_ = SUNLinSol_Dense(y_, A_, ctx_);
+      // SUNDIALS' dense matrix and LU, their per-step operations written out for these
+      // small matrices: the same numbers at fewer instructions (small_dense_solver.hpp).
+      A_ = small_dense_matrix(static_cast<int>(n), ctx_);
+      ls_ = small_dense_solver(static_cast<int>(n), ctx_);
       check(CVodeSetLinearSolver(mem_, ls_, A_), "CVodeSetLinearSolver");
       if (s.user_jacobian) check(CVodeSetJacFn(mem_, detail::jac_cb), "CVodeSetJacFn");
       if (s.jacobian_steps > 0) {
