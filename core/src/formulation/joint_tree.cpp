@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <iterator>
 #include <sstream>
 
 #include "lub/mechanism/planar.hpp"
@@ -120,6 +121,27 @@ std::optional<JointTree> build_joint_tree(const Model& m, std::string* why) {
     e.dof = tree.ndof;
     tree.ndof += e.kind == TreeEdge::Kind::free ? 3 : 1;
   }
+  // J's structure: a body moves with its own coordinates and its parent's.
+  std::vector<std::vector<int>> moves(static_cast<size_t>(m.nb));
+  for (const TreeEdge& e : tree.edges) {
+    std::vector<int> d = e.parent == kGround ? std::vector<int>{} : moves[static_cast<size_t>(e.parent)];
+    if (e.dof >= 0)
+      for (int i = 0; i < (e.kind == TreeEdge::Kind::free ? 3 : 1); ++i) d.push_back(e.dof + i);
+    std::sort(d.begin(), d.end());
+    moves[static_cast<size_t>(e.child)] = d;
+    tree.edge_dofs.push_back(d);
+  }
+  tree.dof_rows.assign(static_cast<size_t>(tree.ndof), {});
+  for (int b = 0; b < m.nb; ++b)
+    for (int j : moves[static_cast<size_t>(b)])
+      for (int r = 0; r < 3; ++r) tree.dof_rows[static_cast<size_t>(j)].push_back(3 * b + r);
+  for (int a = 0; a < tree.ndof; ++a)
+    for (int b = 0; b < tree.ndof; ++b) {
+      const auto &ra = tree.dof_rows[static_cast<size_t>(a)], &rb = tree.dof_rows[static_cast<size_t>(b)];
+      std::vector<int> both;
+      std::set_intersection(ra.begin(), ra.end(), rb.begin(), rb.end(), std::back_inserter(both));
+      tree.pair_rows.push_back(both);
+    }
   return tree;
 }
 
@@ -182,7 +204,8 @@ void forward_kinematics(const Model& m, const JointTree& tree, double t, const d
   double* q = k.q.data();
   double* v = k.v.data();
   double* a = k.c.data();
-  for (const TreeEdge& e : tree.edges) {
+  for (size_t ei = 0; ei < tree.edges.size(); ++ei) {
+    const TreeEdge& e = tree.edges[ei];
     const int pc = 3 * e.parent, cc = 3 * e.child;
     if (e.kind == TreeEdge::Kind::free) {
       free_body(e, theta, theta_dot, k, derivatives);
@@ -231,8 +254,9 @@ void forward_kinematics(const Model& m, const JointTree& tree, double t, const d
                            (slide ? Vector2d(xdd * u + 2.0 * w_p * xd * perp(u)) : Vector2d(0, 0)) -
                            al_c * perp(ac) + w_c * w_c * ac;
     a[cc] = rdd_c.x(), a[cc + 1] = rdd_c.y(), a[cc + 2] = al_c;
-    // J: the velocity map of each free coordinate's unit rate.
-    for (int j = 0; j < nd; ++j) {
+    // J: the velocity map of each free coordinate's unit rate (the coordinates that move
+    // this body; J's other entries on its rows stay zero).
+    for (const int j : tree.edge_dofs[ei]) {
       const double jw_p = ground ? 0.0 : k.J(pc + 2, j);
       const Vector2d jr_p = ground ? Vector2d(0, 0) : Vector2d(k.J(pc, j), k.J(pc + 1, j));
       const double unit = e.dof == j ? 1.0 : 0.0;

@@ -287,15 +287,18 @@ EvalStatus MultibodySystem::joint_evaluate(Workspace& ws, double t, const double
   const double* M = m_.mass_diag.data();
   // g − M c into ws.qdd (scratch), then M_θ and Q.
   for (int i = 0; i < nq; ++i) ws.qdd(i) = ws.g(i) - M[i] * k.c(i);
+  // The sums run over J's nonzero rows only (JointTree::dof_rows, pair_rows): the same
+  // terms in the same order, without J's structural zeros.
+  const JointTree& tree = *tree_;
   for (int a = 0; a < nd; ++a) {
     const double* Ja = k.J.data() + static_cast<long>(a) * nq;
     double qa = 0.0;
-    for (int i = 0; i < nq; ++i) qa += Ja[i] * ws.qdd(i);
+    for (const int i : tree.dof_rows[static_cast<size_t>(a)]) qa += Ja[i] * ws.qdd(i);
     Qt_(a) = qa;
     for (int b = 0; b <= a; ++b) {
       const double* Jb = k.J.data() + static_cast<long>(b) * nq;
       double x = 0.0;
-      for (int i = 0; i < nq; ++i) x += Ja[i] * M[i] * Jb[i];
+      for (const int i : tree.pair_rows[static_cast<size_t>(a * nd + b)]) x += Ja[i] * M[i] * Jb[i];
       Mt_(a, b) = x;
     }
   }
@@ -308,7 +311,7 @@ EvalStatus MultibodySystem::joint_evaluate(Workspace& ws, double t, const double
     bt_(r) = b;
     for (int j = 0; j < nd; ++j) {
       double x = 0.0;
-      for (int i = 0; i < nq; ++i) x += ws.Phi_q(row, i) * k.J(i, j);
+      for (const int i : tree.dof_rows[static_cast<size_t>(j)]) x += ws.Phi_q(row, i) * k.J(i, j);
       At_(r, j) = x;
     }
   }
@@ -342,7 +345,7 @@ EvalStatus MultibodySystem::joint_observation(double t, const double* y, Workspa
   for (int i = 0; i < nq; ++i) qdd[i] = k.c(i);
   for (int j = 0; j < nd; ++j) {
     const double* Jj = k.J.data() + static_cast<long>(j) * nq;
-    for (int i = 0; i < nq; ++i) qdd[i] += Jj[i] * acc_[static_cast<size_t>(j)];
+    for (const int i : tree_->dof_rows[static_cast<size_t>(j)]) qdd[i] += Jj[i] * acc_[static_cast<size_t>(j)];
   }
   return EvalStatus::ok;
 }

@@ -54,6 +54,11 @@ struct TreeEdge {
 struct JointTree {
   std::vector<TreeEdge> edges;  ///< parents before children (breadth first from the ground)
   int ndof = 0;                 ///< free joint coordinates θ
+  /// J's structure (J = ∂q/∂θ): edge_dofs[e] the free coordinates that move edge e's child
+  /// (its own and its ancestors'), dof_rows[j] the rows of J that coordinate j moves, and
+  /// pair_rows[a·ndof + b] those both a and b move, each ascending. J is zero elsewhere, so
+  /// sums over these rows are the full sums, term for term (the zero terms add nothing).
+  std::vector<std::vector<int>> edge_dofs, dof_rows, pair_rows;
 };
 
 /// The tree of `m`'s ideal joints, or nothing (with the reason in *why) where the ideal
