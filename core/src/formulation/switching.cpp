@@ -50,9 +50,9 @@ std::pair<double, double> MultibodySystem::sliding_limits(int k, BearingState st
           film_element_force(m_, ws_, k, st, FilmMode::inward).radial_N};
 }
 
-std::pair<double, double> MultibodySystem::sliding_exit_functions(int k) {
-  const auto [F_out, F_in] = sliding_limits(k, ws_.films[k].state);
-  const double F = ws_.films[k].force.radial_N;
+std::pair<double, double> MultibodySystem::sliding_exit_functions(int k, const Workspace& ws) {
+  const auto [F_out, F_in] = sliding_limits(k, ws.films[k].state);
+  const double F = ws.films[k].force.radial_N;
   return {F - F_out, F_in - F};
 }
 
@@ -114,12 +114,11 @@ int MultibodySystem::switch_modes(const std::vector<int>& flags, double t, const
   return switches;
 }
 
-int MultibodySystem::resync_modes(double t, const double* y, const double* qv) {
+int MultibodySystem::resync_modes(double t, const double* y, const double* qv, const Workspace* evaluated) {
   // A mismatch beyond round-off: 1e-6 1/s is far below any motion the film responds to
   // (the reference case's ε̇ swings over ±1e3 1/s).
   constexpr double kTol = 1e-6;
   int switches = 0;
-  bool evaluated = false;
   for (size_t k = 0; k < m_.films.size(); ++k) {
     if (!m_.films[k].switching) continue;
     const FilmMode mode = ws_.film_mode[k];
@@ -134,9 +133,9 @@ int MultibodySystem::resync_modes(double t, const double* y, const double* qv) {
         const EvalStatus s = form_ == Formulation::joint ? joint_evaluate(ws_, t, y, switch_acc_.data(), *kin_)
                                                          : evaluate(m_, ws_, stab_, t, qv, qv + m_.nq, switch_acc_.data());
         if (s != EvalStatus::ok) continue;
-        evaluated = true;
+        evaluated = &ws_;
       }
-      const auto [out_side, in_side] = sliding_exit_functions(static_cast<int>(k));
+      const auto [out_side, in_side] = sliding_exit_functions(static_cast<int>(k), *evaluated);
       const double margin = 1e-9 * std::abs(out_side + in_side);  // of the jump F_in − F_out
       FilmMode to = mode;
       if (out_side < -margin) to = FilmMode::outward;

@@ -92,7 +92,8 @@ class Runner {
   /// series; with `measure` the cycle's extremes and the drift statistics. Output samples
   /// that fall at neither a step end nor a phase point only record: the metrics must not
   /// depend on the output rate. `y` is the integrated state, `qv` its full (q, v).
-  void observe(double t, const double* y, const double* qv, bool record, bool measure = true);
+  /// False if the model could not be evaluated there (nothing observed).
+  bool observe(double t, const double* y, const double* qv, bool record, bool measure = true);
   /// Whether an observation needs an ideal joint's multiplier: a reaction of a joint
   /// without a film, as the metric joint or a recorded channel.
   bool observers_need_multipliers() const;
@@ -199,17 +200,17 @@ bool Runner::observers_need_multipliers() const {
   return false;
 }
 
-void Runner::observe(double t, const double* y, const double* qv, bool record, bool measure) {
+bool Runner::observe(double t, const double* y, const double* qv, bool record, bool measure) {
   const double* q = qv;
   const double* v = qv + m_.nq;
   std::copy(ws_.film_mode.begin(), ws_.film_mode.end(), obs_ws_.film_mode.begin());
   std::copy(ws_.slide_radius.begin(), ws_.slide_radius.end(), obs_ws_.slide_radius.begin());
   const EvalStatus s = joint_observer_ ? sys_->joint_observation(t, y, obs_ws_, qdd_.data())
                                        : evaluate(m_, obs_ws_, stab_, t, q, v, qdd_.data());
-  if (s != EvalStatus::ok) return;
+  if (s != EvalStatus::ok) return false;
   ++res_.stats.observer_evals;
   if (record) series_.record(Probe{t, q, v, qdd_.data()}, obs_ws_);
-  if (!measure) return;
+  if (!measure) return true;
   const Workspace& ws = obs_ws_;
   // In joint coordinates the ideal joints hold by construction (forward kinematics): no
   // constraint row is evaluated, and there is no drift to measure.
@@ -220,6 +221,7 @@ void Runner::observe(double t, const double* y, const double* qv, bool record, b
         std::max(res_.stats.max_velocity_drift, m_.nc ? ws.Phi_dot.head(m_.nc).lpNorm<Eigen::Infinity>() : 0.0);
   }
   cycles_.measure(t, ws, qdd_.data());
+  return true;
 }
 
 void Runner::close_cycle(double t_end) {
@@ -374,12 +376,14 @@ Stop Runner::advance(double& t) {
   // cycle ends; then the step end itself.
   const bool steady = opt_.observe && sample_step(t_prev, t);
   const bool have_state = sys_->expand(t, integ_->y(), yfull_.data()) == 0;
-  if (have_state && opt_.observe) observe(t, integ_->y(), yfull_.data(), false);
+  // The step end's observation, evaluated at this state with these modes: the mode check
+  // below reads its films.
+  const bool observed = have_state && opt_.observe && observe(t, integ_->y(), yfull_.data(), false);
   if (out == StepOutcome::root) {
     if (handle_root(t, have_state) == Stop::failed) return Stop::failed;
   } else if (have_state && sys_->partition_degraded()) {
     repartition(t);
-  } else if (int resynced = have_state && m_.n_switching > 0 ? sys_->resync_modes(t, integ_->y(), yfull_.data()) : 0;
+  } else if (int resynced = have_state && m_.n_switching > 0 ? sys_->resync_modes(t, integ_->y(), yfull_.data(), observed ? &obs_ws_ : nullptr) : 0;
              resynced > 0) {
     // A free mode that no longer matches the sign of ε̇: a crossing the root finder could
     // not see (ε̇ left zero from an exact zero at a restart). Restart on the branch that applies.

@@ -108,7 +108,9 @@ class MultibodySystem final : public OdeSystem {
   /// lies within the jump; the first < 0: the load pulls the journal outwards off ε̇ = 0,
   /// the second < 0: it pushes it inwards. The root functions of a sliding film, and the
   /// step-end check for an exit they missed.
-  std::pair<double, double> sliding_exit_functions(int k);
+  std::pair<double, double> sliding_exit_functions(int k) { return sliding_exit_functions(k, ws_); }
+  /// The same from the films of `ws`, a workspace evaluated at the state in question.
+  std::pair<double, double> sliding_exit_functions(int k, const Workspace& ws);
   std::vector<int> root_directions() const;
   /// At a root return: switches each switching film whose roots fired (`flags`, as the
   /// integrator reports them) at the consistent state y = (q, v): at ε̇ = 0 into sliding
@@ -117,9 +119,11 @@ class MultibodySystem final : public OdeSystem {
   int switch_modes(const std::vector<int>& flags, double t, const double* y);
   /// Modes that no longer match the state (a crossing or a sliding exit the root finder
   /// could not see), switched to the branch that applies: y the integrated state, qv its
-  /// consistent (q, v). Returns the number of switches (0: none; the integrator must be
-  /// restarted otherwise).
-  int resync_modes(double t, const double* y, const double* qv);
+  /// consistent (q, v). `evaluated`: a workspace already evaluated at this state with these
+  /// modes (the step end's observation), whose films the check reads instead of evaluating
+  /// the model again; or null. Returns the number of switches (0: none; the integrator
+  /// must be restarted otherwise).
+  int resync_modes(double t, const double* y, const double* qv, const Workspace* evaluated = nullptr);
   /// The observers' evaluation in joint coordinates (joint formulation only): at the
   /// integrated state y = (θ, θ̇), the forces and films (a sliding film's force included)
   /// into `ws` and the absolute accelerations q̈ = J θ̈ + c (nq) into qdd — the equations
