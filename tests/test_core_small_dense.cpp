@@ -100,6 +100,18 @@ TEST(SmallDense, LinearSumAndNormGiveSundialsNumbersBitForBit) {
           N_VLinearSum(a, x2, b, y2, zo);
           expect_same(NV_DATA_S(zs), NV_DATA_S(zo), n, "linear sum");
         }
+    for (double a : coefficients)
+      for (int alias = 0; alias < 2; ++alias) {  // z apart, z = x
+        for (int i = 0; i < n; ++i) NV_Ith_S(x, i) = NV_Ith_S(x2, i) = U(rng);
+        N_Vector zs = alias == 1 ? x : za;
+        N_Vector zo = alias == 1 ? x2 : zb;
+        N_VScale_Serial(a, x, zs);
+        N_VScale(a, x2, zo);
+        expect_same(NV_DATA_S(zs), NV_DATA_S(zo), n, "scale");
+      }
+    N_VConst_Serial(0.7, za);
+    N_VConst(0.7, zb);
+    expect_same(NV_DATA_S(za), NV_DATA_S(zb), n, "constant");
     for (int i = 0; i < n; ++i) NV_Ith_S(x, i) = NV_Ith_S(x2, i) = U(rng), NV_Ith_S(w, i) = std::abs(U(rng));
     EXPECT_EQ(N_VWrmsNorm_Serial(x, w), N_VWrmsNorm(x2, w));
     for (N_Vector v : {x, y, w, ours, x2, y2, za, zb}) N_VDestroy(v);

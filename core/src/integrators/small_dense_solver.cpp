@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <new>
+#include <type_traits>
 #include <vector>
 
 namespace lub::detail {
@@ -103,8 +104,11 @@ SUNMatrix new_matrix(sunindextype n, SUNContext ctx) {
 
 // z = a x + b y with N_VLinearSum_Serial's cases, each the same arithmetic (a case is not
 // a shortcut of the general formula: a (x − y) rounds differently from a x − a y).
-void linear_sum(sunrealtype a, N_Vector xv, sunrealtype b, N_Vector yv, N_Vector zv) {
-  const long n = NV_LENGTH_S(xv);
+// Size: long, or std::integral_constant<long, N> for the sizes the engine integrates most
+// (4 and 8 states), whose loops the compiler then unrolls; the operations on each entry
+// are the same either way.
+template <class Size>
+void linear_sum_n(Size n, sunrealtype a, N_Vector xv, sunrealtype b, N_Vector yv, N_Vector zv) {
   const double* x = NV_DATA_S(xv);
   const double* y = NV_DATA_S(yv);
   double* z = NV_DATA_S(zv);
@@ -155,6 +159,47 @@ void linear_sum(sunrealtype a, N_Vector xv, sunrealtype b, N_Vector yv, N_Vector
     return;
   }
   for (long i = 0; i < n; ++i) z[i] = a * x[i] + b * y[i];
+}
+
+// z = c x with N_VScale_Serial's cases (in place, a copy, a negation, the product).
+template <class Size>
+void scale_n(Size n, sunrealtype c, N_Vector xv, N_Vector zv) {
+  const double* x = NV_DATA_S(xv);
+  double* z = NV_DATA_S(zv);
+  if (zv == xv) {
+    for (long i = 0; i < n; ++i) z[i] *= c;
+  } else if (c == 1.0) {
+    for (long i = 0; i < n; ++i) z[i] = x[i];
+  } else if (c == -1.0) {
+    for (long i = 0; i < n; ++i) z[i] = -x[i];
+  } else {
+    for (long i = 0; i < n; ++i) z[i] = c * x[i];
+  }
+}
+
+template <long N>
+using Fixed = std::integral_constant<long, N>;
+
+void linear_sum(sunrealtype a, N_Vector x, sunrealtype b, N_Vector y, N_Vector z) {
+  switch (NV_LENGTH_S(x)) {
+    case 4: return linear_sum_n(Fixed<4>{}, a, x, b, y, z);
+    case 8: return linear_sum_n(Fixed<8>{}, a, x, b, y, z);
+    default: return linear_sum_n(static_cast<long>(NV_LENGTH_S(x)), a, x, b, y, z);
+  }
+}
+
+void scale(sunrealtype c, N_Vector x, N_Vector z) {
+  switch (NV_LENGTH_S(x)) {
+    case 4: return scale_n(Fixed<4>{}, c, x, z);
+    case 8: return scale_n(Fixed<8>{}, c, x, z);
+    default: return scale_n(static_cast<long>(NV_LENGTH_S(x)), c, x, z);
+  }
+}
+
+void fill_constant(sunrealtype c, N_Vector zv) {
+  const long n = NV_LENGTH_S(zv);
+  double* z = NV_DATA_S(zv);
+  for (long i = 0; i < n; ++i) z[i] = c;
 }
 
 // sqrt(Σ (x_i w_i)² / n), summed in order, as N_VWrmsNorm_Serial.
@@ -225,6 +270,8 @@ int free_solver(SUNLinearSolver S) {
 
 void use_small_vector_ops(N_Vector v) {
   v->ops->nvlinearsum = linear_sum;
+  v->ops->nvscale = scale;
+  v->ops->nvconst = fill_constant;
   v->ops->nvwrmsnorm = wrms_norm;
 }
 

@@ -27,9 +27,10 @@ SUNLinearSolver small_dense_solver(int n, SUNContext ctx);
 SUNMatrix small_dense_matrix(int n, SUNContext ctx);
 
 /// Gives the serial vector v (and every clone CVODE makes of it) a linear sum
-/// z = a x + b y and a weighted RMS norm written for short vectors, with the same cases
-/// and the same operations as N_VLinearSum_Serial and N_VWrmsNorm_Serial (on 4 states
-/// SUNDIALS' took ~200 instructions a call, 18 calls a step).
+/// z = a x + b y, a scaling z = c x, a constant fill and a weighted RMS norm written for
+/// short vectors, with the same cases and the same operations as N_VLinearSum_Serial,
+/// N_VScale_Serial, N_VConst_Serial and N_VWrmsNorm_Serial (on 4 states SUNDIALS' linear
+/// sum took ~200 instructions a call, 18 calls a step).
 void use_small_vector_ops(N_Vector v);
 
 /// LU with partial pivoting of the column-major n × n matrix a, in place, as
