@@ -14,6 +14,7 @@ the floor's at rtol 1e-12. The cost at 1e-4 c and 1e-6 c comes from log-log
 interpolation between the bracketing tolerances.
 
     /usr/bin/python3 tools/floor_instructions.py [--build build] [--laws a,b] [--formulation joint] [-j 2]
+                                                 [--floor-kernels sundials|small]
 
 Prints a markdown table: per cycle at equal accuracy, per step at rtol 1e-8, and the
 instructions per step of each side.
@@ -46,12 +47,12 @@ def parse_point(text):
     return steps, ends
 
 
-def point_command(bench, law, rtol, side, formulation):
-    return [bench, "--point", law, repr(rtol), side, "--formulation", formulation]
+def point_command(bench, law, rtol, side, formulation, floor_kernels="sundials"):
+    return [bench, "--point", law, repr(rtol), side, "--formulation", formulation, "--floor-kernels", floor_kernels]
 
 
-def run_point(bench, law, rtol, side, formulation, callgrind):
-    cmd = point_command(bench, law, rtol, side, formulation)
+def run_point(bench, law, rtol, side, formulation, callgrind, floor_kernels="sundials"):
+    cmd = point_command(bench, law, rtol, side, formulation, floor_kernels)
     if not callgrind:
         out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
         return parse_point(out) + (None,)
@@ -90,6 +91,9 @@ def main():
     ap.add_argument("--laws", default=",".join(LAWS))
     ap.add_argument("--formulation", default="joint")
     ap.add_argument("-j", type=int, default=2, help="callgrind processes at once")
+    ap.add_argument("--floor-kernels", choices=["sundials", "small"], default="sundials",
+                    help="the floor's CVODE kernels: SUNDIALS' own (the floor as defined), or the engine's "
+                         "small-size ones (the same numbers), to see the engine's own overhead with like kernels")
     args = ap.parse_args()
     bench = os.path.join(args.build, "tests", "bench", "bench_floor_accuracy")
     if not os.access(bench, os.X_OK):
@@ -105,9 +109,11 @@ def main():
             jobs[(law, "ref")] = pool.submit(run_point, bench, law, 1e-12, "floor", args.formulation, False)
             for rtol in RTOLS:
                 for side in ("engine", "floor"):
-                    jobs[(law, rtol, side)] = pool.submit(run_point, bench, law, rtol, side, args.formulation, True)
+                    jobs[(law, rtol, side)] = pool.submit(run_point, bench, law, rtol, side, args.formulation, True,
+                                                          args.floor_kernels)
     print(f"Instructions per cycle, {CYCLES} cycles from eps = 0; engine: {args.formulation} (`lub::run_scene`), "
-          "floor: `floor_model::integrate`; error: max |e - e_ref| / c at the cycle ends, e_ref the floor at rtol 1e-12\n")
+          f"floor: `floor_model::integrate` with {args.floor_kernels} kernels; error: max |e - e_ref| / c at the "
+          "cycle ends, e_ref the floor at rtol 1e-12\n")
     print("| law | rtol | engine Ir/cycle | engine error [c] | engine steps/cycle | floor Ir/cycle | floor error [c] | floor steps/cycle |")
     print("|---|---|---|---|---|---|---|---|")
     summary = []

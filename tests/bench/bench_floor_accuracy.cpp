@@ -18,6 +18,7 @@
 //
 // One point (for an instruction count under callgrind, tools/floor_instructions.py):
 //   build/tests/bench/bench_floor_accuracy --point LAW RTOL engine|floor [--formulation F]
+//                                          [--floor-kernels sundials|small]
 // runs one integration once and prints its steps per cycle and the eccentricity vector at
 // each cycle end [m]: "steps <n>" then "end <e_x> <e_y>" lines.
 #include <algorithm>
@@ -40,6 +41,7 @@ constexpr int kCycles = 4;
 const double kRtols[] = {1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11};
 const double kTargets[] = {1e-4, 1e-6};
 std::string g_formulation = "joint";  // --formulation (the engine's default)
+bool g_floor_small_kernels = false;    // --floor-kernels small: the floor with the engine's kernels
 
 struct Point {
   double rtol = 0, cost_ms = 0, error_c = 0;  // cost per cycle [ms], error [clearances]
@@ -93,6 +95,7 @@ bool run_floor(lub::ForceLaw law, double rtol, int repeats, Ends& ends, Point& p
   floor_model::Params p;
   p.law = law;
   p.atol_per_state = true;
+  p.small_kernels = g_floor_small_kernels;
   const double T = 2 * M_PI / p.omega;
   double best = INFINITY;
   floor_model::Result r;
@@ -166,7 +169,14 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i)
     if (std::string(argv[i]) == "--repeats" && i + 1 < argc) repeats = std::atoi(argv[++i]);
     else if (std::string(argv[i]) == "--formulation" && i + 1 < argc) g_formulation = argv[++i];
-    else if (std::string(argv[i]) == "--point" && i + 3 < argc) point = {argv[i + 1], argv[i + 2], argv[i + 3]}, i += 3;
+    else if (std::string(argv[i]) == "--floor-kernels" && i + 1 < argc) {
+      const std::string k = argv[++i];
+      if (k != "small" && k != "sundials") {
+        std::fprintf(stderr, "--floor-kernels: 'small' or 'sundials' (got '%s')\n", k.c_str());
+        return 2;
+      }
+      g_floor_small_kernels = k == "small";
+    } else if (std::string(argv[i]) == "--point" && i + 3 < argc) point = {argv[i + 1], argv[i + 2], argv[i + 3]}, i += 3;
   if (!point.empty()) return run_point(point[0], std::atof(point[1].c_str()), point[2]);
   const double c = floor_model::Params{}.geom.clearance_m();
   const auto& laws = kLaws;
