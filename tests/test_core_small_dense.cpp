@@ -1,4 +1,4 @@
-// The small-size kernels of the SUNDIALS adapters (core/src/integrators/small_dense_solver.hpp)
+// The small-size kernels of the SUNDIALS adapters (core/src/integrators/small_kernels.hpp)
 // against SUNDIALS' own dense matrix, dense LU solver and serial vector: the same numbers,
 // bit for bit, on random inputs of sizes 1..9 and every case of the linear sum. That is
 // the point of them: the integrator's steps must not change (the seven scenes' steps and
@@ -12,7 +12,7 @@
 #include <random>
 #include <vector>
 
-#include "integrators/small_dense_solver.hpp"
+#include "integrators/small_kernels.hpp"
 
 namespace {
 

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "integrators/integrator_common.hpp"
-#include "integrators/small_dense_solver.hpp"
+#include "integrators/small_kernels.hpp"
 #include "lub/integrators/integrator.hpp"
 
 namespace lub {
@@ -46,7 +46,7 @@ class CvodeIntegrator final : public Integrator {
     // call costs more than its arithmetic. Same results, ~1 % fewer instructions a step.
     N_VEnableFusedOps_Serial(y_, SUNTRUE);
     // And the linear sum and norm of every step, written for short vectors: CVODE's
-    // working vectors are clones of y_ and take its operations (small_dense_solver.hpp).
+    // working vectors are clones of y_ and take its operations (small_kernels.hpp).
     detail::use_small_vector_ops(y_);
     atol_ = N_VNew_Serial(n, ctx_);
     for (sunindextype i = 0; i < n; ++i) NV_Ith_S(atol_, i) = s.atol[i];
@@ -68,7 +68,7 @@ class CvodeIntegrator final : public Integrator {
       check(CVodeSetNonlinearSolver(mem_, nls_), "CVodeSetNonlinearSolver");
     } else {
       // SUNDIALS' dense matrix and LU, their per-step operations written out for these
-      // small matrices: the same numbers at fewer instructions (small_dense_solver.hpp).
+      // small matrices: the same numbers at fewer instructions (small_kernels.hpp).
       A_ = small_dense_matrix(static_cast<int>(n), ctx_);
       ls_ = small_dense_solver(static_cast<int>(n), ctx_);
       check(CVodeSetLinearSolver(mem_, ls_, A_), "CVodeSetLinearSolver");

@@ -1,7 +1,7 @@
-// See small_dense_solver.hpp. The loops follow SUNDIALS' dense routines in the same order
+// See small_kernels.hpp. The loops follow SUNDIALS' dense routines in the same order
 // of operations (the multipliers scaled by 1/pivot, the updates column by column, the
 // substitutions by columns) so that the numbers, and with them the steps, do not change.
-#include "integrators/small_dense_solver.hpp"
+#include "integrators/small_kernels.hpp"
 
 #include <nvector/nvector_serial.h>
 #include <sunmatrix/sunmatrix_dense.h>
@@ -84,9 +84,6 @@ int matrix_scale_add_identity(sunrealtype c, SUNMatrix A) {
     }
   return 0;
 }
-
-int matrix_copy(SUNMatrix A, SUNMatrix B);
-int matrix_scale_add_identity(sunrealtype c, SUNMatrix A);
 
 // A SUNDenseMatrix with the operations above, or null (no exception into SUNDIALS).
 SUNMatrix new_matrix(sunindextype n, SUNContext ctx);
