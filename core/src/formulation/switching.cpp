@@ -119,6 +119,7 @@ int MultibodySystem::resync_modes(double t, const double* y, const double* qv, c
   // (the reference case's ε̇ swings over ±1e3 1/s).
   constexpr double kTol = 1e-6;
   int switches = 0;
+  const Workspace* films = nullptr;  // the evaluation the sliding films are checked on
   for (size_t k = 0; k < m_.films.size(); ++k) {
     if (!m_.films[k].switching) continue;
     const FilmMode mode = ws_.film_mode[k];
@@ -128,14 +129,16 @@ int MultibodySystem::resync_modes(double t, const double* y, const double* qv, c
       // ever came). Leave by the side the force points to. Margin: 1e-9 of the jump, far
       // above the multiplier's round-off and far below any force the motion responds to.
       // The sliding rows' multipliers from the equations the integrator solves, as in
-      // roots(): in joint coordinates the joint equations (every step while sliding).
-      if (!evaluated) {
+      // roots(): in joint coordinates the joint equations (every step while sliding). The
+      // observation's are those while no mode has changed above; else evaluate once here.
+      if (!films && evaluated && switches == 0) films = evaluated;
+      if (!films) {
         const EvalStatus s = form_ == Formulation::joint ? joint_evaluate(ws_, t, y, switch_acc_.data(), *kin_)
                                                          : evaluate(m_, ws_, stab_, t, qv, qv + m_.nq, switch_acc_.data());
         if (s != EvalStatus::ok) continue;
-        evaluated = &ws_;
+        films = &ws_;
       }
-      const auto [out_side, in_side] = sliding_exit_functions(static_cast<int>(k), *evaluated);
+      const auto [out_side, in_side] = sliding_exit_functions(static_cast<int>(k), *films);
       const double margin = 1e-9 * std::abs(out_side + in_side);  // of the jump F_in − F_out
       FilmMode to = mode;
       if (out_side < -margin) to = FilmMode::outward;
