@@ -34,10 +34,10 @@ from lubjoint import study as study_reader  # noqa: E402  (PYTHONPATH=build/pyth
 
 # Paper figure numbers of the four studies (reaction, orbit, film, phase).
 FIRST_FIGURE = {"clearance": 6, "viscosity": 10, "speed": 14, "force_law": 18}
-# Channels each panel needs (configs/grids/paper.json stores them all).
 # Classifications whose stored channels are a steady cycle (the periodic orbit shooting found,
 # or a transient the period map confirmed); the others' are a transient's last cycles.
 STEADY = ("periodic", "periodic_unstable")
+# Channels each panel needs (configs/grids/paper.json stores them all).
 NEEDS = {"reaction": ["reaction_force"], "orbit": ["e_x", "e_y"], "film": ["h_min"], "phase": ["eps", "eps_dot"]}
 AXIS_WORDS = {"clearance_m": "clearance sizes", "viscosity_Pa_s": "lubricant viscosities",
               "speed_rpm": "crank speeds", "force_law": "hydrodynamic force models"}

@@ -38,7 +38,6 @@ MultibodySystem::MultibodySystem(const Model& m, Workspace& ws, const Stabilisat
     nz_ = tree_->ndof;
     kin_.emplace(m, *tree_);
     dense_kin_.emplace(m, *tree_);
-    integ_rec_.last_y.assign(static_cast<size_t>(2 * nz_), 0.0);
     const int rows = m.n_switching;
     Mt_ = Eigen::MatrixXd::Zero(nz_, nz_);
     Qt_ = Eigen::VectorXd::Zero(nz_);
@@ -96,28 +95,15 @@ void MultibodySystem::factor_dependent_block(Recovery& rc) {
 
 void MultibodySystem::joint_expand(double t, const double* y, double* qv, Context who) {
   const int nq = m_.nq;
-  if (who == Context::observer) {
-    // With J and c: the observation that follows at this state finds them done.
-    JointKinematics& k = *dense_kin_;
-    forward_kinematics(m_, *tree_, t, y, y + nz_, k, true);
-    std::copy(k.q.data(), k.q.data() + nq, qv);
-    std::copy(k.v.data(), k.v.data() + nq, qv + nq);
-    return;
-  }
-  // The same (t, y) again (the root function's at a step end, then the run loop's): the
-  // same positions and velocities.
-  Recovery& rc = integ_rec_;
-  if (!rc.have_last || t != rc.last_t || !std::equal(y, y + 2 * nz_, rc.last_y.begin())) {
-    // With J and c: the observation that follows at this state (a step end, a phase
-    // point) then finds its kinematics done (forward_kinematics keeps the last state's).
-    forward_kinematics(m_, *tree_, t, y, y + nz_, *kin_, true);
-    std::copy(kin_->q.data(), kin_->q.data() + nq, rc.qv.begin());
-    std::copy(kin_->v.data(), kin_->v.data() + nq, rc.qv.begin() + nq);
-    rc.last_t = t;
-    std::copy(y, y + 2 * nz_, rc.last_y.begin());
-    rc.have_last = true;
-  }
-  std::copy(rc.qv.begin(), rc.qv.end(), qv);
+  // With J and c: the observation that follows at this state (a step end, a phase point)
+  // finds its kinematics done, and so does a second expansion of the same state (the root
+  // function's at a step end, then the run loop's): forward_kinematics keeps the last
+  // state of each JointKinematics. The integrator's states in kin_, an observer's inside a
+  // step in dense_kin_.
+  JointKinematics& k = who == Context::observer ? *dense_kin_ : *kin_;
+  forward_kinematics(m_, *tree_, t, y, y + nz_, k, true);
+  std::copy(k.q.data(), k.q.data() + nq, qv);
+  std::copy(k.v.data(), k.v.data() + nq, qv + nq);
 }
 
 int MultibodySystem::expand(double t, const double* y, double* qv, Context who) {

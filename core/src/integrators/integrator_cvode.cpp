@@ -45,8 +45,9 @@ class CvodeIntegrator final : public Integrator {
     // Fused vector operations (one call for CVODE's sums of several vectors): on 4 states a
     // call costs more than its arithmetic. Same results, ~1 % fewer instructions a step.
     N_VEnableFusedOps_Serial(y_, SUNTRUE);
-    // And the linear sum and norm of every step, written for short vectors: CVODE's
-    // working vectors are clones of y_ and take its operations (small_kernels.hpp).
+    // And the per-step linear sum, scaling, constant fill and norm, written for short
+    // vectors: CVODE's working vectors are clones of y_ and take its operations
+    // (small_kernels.hpp).
     detail::use_small_vector_ops(y_);
     atol_ = N_VNew_Serial(n, ctx_);
     for (sunindextype i = 0; i < n; ++i) NV_Ith_S(atol_, i) = s.atol[i];

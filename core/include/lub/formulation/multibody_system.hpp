@@ -182,8 +182,8 @@ class MultibodySystem final : public OdeSystem {
   Eigen::MatrixXd Mt_, At_, Xt_, St_;
   Eigen::VectorXd Qt_, bt_;
   int joint_rhs(double t, const double* y, double* ydot);
-  /// expand() of the joint formulation: forward kinematics, the last (t, y) kept; an
-  /// observer's state inside a step into dense_kin_.
+  /// expand() of the joint formulation: forward kinematics (kept for the last state of
+  /// kin_ and of dense_kin_, an observer's state inside a step).
   void joint_expand(double t, const double* y, double* qv, Context who);
   /// θ̈ at y into thdd, the forces, films and sliding rows' λ into ws (k at y).
   EvalStatus joint_evaluate(Workspace& ws, double t, const double* y, double* thdd, JointKinematics& k);
