@@ -141,6 +141,9 @@ int main(int argc, char** argv) {
                     : ": the metrics below are a transient's, not a steady cycle's (docs/theory/steady-cycles.md)");
     if (r.steady.method == "shooting")
       std::printf("metrics  (the periodic orbit, %d cycles)\n", scene.simulation.metric_cycles);
+    else if (r.steady.method == "slow_flow")
+      std::printf("metrics  (%d cycles where the slow flow got to, about %.0f cycles after the transient's %d)\n",
+                  scene.simulation.metric_cycles, r.steady.slow_flow_cycles, r.metrics.cycles_run);
     else
       std::printf("metrics  (last %d of %d cycles)\n", std::min<int>(scene.simulation.metric_cycles, r.metrics.cycles_run),
                   r.metrics.cycles_run);

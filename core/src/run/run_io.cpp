@@ -70,6 +70,8 @@ const std::vector<ResultField>& metric_fields() {
          "change of the per-cycle minimum film thickness per crank cycle over the transient's last 10 cycles"},
         {"last_cycle_min_film_m", "m", false, [](const RunResult& r) { return r.steady.last_cycle_min_film_m; },
          "the last transient cycle's minimum film thickness (a transient value, not a steady metric)"},
+        {"slow_flow_cycles", "1", false, [](const RunResult& r) { return r.steady.slow_flow_cycles; },
+         "cycles of the slow flow followed by projective steps after the transient, where shooting from the transient found no orbit (0: not followed)"},
         {"multiplier_1_modulus", "1", false, [](const RunResult& r) { return multiplier(r, 0, false); },
          "largest Floquet multiplier's modulus (NaN: not computed)"},
         {"multiplier_1_angle_rad", "rad", false, [](const RunResult& r) { return multiplier(r, 0, true); },

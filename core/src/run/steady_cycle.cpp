@@ -18,6 +18,7 @@
 #include "lub/run/run.hpp"
 #include "lub/steady/contraction.hpp"
 #include "lub/steady/periodic_orbit.hpp"
+#include "lub/steady/slow_manifold.hpp"
 #include "run/metrics.hpp"
 #include "run/orbit_seed.hpp"
 #include "run/period_budget.hpp"
@@ -73,6 +74,18 @@ constexpr int kContinuationIterations = 8;
 /// Newton iterations of the error bars' re-solve at rtol/100 (from the orbit at rtol, with
 /// its monodromy: 1–3 where the map is smooth).
 constexpr int kErrorBarIterations = 6;
+/// Periods the slow flow's projective steps may spend (follow_slow_flow).
+constexpr long long kSlowPeriods = 200;
+/// Newton from where the slow flow stops: at most this many times (each further along the
+/// flow), of at most this many iterations.
+constexpr int kSlowNewtonTries = 1;
+constexpr int kSlowNewtonIterations = 10;
+/// Beyond this eccentricity ratio Newton starts from where the slow flow stops only if it
+/// has stopped (|g| within its map's noise), not where it only seems near an orbit.
+constexpr double kSlowNearWall = 1.0 - 1e-3;
+/// Where the slow flow got to, its cycles must repeat to this (clearances; the flow moves
+/// by far less a cycle), or the state is on no slow manifold and the flow is not reported.
+constexpr double kSlowPeriodicity = 1e-2;
 
 /// The orbit distance between two cycles' phase points is measured in the clearance; below
 /// this it is noise (the contraction estimate's floor). The phase points come from the
@@ -193,6 +206,34 @@ class SteadyRun {
   void transient_error_bars();
   void shoot();
   void shoot_from_transient();
+  /// Shooting found no orbit from the transient's end: its slow flow followed by
+  /// projective steps (steady/slow_manifold.hpp) to where the journal ends up, then Newton
+  /// from there where it stops near an orbit.
+  void follow_slow_flow();
+  /// The way the slow flow went: why shooting from the transient found no orbit, the last
+  /// Newton's verdict where the flow stopped, the flow's last leg, cycles and periods in all.
+  struct SlowFlowWay {
+    std::string shooting, newton;
+    steady::SlowManifoldResult flow;
+    double cycles;
+    long long maps;
+  };
+  enum class SlowNewton {
+    verdict,      ///< an orbit, or a verdict of its own (budget, measurement): the case ends
+    none,         ///< no orbit there (or one not located): follow the flow on
+    near_wall,    ///< not tried: within 1e-3 c of the wall only a flow that has stopped counts
+    unavailable,  ///< the flow's state could not be measured: stop following
+  };
+  SlowNewton newton_where_flow_stops(Chart& chart, const StartState& from, const std::vector<double>& winding,
+                                     SlowFlowWay& way);
+  /// The case where the flow got to: drifting (still moving, or the film failing on the
+  /// way), not_converged (stopped with no orbit), or as shooting left it (`before`) where
+  /// the flow's state is on no slow manifold.
+  void report_slow_flow(const RunResult& before, Chart& chart, const StartState& from, const SlowFlowWay& way,
+                        const PeriodMap& period);
+  /// The metrics, channels, film and drift of the cycles measured where the flow got to.
+  void take_slow_flow_metrics(SegmentResult& measured, Chart& chart, const StartState& from,
+                              const steady::SlowManifoldResult& flow);
   /// Newton on the period map from `base`, then the monodromy and the multipliers; if
   /// `final`, the classification, the metrics and error bars on the orbit. Sets the
   /// orbit's seed. False if no orbit was found (the message says why).
@@ -547,6 +588,192 @@ void SteadyRun::shoot_from_transient() {
               OrbitSeed{});
 }
 
+void SteadyRun::follow_slow_flow() {
+  if (boundaries_.size() < 2) return;
+  const RunResult before = res_;  // the case as shooting left it, should the flow not hold
+  const StartState from = end_;
+  Chart chart(rm_, from, sim_.shooting_coordinates);
+  if (chart.size() == 0) return;
+  const std::vector<double> winding = transient_winding();
+  // The slow flow at rtol/10: it creeps by less than the default map's error per period
+  // (Frêne short at 0.1 mm, 100 cP, 2500 rpm: 4.9 µm after 4400 cycles at rtol/10 in 400
+  // periods, against 5.6 µm and ~5.2 µm for transients at 1e-9 and 1e-10, and 9 µm at the
+  // default 1e-8 after 3000 cycles).
+  std::optional<PeriodMap> period, tight;
+  period_maps(period, tight, chart, from, winding, kTightenFactor, transient_step_budget());
+  steady::SlowManifoldOptions o;
+  o.scales = chart.residual_units();
+  o.jump_tolerance = 0.1 * sim_.steady_tolerance;
+  o.hand_over = 10.0 * sim_.steady_tolerance;
+  // Near the wall no jump moves the journal by more than half its gap at the transient's
+  // end: there the film's forces change over a fraction of the gap, and the printed law's
+  // map is not smooth (ε̇ = 0 switches, sliding), so a jump's error estimate can miss a
+  // jump that leaves the slow manifold (at 50 rpm, 200 cP a flow with 0.05 c jumps left a
+  // film of 0.11 µm for one of 57 µm that the transient never reaches).
+  const double max_eps = res_.cycles.empty() ? kNaN : res_.cycles.back().max_eps;
+  if (max_eps > 0.0 && max_eps < 1.0) o.max_jump = std::min(o.max_jump, 0.5 * (1.0 - max_eps));
+  // The flow has stopped where it moves by less than the map's own error a period (~10 rtol
+  // in the clearance's unit at rtol/10).
+  o.still = 100.0 * scene_.solver.rtol * kTightenFactor;
+  SlowFlowWay way{before.message, {}, {}, 0.0, 0};
+  Eigen::VectorXd z = chart.reduce(from.qv);
+  for (int attempt = 0;; ++attempt) {
+    o.max_maps = std::min<long long>(kSlowPeriods - way.maps, budget_.left(spent()));
+    way.flow = steady::follow_slow_manifold(*period, z, o);
+    way.cycles += way.flow.cycles;
+    way.maps += way.flow.maps;
+    z = way.flow.z;
+    const bool stopped = way.flow.outcome == steady::SlowManifoldOutcome::near ||
+                         way.flow.outcome == steady::SlowManifoldOutcome::still;
+    if (!stopped) break;
+    if (attempt >= kSlowNewtonTries &&
+        !(way.flow.outcome == steady::SlowManifoldOutcome::still && way.newton.empty())) {
+      // Newton found no orbit where the flow seemed to stop: follow it on, without asking again.
+      if (way.flow.outcome == steady::SlowManifoldOutcome::still || o.hand_over == 0.0) break;
+      o.hand_over = 0.0;
+      continue;
+    }
+    const SlowNewton tried = newton_where_flow_stops(chart, from, winding, way);
+    if (tried == SlowNewton::verdict) return;
+    if (tried == SlowNewton::unavailable) break;
+    // Not close enough, or too close to the wall to trust an estimate: follow it further.
+    o.hand_over = tried == SlowNewton::near_wall ? 0.0 : o.hand_over / 10.0;
+  }
+  report_slow_flow(before, chart, from, way, *period);
+}
+
+SteadyRun::SlowNewton SteadyRun::newton_where_flow_stops(Chart& chart, const StartState& from,
+                                                         const std::vector<double>& winding, SlowFlowWay& way) {
+  SteadyCycle& steady = res_.steady;
+  StartState at = from;
+  if (!chart.expand(from.t, way.flow.z.data(), at.qv)) return SlowNewton::unavailable;
+  const SegmentResult one = measure(at, 1.0, false, 1);
+  if (one.res.status != RunStatus::ok || one.res.cycles.empty()) return SlowNewton::unavailable;
+  // Within 1e-3 c of the wall an estimate of the distance to an orbit is no evidence that
+  // the journal gets there: Newton converged there to "stable" orbits the transient from
+  // rest passes on its way into the wall (Frêne long, 0.5 mm, 400 cP, 50 rpm: an orbit at
+  // 31 nm, |μ|max 0.991; the transient reaches eps_limit at cycle 121 at rtol 1e-8). Only a
+  // flow that has stopped is.
+  if (way.flow.outcome == steady::SlowManifoldOutcome::near && one.res.cycles.back().max_eps > kSlowNearWall)
+    return SlowNewton::near_wall;
+  Chart near(rm_, at, sim_.shooting_coordinates);
+  steady::ShootingOptions options = shooting_options(near, one.res.cycles.back().max_eps);
+  options.max_iterations = kSlowNewtonIterations;
+  res_.message.clear();
+  steady.multipliers.clear();
+  if (solve_orbit(near, at, winding, transient_step_budget(), options, true, OrbitSeed{})) {
+    steady.slow_flow_cycles = way.cycles;
+    std::ostringstream msg;
+    msg << "found from where its slow flow stops, about " << std::lround(way.cycles) << " cycles after the transient ("
+        << way.maps << " periods); from the transient: " << way.shooting;
+    res_.message = res_.message.empty() ? msg.str() : msg.str() + "; " + res_.message;
+    return SlowNewton::verdict;
+  }
+  const bool unlocated = steady.orbit_error > sim_.steady_tolerance;
+  if ((!steady.multipliers.empty() && !unlocated) || !budget_.note().empty()) {
+    // An orbit found but not measured, or the budget spent: its own verdict.
+    steady.slow_flow_cycles = way.cycles;
+    return SlowNewton::verdict;
+  }
+  // No orbit, or a fixed point of the map's error (not located, near |μ| = 1): the flow at
+  // rtol/10 still moves there, so it goes on.
+  way.newton = res_.message;
+  steady.multipliers.clear();
+  steady.orbit_error = kNaN;
+  steady.method = "transient";
+  return SlowNewton::none;
+}
+
+void SteadyRun::report_slow_flow(const RunResult& before, Chart& chart, const StartState& from,
+                                 const SlowFlowWay& way, const PeriodMap& period) {
+  SteadyCycle& steady = res_.steady;
+  const steady::SlowManifoldResult& flow = way.flow;
+  steady.slow_flow_cycles = way.cycles;
+  const long long n = std::lround(way.cycles);
+  StartState at = from;
+  SegmentResult measured;
+  if (flow.outcome != steady::SlowManifoldOutcome::failed && chart.expand(from.t, flow.z.data(), at.qv))
+    measured = measure(at, 1.0, true, sim_.metric_cycles + 1);  // one more: each metric cycle's periodicity known
+  const bool have = measured.res.status == RunStatus::ok && !measured.res.cycles.empty();
+  if (have && !(measured.res.metrics.periodicity <= kSlowPeriodicity)) {
+    // Its own cycles where the flow got to are far from repeating: that state is on no slow
+    // manifold, and the flow says nothing (the printed law at 50 rpm, 0.5 mm, 400 cP: two
+    // cycles 0.67 c apart, films of 10 nm and 129 µm). The case stays as shooting left it.
+    const long long periods = steady.periods_integrated;
+    const SolverStats stats = res_.stats;
+    std::ostringstream why;
+    why << "; its slow flow not followed: where it got to (about " << n << " cycles on), two cycles differ by "
+        << measured.res.metrics.periodicity << " clearances, off any slow manifold";
+    res_ = before;
+    res_.steady.periods_integrated = periods;
+    res_.stats = stats;
+    res_.message += why.str();
+    return;
+  }
+  // Where the flow got to, its own cycles collapse the film: the film fails there.
+  const bool collapses = flow.outcome != steady::SlowManifoldOutcome::failed &&
+                         (measured.res.status == RunStatus::film_collapse ||
+                          measured.res.status == RunStatus::solver_failure);
+  std::ostringstream msg;
+  switch (collapses ? steady::SlowManifoldOutcome::failed : flow.outcome) {
+    case steady::SlowManifoldOutcome::failed:
+      steady.kind = SteadyClass::drifting;
+      msg << "the film fails: followed along its slow manifold, the journal leaves the clearance about " << n
+          << " cycles after the transient (" << (collapses ? measured.res.message : period.last_failure()) << ")";
+      break;
+    case steady::SlowManifoldOutcome::refused:
+      steady.kind = SteadyClass::not_converged;
+      budget_.stopped(spent(), "the slow flow stopped after about " + std::to_string(n) + " cycles");
+      break;
+    case steady::SlowManifoldOutcome::still:
+      steady.kind = SteadyClass::not_converged;
+      msg << "its slow flow stops within the map's noise about " << n
+          << " cycles after the transient, but Newton finds no orbit there (" << way.newton << ")";
+      break;
+    default:  // its periods spent, still moving
+      steady.kind = SteadyClass::drifting;
+      msg << "still moving about " << n << " cycles after the transient, followed along its slow manifold";
+      break;
+  }
+  if (have) {
+    msg << ": minimum film " << steady.last_cycle_min_film_m << " m at the transient's end";
+    take_slow_flow_metrics(measured, chart, from, flow);
+    msg << ", " << steady.last_cycle_min_film_m << " m there, changing by " << steady.min_film_drift_m_per_cycle
+        << " m a cycle";
+  }
+  msg << " (" << way.maps << " periods, " << name_of(flow.outcome) << "); from the transient: " << way.shooting;
+  res_.message = msg.str();
+}
+
+void SteadyRun::take_slow_flow_metrics(SegmentResult& measured, Chart& chart, const StartState& from,
+                                       const steady::SlowManifoldResult& flow) {
+  SteadyCycle& steady = res_.steady;
+  const std::vector<double> h = cycle_min_films(measured.res.cycles);
+  // The metrics (and stored channels) of the cycles where the flow got to; the run's own
+  // counts stay.
+  const Metrics kept = res_.metrics;
+  res_.metrics = measured.res.metrics;
+  res_.metrics.cycles_run = kept.cycles_run;
+  res_.metrics.cycles_to_steady = kept.cycles_to_steady;
+  res_.metrics.steady = false;
+  res_.series = std::move(measured.res.series);
+  steady.method = "slow_flow";
+  steady.last_cycle_min_film_m = h.back();
+  // How it drifts: the film against the flow's state some tenth of its cycles before
+  // (consecutive cycles differ by the flow's slow change and a wobble the jumps leave in
+  // the modes that decay over tens of cycles, at times larger).
+  size_t back = flow.trail.size();
+  while (back > 0 && flow.trail_cycles[back - 1] > 0.9 * flow.cycles) --back;
+  StartState earlier = from;
+  if (back > 0 && flow.trail_cycles[back - 1] < flow.cycles &&
+      chart.expand(from.t, flow.trail[back - 1].data(), earlier.qv)) {
+    const SegmentResult then = measure(earlier, 1.0, false, 1);
+    if (then.res.status == RunStatus::ok && !then.res.cycles.empty())
+      steady.min_film_drift_m_per_cycle = (h.front() - then.res.cycles.back().min_film_thickness_m) /
+                                          (flow.cycles - flow.trail_cycles[back - 1]);
+  }
+}
+
 void SteadyRun::period_maps(std::optional<PeriodMap>& period, std::optional<PeriodMap>& tight, Chart& chart,
                             const StartState& base, const std::vector<double>& winding, double factor,
                             long long steps) {
@@ -898,6 +1125,8 @@ RunResult SteadyRun::run() {
           }
         }
       }
+      if (res_.status == RunStatus::ok && !is_orbit(steady.kind) && budget_.note().empty() && sim_.slow_flow)
+        follow_slow_flow();
       if (res_.status == RunStatus::ok && steady.kind == SteadyClass::drifting && res_.message.empty())
         res_.message = "no periodic orbit inside the clearance";
     } else {

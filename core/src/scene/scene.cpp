@@ -298,6 +298,7 @@ SimulationSpec parse_simulation(const json& j) {
   // Error bars cost a re-integration at a 100x tighter rtol: on by default where a steady
   // cycle is the product (shooting, auto), off for a plain transient.
   s.error_bars = r.boolean_or("error_bars", s.steady != SteadyMethod::transient);
+  s.slow_flow = r.boolean_or("slow_flow", s.steady == SteadyMethod::automatic);
   s.eps_limit = r.number_or("eps_limit", s.eps_limit,
                             [](double v) { return v > 0.0 && v < 1.0; }, "must be in (0, 1)");
   s.drift_limit_m = r.number_optional("drift_limit_m", positive, "must be > 0 m");

@@ -96,8 +96,8 @@ struct NameTable<SteadyClass> {
 /// How the steady cycle was found, what it is and what it cost.
 struct SteadyCycle {
   SteadyClass kind = SteadyClass::not_converged;
-  /// what the metrics come from: "transient", "shooting", or "continuation" (shooting from
-  /// a neighbour's orbit)
+  /// what the metrics come from: "transient", "shooting", "continuation" (shooting from
+  /// a neighbour's orbit), or "slow_flow" (the cycles where the slow flow got to)
   std::string method = "transient";
   int continuation_steps = 0;      ///< steps along the path from the neighbour (0: not continued)
   /// ρ: successive cycles' orbit distances shrink as δ_{k+1} ≈ ρ δ_k (least squares over
@@ -122,8 +122,12 @@ struct SteadyCycle {
   /// Change of the per-cycle minimum film thickness per cycle over the transient's last
   /// cycles [m/cycle], least squares: how a drifting case drifts.
   double min_film_drift_m_per_cycle = std::numeric_limits<double>::quiet_NaN();
-  /// The last transient cycle's minimum film thickness [m]
+  /// The last transient cycle's minimum film thickness [m] (where the slow flow was
+  /// followed: at the state it reached)
   double last_cycle_min_film_m = std::numeric_limits<double>::quiet_NaN();
+  /// Cycles of the slow flow followed by projective steps after the transient, where
+  /// shooting from the transient found no orbit (steady/slow_manifold.hpp; 0: not followed)
+  double slow_flow_cycles = 0.0;
 };
 
 /// Steady-cycle metrics: extremes over the last `metric_cycles` cycles.

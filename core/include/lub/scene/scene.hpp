@@ -198,6 +198,11 @@ struct SimulationSpec {
   /// re-measured at a 100× tighter rtol (docs/theory/steady-cycles.md, error bars). Default:
   /// on for shooting and auto, off for transient.
   bool error_bars = false;
+  /// auto: where shooting from the transient finds no orbit, its slow flow is followed by
+  /// projective steps (two periods a jump of up to hundreds of cycles) to where the journal
+  /// ends up, and Newton tried where the flow stops (docs/theory/steady-cycles.md, slow
+  /// flow). Default: on for auto.
+  bool slow_flow = false;
   /// ε reaching it ends the run: film_collapse. Default 1 − 1e-5: h = 1e-5 c (5 nm at the
   /// paper's 0.5 mm), far below any surface roughness, so no physical film is cut off (the
   /// paper's thinnest, 40 cP, has 1 − ε = 4.3e-4); closer to the wall the film's stiffness
