@@ -158,8 +158,12 @@ class Figures:
         if self.value("status", cid) != "ok":
             ax.text(0.02, 0.02, self.value("status", cid), transform=ax.transAxes, fontsize=7, color="firebrick")
         elif "classification" in self.c.columns and self.value("classification", cid) not in STEADY:
-            # No steady cycle: the stored channels are the run's last cycles, a transient.
-            ax.text(0.02, 0.02, f"{self.value('classification', cid)}: last cycles of a transient, no steady cycle",
+            # No steady cycle: the stored channels are the run's last cycles, a transient, or
+            # where its slow flow got to (docs/theory/steady-cycles.md, slow flow).
+            flow = self.value("slow_flow_cycles", cid) if "slow_flow_cycles" in self.c.columns else 0.0
+            where = (f"where its slow flow got to\n(~{flow:.0f} cycles on), no steady cycle"
+                     if flow == flow and flow > 0 else "last cycles of a transient, no steady cycle")
+            ax.text(0.02, 0.02, f"{self.value('classification', cid)}: {where}",
                     transform=ax.transAxes, fontsize=7, color="firebrick")
         ax.grid(True, lw=0.3, alpha=0.5)
 
