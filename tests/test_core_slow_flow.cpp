@@ -77,6 +77,26 @@ TEST(SlowFlow, FollowsASinkingJournalThousandsOfCyclesAndAgreesWithItsTransient)
   EXPECT_LT(std::abs(r.steady.last_cycle_min_film_m - h_transient), std::abs(h_loose - h_transient));
 }
 
+TEST(SlowFlow, TheRunsBudgetOfPeriodsBoundsItAndSaysSo) {
+  // The sinking cell spends ~670 periods before its flow (transient, Newton from it) and
+  // 877 in all; budgets of 690–750 stop it some 20–80 periods in (at 750 the Newton from
+  // where it seemed to stop, whose orbit is not measured): not_converged with the budget's
+  // word, never "still moving" on a flow the budget cut short, and no period beyond it.
+  // 690 and 700: the budget stops the measurement before Newton, or the flow itself.
+  for (const long long budget : {690LL, 700LL, 750LL}) {
+    json doc = sinking("auto", 40);
+    doc["simulation"]["max_periods"] = budget;
+    const RunResult r = run(doc);
+    ASSERT_EQ(r.status, RunStatus::ok) << r.message;
+    EXPECT_LE(r.steady.periods_integrated, budget);
+    EXPECT_GT(r.steady.slow_flow_cycles, 0.0) << r.message;  // the flow did start
+    EXPECT_EQ(lub::classification(r), "not_converged") << budget << ": " << r.message;
+    EXPECT_NE(r.message.find("simulation.max_periods = " + std::to_string(budget) + " reached"), std::string::npos)
+        << r.message;
+    EXPECT_EQ(r.message.find("still moving"), std::string::npos) << budget << ": " << r.message;
+  }
+}
+
 TEST(SlowFlow, IsAutosDefaultAndTheSceneCanTurnItOff) {
   EXPECT_TRUE(lub::parse_scene(sinking("auto", 40)).simulation.slow_flow);
   EXPECT_FALSE(lub::parse_scene(sinking("shooting", 40)).simulation.slow_flow);

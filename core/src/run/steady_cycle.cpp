@@ -217,6 +217,7 @@ class SteadyRun {
     steady::SlowManifoldResult flow;
     double cycles;
     long long maps;
+    bool run_budget = false;  ///< the last leg was cut short by simulation.max_periods, not kSlowPeriods
   };
   enum class SlowNewton {
     verdict,      ///< an orbit, or a verdict of its own (budget, measurement): the case ends
@@ -618,6 +619,7 @@ void SteadyRun::follow_slow_flow() {
   SlowFlowWay way{before.message, {}, {}, 0.0, 0};
   Eigen::VectorXd z = chart.reduce(from.qv);
   for (int attempt = 0;; ++attempt) {
+    way.run_budget = budget_.left(spent()) < kSlowPeriods - way.maps;
     o.max_maps = std::min<long long>(kSlowPeriods - way.maps, budget_.left(spent()));
     way.flow = steady::follow_slow_manifold(*period, z, o);
     way.cycles += way.flow.cycles;
@@ -715,16 +717,23 @@ void SteadyRun::report_slow_flow(const RunResult& before, Chart& chart, const St
                          (measured.res.status == RunStatus::film_collapse ||
                           measured.res.status == RunStatus::solver_failure);
   std::ostringstream msg;
-  switch (collapses ? steady::SlowManifoldOutcome::failed : flow.outcome) {
+  // Stopped by simulation.max_periods (the user's budget, not the stage's own): refused.
+  const bool refused = flow.outcome == steady::SlowManifoldOutcome::refused ||
+                       (flow.outcome == steady::SlowManifoldOutcome::budget && way.run_budget) ||
+                       !budget_.note().empty();
+  switch (collapses ? steady::SlowManifoldOutcome::failed
+                    : refused ? steady::SlowManifoldOutcome::refused : flow.outcome) {
     case steady::SlowManifoldOutcome::failed:
       steady.kind = SteadyClass::drifting;
       msg << "the film fails: followed along its slow manifold, the journal leaves the clearance about " << n
           << " cycles after the transient (" << (collapses ? measured.res.message : period.last_failure()) << ")";
       break;
     case steady::SlowManifoldOutcome::refused:
+      // The budget's note says it (take_result), after why shooting found no orbit.
       steady.kind = SteadyClass::not_converged;
       budget_.stopped(spent(), "the slow flow stopped after about " + std::to_string(n) + " cycles");
-      break;
+      res_.message = way.shooting;
+      return;
     case steady::SlowManifoldOutcome::still:
       steady.kind = SteadyClass::not_converged;
       msg << "its slow flow stops within the map's noise about " << n
