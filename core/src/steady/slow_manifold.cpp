@@ -37,11 +37,6 @@ std::optional<SlowManifoldOutcome> where_it_ends(const SlowManifoldResult& out, 
 SlowManifoldResult follow_slow_manifold(CycleMap& P, const Eigen::VectorXd& z0, const SlowManifoldOptions& opt) {
   const int n = P.dim();
   SlowManifoldResult out;
-  auto norm = [&](const Eigen::VectorXd& v) {
-    double m = 0.0;
-    for (int i = 0; i < n; ++i) m = std::max(m, std::abs(v(i)) / opt.scales[static_cast<size_t>(i)]);
-    return m;
-  };
   // One period, counted; its flag (0 ok, > 0 failed, < 0 refused).
   auto period = [&](const Eigen::VectorXd& z, Eigen::VectorXd& Pz) {
     ++out.maps;
@@ -61,7 +56,7 @@ SlowManifoldResult follow_slow_manifold(CycleMap& P, const Eigen::VectorXd& z0, 
     out.outcome = f < 0 ? SlowManifoldOutcome::refused : SlowManifoldOutcome::failed;
     return out;
   }
-  // The current point b and the slope g measured over the period that reached it.
+  // The current point b and the slope g = b − a measured over the period that reached it.
   Eigen::VectorXd g = b - a;
   double cycles = 2.0;
   out.trail_cycles.push_back(cycles);
@@ -72,7 +67,7 @@ SlowManifoldResult follow_slow_manifold(CycleMap& P, const Eigen::VectorXd& z0, 
     out.z = b;
     out.g = g;
     out.cycles = cycles;
-    const double gn = norm(g);
+    const double gn = scaled_distance(b, a, opt.scales);  // |g|, g = b − a
     if (const std::optional<SlowManifoldOutcome> end = where_it_ends(out, gn, near_jumps, opt)) {
       out.outcome = *end;
       return out;
@@ -100,7 +95,7 @@ SlowManifoldResult follow_slow_manifold(CycleMap& P, const Eigen::VectorXd& z0, 
     const Eigen::VectorXd g2 = b2 - a2;
     // Forward Euler's local error over the jump: K²/2 dg/dk, dg/dk ≈ (g2 − g)/K.
     // Measured against the jump_tolerance plus jump_relative of the jump itself.
-    const double err = 0.5 * K * norm(g2 - g);
+    const double err = 0.5 * K * scaled_distance(g2, g, opt.scales);
     const double allowed = opt.jump_tolerance + opt.jump_relative * K * gn;
     if (err > allowed && K > 1.0) {
       ++out.rejected;
@@ -110,7 +105,7 @@ SlowManifoldResult follow_slow_manifold(CycleMap& P, const Eigen::VectorXd& z0, 
     ++out.jumps;
     // How fast g shrinks along the path: |g2| = |g| (1 − λ)^(K + 2) for a node; the zero
     // of g then lies |g2| / λ away. A g that does not shrink gives no estimate.
-    const double g2n = norm(g2);
+    const double g2n = scaled_distance(b2, a2, opt.scales);
     if (g2n < gn && g2n > 0.0) {
       const double lambda = -std::log(g2n / gn) / (K + 2.0);
       out.distance = g2n / lambda;
@@ -119,6 +114,7 @@ SlowManifoldResult follow_slow_manifold(CycleMap& P, const Eigen::VectorXd& z0, 
     }
     near_jumps = out.distance <= opt.hand_over ? near_jumps + 1 : 0;
     cycles += K + 2.0;
+    a = a2;
     b = b2;
     g = g2;
     out.trail_cycles.push_back(cycles);
