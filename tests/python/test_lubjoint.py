@@ -480,7 +480,7 @@ def test_tools_read_study_files_only_through_lubjoint_study():
                and ("h5py" in p.read_text() or "open_dataset" in p.read_text())]
     assert readers == [], f"tools reading HDF5 without lubjoint.study: {readers}"
     for p in ("compare_study.py", "nightly.py", "plot_paper.py", "plot_steady.py", "sweep_map.py",
-              "work_precision.py", "scaling_model.py"):
+              "work_precision.py", "scaling_model.py", "tolerance_agreement.py"):
         assert "from lubjoint import study" in (tools / p).read_text(), p
 
 
