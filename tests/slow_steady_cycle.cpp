@@ -113,9 +113,9 @@ TEST_P(ChangedLabel, AgreesWithATransientTenTimesTighter) {
   }
   if (a.steady.method == "slow_flow" && std::string(c.label) == "drifting") {
     // Followed along its slow manifold (at rtol/10): the transient at rtol 1e-9, cycle by
-    // cycle to the cycle the flow got to, has the same film within 25 % (the jumps' error
-    // control allows 5 % a jump: the flow's cycle count is good to some 10-20 %), near the
-    // wall within a factor of 2.
+    // cycle to the cycle the flow got to, has the same film within 10 % (each jump's error
+    // is held to 5 % of it: the flow's cycle count is good to ~5 %; measured 1.6-4.5 % on
+    // the seven cells away from the wall), within 2e-2 c of it within 30 % (14 % measured).
     const int n = 40 + static_cast<int>(std::lround(a.steady.slow_flow_cycles)) + 1;
     json d = cell(c, "transient", 1e-9, n);
     d["simulation"]["stop_when_steady"] = false;
@@ -125,16 +125,15 @@ TEST_P(ChangedLabel, AgreesWithATransientTenTimesTighter) {
     const double h = f.cycles.back().min_film_thickness_m;
     std::printf("  slow flow: h_min %.4e m about %d cycles from rest; the transient at rtol 1e-9 there: %.4e m\n",
                 a.steady.last_cycle_min_film_m, n, h);
-    if (h > 1e-2 * c.clearance_m) {
-      EXPECT_NEAR(a.steady.last_cycle_min_film_m, h, 0.25 * h);
+    if (h > 2e-2 * c.clearance_m) {
+      EXPECT_NEAR(a.steady.last_cycle_min_film_m, h, 0.10 * h);
     } else {
-      // Within 1e-2 c of the wall, when the journal gets somewhere is known to a factor of
-      // about 2 by any route (Frêne long at 0.5 mm, 400 cP, 50 rpm reaches eps_limit at
-      // cycle 121, 179, 287 at rtol 1e-8, 1e-9, 1e-10): the film within a factor of 2
-      // (Frêne long, 0.05 mm, 40 cP, 5000 rpm: 125 nm against 215 nm at cycle 1185, and
-      // 143 nm at 1500).
-      EXPECT_LT(a.steady.last_cycle_min_film_m, 2.0 * h);
-      EXPECT_GT(a.steady.last_cycle_min_film_m, 0.5 * h);
+      // Within 2e-2 c of the wall (the seven others have 0.035-0.18 c), when the journal gets somewhere depends on the tolerance
+      // by any route (Frêne long at 0.5 mm, 400 cP, 50 rpm reaches eps_limit at cycle 121,
+      // 179, 287 at rtol 1e-8, 1e-9, 1e-10; the flow at 169 and 293 with the scene at 1e-8
+      // and 1e-9): the film within 30 % (Frêne long, 0.05 mm, 40 cP, 5000 rpm: 589 nm
+      // against 687 nm at cycle 514).
+      EXPECT_NEAR(a.steady.last_cycle_min_film_m, h, 0.30 * h);
     }
   }
 }

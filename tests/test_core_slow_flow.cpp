@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "lub/run/run.hpp"
@@ -39,12 +40,13 @@ TEST(SlowFlow, FollowsASinkingJournalThousandsOfCyclesAndAgreesWithItsTransient)
   EXPECT_EQ(lub::classification(r), "drifting") << r.message;
   EXPECT_EQ(r.steady.method, "slow_flow");
   EXPECT_NE(r.message.find("still moving"), std::string::npos) << r.message;
-  // Over a thousand cycles for a few hundred periods (the budget: 200 for the flow, the
-  // rest the transient, shooting from it and the measurements).
-  EXPECT_GT(r.steady.slow_flow_cycles, 1000.0);
-  EXPECT_LT(r.steady.periods_integrated, 2000);
-  // How it drifts: thinner than at the transient's end, and still thinning.
-  EXPECT_LT(r.steady.last_cycle_min_film_m, 0.2 * r.cycles.back().min_film_thickness_m);
+  // Hundreds of cycles for the flow's 200 periods (745: each jump held to 5 % of its own
+  // length, and the slope after a jump still carries the modes it excites, which decay
+  // over tens of cycles), a few hundred periods in all (the transient, Newton from it).
+  EXPECT_GT(r.steady.slow_flow_cycles, 500.0);
+  EXPECT_LT(r.steady.periods_integrated, 600);
+  // How it drifts: thinner than at the transient's end (66.6 µm; 14.2 µm), still thinning.
+  EXPECT_LT(r.steady.last_cycle_min_film_m, 0.3 * r.cycles.back().min_film_thickness_m);
   EXPECT_LT(r.steady.min_film_drift_m_per_cycle, 0.0);
   // The metrics are those of the cycles where the flow got to (the last of them its film).
   EXPECT_LE(r.metrics.min_film_thickness_m, r.steady.last_cycle_min_film_m);
@@ -52,10 +54,11 @@ TEST(SlowFlow, FollowsASinkingJournalThousandsOfCyclesAndAgreesWithItsTransient)
   EXPECT_LE(r.metrics.periodicity, 1e-2);
 
   // The independent route: the same scene integrated cycle by cycle, at the slow flow's
-  // own rtol (the scene's / 10), to the cycle the flow got to. Agreement within 25 %: the
-  // jumps' error control allows 5 % of each jump (the flow's cycle count is good to some
-  // 10–20 %, the film thinning as k^−0.5 there), and the transient at 1e-9 is itself ~7 %
-  // off one at 1e-10 at cycle 3500 (5.99 against ~6.4 µm).
+  // own rtol (the scene's / 10), to the cycle the flow got to. Agreement within 10 %: the
+  // jumps' error control allows 5 % of each jump, one way (the flow's cycle count is good
+  // to ~5 %, the film thinning as k^−0.5 there: ~3 %), and the transient at 1e-9 is itself
+  // a few % off one at 1e-10 (Frêne short at 40 cP, cycle 1760: 5.05 against 4.78 µm).
+  // Measured: 14.16 µm against 14.65 µm at cycle 786.
   const int cycles = 40 + static_cast<int>(std::lround(r.steady.slow_flow_cycles)) + 1;
   json t = sinking("transient", cycles);
   t["simulation"]["stop_when_steady"] = false;
@@ -63,11 +66,13 @@ TEST(SlowFlow, FollowsASinkingJournalThousandsOfCyclesAndAgreesWithItsTransient)
   const RunResult tr = run(t);
   ASSERT_EQ(tr.status, RunStatus::ok) << tr.message;
   const double h_transient = tr.cycles.back().min_film_thickness_m;
-  EXPECT_NEAR(r.steady.last_cycle_min_film_m, h_transient, 0.25 * h_transient)
+  std::printf("slow flow: %.4e m about %d cycles from rest; transient at rtol 1e-9 there: %.4e m\n",
+              r.steady.last_cycle_min_film_m, cycles, h_transient);
+  EXPECT_NEAR(r.steady.last_cycle_min_film_m, h_transient, 0.10 * h_transient)
       << "slow flow at about cycle " << cycles << ": " << r.steady.last_cycle_min_film_m << " m";
   // The transient at the scene's own rtol (1e-8) creeps by less than its own error a cycle
   // (issue 25): it lags behind (a thicker film), further from the tight transient than the
-  // slow flow is (at ~1800 cycles: 10.5 µm against 8.8 µm, the flow 8.1 µm).
+  // slow flow is.
   json d = sinking("transient", cycles);
   d["simulation"]["stop_when_steady"] = false;
   const RunResult loose = run(d);
@@ -80,8 +85,8 @@ TEST(SlowFlow, FollowsASinkingJournalThousandsOfCyclesAndAgreesWithItsTransient)
 TEST(SlowFlow, TheRunsBudgetOfPeriodsBoundsItAndSaysSo) {
   // The sinking cell spends ~100 periods before its flow (the transient to cycle 8, Newton
   // from there, the transient to cycle 40: it contracts at 0.99, so no second Newton) and
-  // 431 in all; budgets of 120 and 180 stop the flow itself some 20 and 80 periods in, 250
-  // the Newton from where it seemed to stop: not_converged with the budget's word, never
+  // 305 in all; budgets of 120 and 180 stop the flow itself some 20 and 80 periods in, 250
+  // the Newton–Picard where it seemed to stop: not_converged with the budget's word, never
   // "still moving" on a flow the budget cut short, and no period beyond it.
   for (const long long budget : {120LL, 180LL, 250LL}) {
     json doc = sinking("auto", 40);
@@ -108,28 +113,8 @@ TEST(SlowFlow, ATransientThatContractsSlowlyGoesToItsFlowWithoutASecondNewton) {
   EXPECT_NE(r.message.find("from cycle 8: shooting did not converge"), std::string::npos) << r.message;
   EXPECT_NE(r.message.find("no Newton from cycle 40"), std::string::npos) << r.message;
   // The transient's 40, the first Newton's ~60, the flow's 200 and the measurement where it
-  // got to: 431 (877 with the second Newton).
-  EXPECT_LE(r.steady.periods_integrated, 500);
-}
-
-TEST(SlowFlow, WhereItStopsWithinTheMapsNoiseAndNewtonPicardFindsNoOrbitItIsNotConverged) {
-  // Frêne short at 0.5 mm, 400 cP, 50 rpm (a full-factorial cell): the flow stops some
-  // 5600 cycles on, at 1.6 µm, moving by less than its map's error a period. Newton–Picard
-  // from there (the monodromy once, then a chord step and a period an iteration) stalls at
-  // a residual of ~5e-6 c, above the map's noise floor: no orbit located, and the case
-  // says so. KINSOL's Newton there (a fresh Jacobian each iteration, then a rerun at
-  // rtol/10) found none either, for ~190 periods against ~20.
-  json doc = sinking("auto", 40);
-  doc["joints"][3]["viscosity_Pa_s"] = 0.4;
-  doc["joints"][3]["journal_radius_m"] = 0.0095;
-  doc["drivers"][0]["speed_rpm"] = 50.0;
-  const RunResult r = run(doc);
-  ASSERT_EQ(r.status, RunStatus::ok) << r.message;
-  EXPECT_EQ(lub::classification(r), "not_converged") << r.message;
-  EXPECT_NE(r.message.find("stops within the map's noise"), std::string::npos) << r.message;
-  EXPECT_NE(r.message.find("Newton-Picard"), std::string::npos) << r.message;
-  EXPECT_GT(r.steady.slow_flow_cycles, 1000.0);
-  EXPECT_GT(r.steady.last_cycle_min_film_m, 0.0);
+  // got to: 305 (877 with the second Newton and KINSOL where the flow seemed to stop).
+  EXPECT_LE(r.steady.periods_integrated, 400);
 }
 
 TEST(SlowFlow, IsAutosDefaultAndTheSceneCanTurnItOff) {

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
+#include "lub/steady/periodic_orbit.hpp"
 #include "lub/steady/slow_manifold.hpp"
 
 namespace {
@@ -89,6 +91,59 @@ TEST(SlowManifold, FollowsAnAlgebraicSinkToItsHorizonAndSaysItStillMoves) {
   EXPECT_LT(path_error(r.z(0), exact, s0 - exact), 0.03) << r.z(0) << " against " << exact;
   // Still moving: g is the flow's own slope there.
   EXPECT_NEAR(r.g(0), -a * std::pow(r.z(0), 3), 0.05 * a * std::pow(r.z(0), 3));
+}
+
+TEST(SlowManifold, HeldToItsJumpsShareAloneItsCycleCountIsTheFlowsOwn) {
+  // The algebraic sink again, with no absolute jump tolerance (the map's noise only, as
+  // the auto stage sets it): each jump's error at most 5 % of the jump, so the state
+  // reached is where the flow is at the cycle counted, to a few %: k(s) = (s0²/s² − 1) /
+  // (2 a s0²). With an absolute 1e-4 the jumps grow where g is small and the count falls
+  // behind the state: here 3.8 % against 1.7 %; on the full factorial at rtol/10, where a
+  // jump also excites modes that decay over tens of cycles, about 2 × (Frêne short, 40 cP).
+  constexpr double a = 1e-3, s0 = 0.05;  // g ~ 1e-7 a cycle: an absolute 1e-4 is 1000 of it
+  auto count_error = [&](double tolerance) {
+    SlowMap P([](double s) { return -a * s * s * s; });
+    SlowManifoldOptions o = options();
+    o.hand_over = 0.0;
+    o.jump_tolerance = tolerance;
+    o.max_maps = 200;
+    const auto r = lub::steady::follow_slow_manifold(P, Eigen::Vector2d(s0, 0.0), o);
+    const double s = r.z(0);
+    const double k = (s0 * s0 / (s * s) - 1.0) / (2.0 * a * s0 * s0);
+    return std::abs(r.cycles - k) / k;
+  };
+  const double relative = count_error(1e-12), absolute = count_error(1e-4);
+  std::printf("cycle count error: relative control %.4f, absolute 1e-4 %.4f\n", relative, absolute);
+  EXPECT_LT(relative, 0.05);
+  EXPECT_GT(absolute, relative);
+}
+
+TEST(SlowManifold, WhereTheFlowStopsNearANodeNewtonPicardFindsItInAFewPeriods) {
+  // The node of the first test: the flow stops near s* = 1 (estimated within 1e-3); there
+  // the monodromy once by central differences (2 n + 1 periods) and Newton–Picard's chord
+  // steps, each followed by a period, reach the orbit on its curved manifold,
+  // f* = 0.5 / (1 − 1e-3), to 1e-10: what the auto stage does where its flow stops.
+  constexpr double kappa = 1e-3, target = 1.0;
+  SlowMap P([](double s) { return -kappa * (s - target); });
+  SlowManifoldOptions o = options();
+  o.hand_over = 1e-3;
+  const auto flow = lub::steady::follow_slow_manifold(P, Eigen::Vector2d(0.0, 0.0), o);
+  ASSERT_EQ(flow.outcome, SlowManifoldOutcome::near) << name_of(flow.outcome);
+  const long long before = P.maps;
+  Eigen::VectorXd Pz(2);
+  ASSERT_EQ(P.apply(flow.z.data(), Pz.data()), 0);
+  const lub::steady::Monodromy m =
+      lub::steady::monodromy_by_differences(P, flow.z, Pz, lub::steady::MonodromyOptions{{1.0, 1.0}, 1e-3, true});
+  ASSERT_FALSE(m.failed);
+  lub::steady::NewtonPicardOptions np;
+  np.residual_scales = {1.0, 1.0};
+  np.tolerance = 1e-10;
+  np.max_iterations = 10;
+  const auto found = lub::steady::newton_picard(P, flow.z, m.M - Eigen::Matrix2d::Identity(), np);
+  ASSERT_EQ(found.outcome, lub::steady::ShootingOutcome::converged) << found.message;
+  EXPECT_NEAR(found.z(0), target, 1e-9);
+  EXPECT_NEAR(found.z(1), 0.5 / (1.0 - 1e-3), 1e-9);
+  EXPECT_LE(P.maps - before, 5 + 2 * 3);  // the period, the monodromy's 4, three iterations
 }
 
 TEST(SlowManifold, AWallOnTheWayEndsTheFlowWhereThePlainFlowWouldFail) {
