@@ -50,14 +50,21 @@ SlowManifoldOptions options() {
 /// |value − exact| relative to the change `span` the flow has made.
 double path_error(double value, double exact, double span) { return std::abs(value - exact) / span; }
 
-TEST(SlowManifold, FollowsANodeToItsOrbitInAHundredthOfThePeriods) {
-  // s' = s* + (1 − κ)(s − s*), κ = 1e-3: s(k) = s* − (s* − s0)(1 − κ)^k. The plain
-  // iteration needs ln(1e3)/κ ≈ 6900 periods to come within 1e-3 of s*.
-  constexpr double kappa = 1e-3, target = 1.0;
-  SlowMap P([](double s) { return -kappa * (s - target); });
+// The node s' = s* + (1 − κ)(s − s*), κ = 1e-3, s* = 1: s(k) = s* − (s* − s0)(1 − κ)^k.
+constexpr double kappa = 1e-3, target = 1.0;
+SlowMap node() { return SlowMap([](double s) { return -kappa * (s - target); }); }
+
+/// The node's flow from s = 0, handed over within 1e-3 of s*.
+lub::steady::SlowManifoldResult follow_node(SlowMap& P) {
   SlowManifoldOptions o = options();
   o.hand_over = 1e-3;
-  const auto r = lub::steady::follow_slow_manifold(P, Eigen::Vector2d(0.0, 0.0), o);
+  return lub::steady::follow_slow_manifold(P, Eigen::Vector2d(0.0, 0.0), o);
+}
+
+TEST(SlowManifold, FollowsANodeToItsOrbitInAHundredthOfThePeriods) {
+  // The plain iteration needs ln(1e3)/κ ≈ 6900 periods to come within 1e-3 of s*.
+  SlowMap P = node();
+  const auto r = follow_node(P);
   ASSERT_EQ(r.outcome, SlowManifoldOutcome::near) << name_of(r.outcome);
   EXPECT_EQ(r.maps, P.maps);
   EXPECT_LE(r.maps, 120);
@@ -123,11 +130,8 @@ TEST(SlowManifold, WhereTheFlowStopsNearANodeNewtonPicardFindsItInAFewPeriods) {
   // the monodromy once by central differences (2 n + 1 periods) and Newton–Picard's chord
   // steps, each followed by a period, reach the orbit on its curved manifold,
   // f* = 0.5 / (1 − 1e-3), to 1e-10: what the auto stage does where its flow stops.
-  constexpr double kappa = 1e-3, target = 1.0;
-  SlowMap P([](double s) { return -kappa * (s - target); });
-  SlowManifoldOptions o = options();
-  o.hand_over = 1e-3;
-  const auto flow = lub::steady::follow_slow_manifold(P, Eigen::Vector2d(0.0, 0.0), o);
+  SlowMap P = node();
+  const auto flow = follow_node(P);
   ASSERT_EQ(flow.outcome, SlowManifoldOutcome::near) << name_of(flow.outcome);
   const long long before = P.maps;
   Eigen::VectorXd Pz(2);
