@@ -85,7 +85,7 @@ constexpr int kSlowNewtonIterations = 10;
 constexpr double kSlowNearWall = 1.0 - 1e-3;
 /// A transient that contracts this slowly or slower (but contracts) after a Newton from its
 /// first cycles found no orbit: its orbit, if it has one, lies along a slow manifold, and
-/// the slow flow follows it there (ending with Newton where it stops) instead of a second
+/// the slow flow follows it there (Newton–Picard where it stops) instead of a second
 /// Newton from the transient's end. On the full factorial no second Newton from a transient
 /// at 0.9 <= ρ < 1 found an orbit (131 tries, 17 948 periods); they found the two unstable
 /// ones at ρ 1.013 and 1.05, and the stable one at 0.8999.
@@ -683,8 +683,9 @@ SteadyRun::SlowNewton SteadyRun::newton_where_flow_stops(Chart& chart, const Sta
   // fast modes (multipliers ~1e-10) settle within a period. Chord steps on the monodromy
   // there, each followed by a period (steady::newton_picard), cost the monodromy's 2 n + 1
   // periods and two an iteration; KINSOL's Newton, a fresh difference Jacobian each
-  // iteration and a rerun at rtol/10, cost ~190 a try on the full factorial. Only where
-  // they converge does shooting take over (from a point it accepts at once).
+  // iteration and a rerun at rtol/10, cost ~190 a try on the full factorial and located no
+  // orbit. Only where they converge does shooting take over from their point (its Newton
+  // there, the multipliers, the metrics, the error bars).
   StartState start = at;
   {
     std::optional<PeriodMap> period, tight;
