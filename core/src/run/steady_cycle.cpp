@@ -715,6 +715,8 @@ SteadyRun::SlowNewton SteadyRun::newton_where_flow_stops(Chart& chart, const Sta
       std::ostringstream msg;
       if (rc != 0 || m.failed)
         msg << "Newton-Picard: a period failed: " << (rc != 0 ? period->last_failure() : tight->last_failure());
+      else if (picard.outcome == steady::ShootingOutcome::converged)
+        msg << "Newton-Picard's orbit lies outside the coordinates' chart";
       else
         msg << picard.message << ", residual " << picard.residual << " after " << picard.iterations << " iterations";
       way.newton = msg.str();
