@@ -200,7 +200,7 @@ struct SimulationSpec {
   bool error_bars = false;
   /// auto: where shooting from the transient finds no orbit, its slow flow is followed by
   /// projective steps (two periods a jump of up to hundreds of cycles) to where the journal
-  /// ends up, and Newton tried where the flow stops (docs/theory/steady-cycles.md, slow
+  /// ends up, and Newton–Picard tried where the flow stops (docs/theory/steady-cycles.md, slow
   /// flow). Default: on for auto.
   bool slow_flow = false;
   /// ε reaching it ends the run: film_collapse. Default 1 − 1e-5: h = 1e-5 c (5 nm at the
