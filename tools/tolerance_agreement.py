@@ -29,15 +29,9 @@ import numpy as np
 from lubjoint import study as study_reader  # (PYTHONPATH=build/python: docs/guide/post-processing.md)
 
 ORBITS = ("periodic", "periodic_unstable")
-# The metrics with error bars (<metric>_error in /cases), and whether each is an angle.
-BARRED = {
-    "min_film_thickness_m": False,
-    "max_eps": False,
-    "peak_reaction_N": False,
-    "peak_acceleration_m_s2": False,
-    "crank_angle_at_min_film_rad": True,
-    "crank_angle_at_peak_reaction_rad": True,
-}
+# The metrics with error bars (<metric>_error in /cases); those in rad are angles.
+BARRED = ("min_film_thickness_m", "max_eps", "peak_reaction_N", "peak_acceleration_m_s2",
+          "crank_angle_at_min_film_rad", "crank_angle_at_peak_reaction_rad")
 
 
 def keyed(df):
@@ -68,9 +62,10 @@ def agreement(default, tight):
     orbits = [k for k in both
               if str(a.at[k, "classification"]) in ORBITS and str(b.at[k, "classification"]) in ORBITS]
     metrics = {}
-    for m, angle in BARRED.items():
+    for m in BARRED:
         if m not in a.columns or m + "_error" not in a.columns:
             continue
+        angle = m.endswith("_rad")
         ratios = []
         for k in orbits:
             bars = float(a.at[k, m + "_error"]) + float(b.at[k, m + "_error"])

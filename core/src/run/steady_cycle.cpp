@@ -172,6 +172,25 @@ void set_errors(Metrics& m, const Metrics& tight, const Metrics* extra = nullptr
     m.*sm.error = metric_distance(sm, m.*sm.value, tight.*sm.value) + (extra ? extra->*sm.value : 0.0);
 }
 
+/// A state's period and the monodromy there: P(z) at the map's rtol, and M by central
+/// differences of `tight` (its rtol/100 twin, 2 n periods) with steps `step` in each
+/// state's unit. `rc`: the period's flag (non-zero: M not computed).
+struct PeriodAndMonodromy {
+  int rc = 0;
+  Eigen::VectorXd Pz;
+  steady::Monodromy monodromy;
+};
+PeriodAndMonodromy period_and_monodromy(PeriodMap& period, PeriodMap& tight, const Eigen::VectorXd& z,
+                                        const Chart& chart, double step) {
+  PeriodAndMonodromy out;
+  out.Pz.resize(z.size());
+  out.rc = period.apply(z.data(), out.Pz.data());
+  if (out.rc == 0)
+    out.monodromy =
+        steady::monodromy_by_differences(tight, z, out.Pz, steady::MonodromyOptions{chart.units(), step, true});
+  return out;
+}
+
 class SteadyRun {
  public:
   /// `budget`: the case's max_periods and what the case spent before this run (default:
@@ -691,11 +710,9 @@ SteadyRun::SlowNewton SteadyRun::newton_where_flow_stops(Chart& chart, const Sta
     std::optional<PeriodMap> period, tight;
     period_maps(period, tight, near, at, winding, 1.0, transient_step_budget());
     const Eigen::VectorXd z0 = near.reduce(at.qv);
-    Eigen::VectorXd Pz0(z0.size());
-    const int rc = period->apply(z0.data(), Pz0.data());
-    const steady::Monodromy m =
-        rc != 0 ? steady::Monodromy{}
-                : steady::monodromy_by_differences(*tight, z0, Pz0, steady::MonodromyOptions{near.units(), options.step, true});
+    const PeriodAndMonodromy there = period_and_monodromy(*period, *tight, z0, near, options.step);
+    const int rc = there.rc;
+    const steady::Monodromy& m = there.monodromy;
     steady::ShootingResult picard;
     if (rc == 0 && !m.failed) {
       steady::NewtonPicardOptions np;
@@ -1006,11 +1023,10 @@ bool SteadyRun::confirm_transient() {
   PeriodMap& tight = *tight_map;
   const steady::ShootingOptions options = shooting_options(chart, res_.cycles.back().max_eps);
   const Eigen::VectorXd z = chart.reduce(base.qv);
-  Eigen::VectorXd Pz(z.size());
-  const int rc = period.apply(z.data(), Pz.data());
-  const steady::Monodromy monodromy =
-      rc != 0 ? steady::Monodromy{}
-              : steady::monodromy_by_differences(tight, z, Pz, steady::MonodromyOptions{chart.units(), options.step, true});
+  const PeriodAndMonodromy end = period_and_monodromy(period, tight, z, chart, options.step);
+  const int rc = end.rc;
+  const Eigen::VectorXd& Pz = end.Pz;
+  const steady::Monodromy& monodromy = end.monodromy;
   if (period.refused() || monodromy.refused) {
     budget_.stopped(spent(), "the transient's stop not confirmed by the period map");
     return false;
