@@ -427,4 +427,33 @@ TEST(NewtonPicard, ANewtonPointBeyondTheWallIsPulledBackAndAFailingStartReported
   EXPECT_EQ(bad.maps, 1);
 }
 
+TEST(NewtonPicard, ARelativeToleranceStopsAtAFractionOfTheStartsResidual) {
+  // A chord Jacobian 1.25 times too steep: each iteration (Newton point, then a period)
+  // leaves a tenth of the distance to the fixed point, and of the residual. Asked for 2 %
+  // of the start's residual it stops after two iterations (1 %), the orbit located to 1 %
+  // of its distance from the start; the absolute tolerance alone would take twelve.
+  Eigen::MatrixXd J(1, 1);
+  J(0, 0) = 1.25 * (WalledLineMap::kMu - 1.0);
+  lub::steady::NewtonPicardOptions no;
+  no.residual_scales = {1.0};
+  no.tolerance = 1e-14;
+  no.max_iterations = 20;
+  no.relative_tolerance = 2e-2;
+  const double z0 = 1.0 - 5e-3;
+  WalledLineMap P;
+  const auto np = lub::steady::newton_picard(P, Eigen::VectorXd::Constant(1, z0), J, no);
+  ASSERT_EQ(np.outcome, lub::steady::ShootingOutcome::converged) << np.message;
+  EXPECT_FALSE(np.at_noise_floor);
+  EXPECT_EQ(np.iterations, 2);
+  EXPECT_EQ(np.maps, 5);
+  EXPECT_NEAR(np.z(0), 1.0, 1.01e-2 * std::abs(z0 - 1.0));
+
+  no.relative_tolerance = 0.0;
+  WalledLineMap Q;
+  const auto full = lub::steady::newton_picard(Q, Eigen::VectorXd::Constant(1, z0), J, no);
+  ASSERT_EQ(full.outcome, lub::steady::ShootingOutcome::converged) << full.message;
+  EXPECT_GE(full.iterations, 11);
+  EXPECT_NEAR(full.z(0), 1.0, 1e-14);
+}
+
 }  // namespace

@@ -43,8 +43,13 @@ def keyed(df):
 
 
 def difference(a, b, angle):
+    """|a − b| (on the circle for an angle), 0 within rounding: an angle of 0 and one of
+    2π − 1 ulp, each with no error bar, agree."""
     d = abs(a - b)
-    return min(d, 2 * math.pi - d % (2 * math.pi)) if angle else d
+    if angle:
+        d = min(d, 2 * math.pi - d % (2 * math.pi))
+    rounding = 4 * sys.float_info.epsilon * max(abs(a), abs(b), 2 * math.pi if angle else 0.0)
+    return 0.0 if d <= rounding else d
 
 
 def agreement(default, tight):

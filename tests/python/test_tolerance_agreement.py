@@ -62,6 +62,10 @@ def test_angles_are_compared_on_the_circle_and_missing_cases_reported():
     r = ta.agreement(a, b)
     assert r["missing"] == [(2e-4, "frene_long")]
     assert r["metrics"]["crank_angle_at_min_film_rad"]["worst"] == pytest.approx(0.5, rel=1e-9)
+    # An angle of 0 and one a rounding short of 2π agree, with no error bars at all.
+    z = cases([row(1e-4, "frene_long", "periodic", angle=0.0, angle_err=0.0)])
+    r = ta.agreement(z, z.assign(crank_angle_at_min_film_rad=6.2831853071795845))
+    assert r["metrics"]["crank_angle_at_min_film_rad"]["worst"] == 0.0
     # NaN bars are no agreement.
     c = cases([row(1e-4, "frene_long", "periodic", h=2e-5, h_err=math.nan)])
     assert ta.agreement(c, c.assign(min_film_thickness_m=3e-5))["metrics"]["min_film_thickness_m"]["within_2"] == 0

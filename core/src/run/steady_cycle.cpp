@@ -72,8 +72,10 @@ constexpr double kTightFactor = 0.01;
 /// halved): quick convergence takes 1–3 from a neighbour's orbit.
 constexpr int kContinuationIterations = 8;
 /// Newton iterations of the error bars' re-solve at rtol/100 (from the orbit at rtol, with
-/// its monodromy: 1–3 where the map is smooth).
+/// its monodromy: 1–3 where the map is smooth), and the fraction of its first residual it
+/// stops at: the tight orbit located to 1 % of its distance from the orbit at rtol.
 constexpr int kErrorBarIterations = 6;
+constexpr double kErrorBarAccuracy = 1e-2;
 /// Periods the slow flow's projective steps may spend (follow_slow_flow).
 constexpr long long kSlowPeriods = 200;
 /// Newton from where the slow flow stops: at most this many times (each further along the
@@ -90,6 +92,13 @@ constexpr double kSlowNearWall = 1.0 - 1e-3;
 /// at 0.9 <= ρ < 1 found an orbit (131 tries, 17 948 periods); they found the two unstable
 /// ones at ρ 1.013 and 1.05, and the stable one at 0.8999.
 constexpr double kSlowContraction = 0.9;
+/// Newton where the start's monodromy (the transient end's, or a neighbour's) has |μ|max
+/// below this: chord steps on it first (newton_from_start), at most kChordIterations, an
+/// orbit located when their residual over 1 − |μ|max is within kChordLocated ×
+/// steady_tolerance; KINSOL after them if they stall above that.
+constexpr double kChordContraction = 0.5;
+constexpr int kChordIterations = 8;
+constexpr double kChordLocated = 0.1;
 /// Where the slow flow got to, its cycles must repeat to this (clearances; the flow moves
 /// by far less a cycle), or the state is on no slow manifold and the flow is not reported.
 constexpr double kSlowPeriodicity = 1e-2;
@@ -273,6 +282,12 @@ class SteadyRun {
   /// fallback), Anderson-accelerated periods from z0 and Newton again from where they got to.
   steady::ShootingResult find_orbit(PeriodMap& period, const Eigen::VectorXd& z0, const steady::ShootingOptions& options,
                                     bool accelerate);
+  /// find_orbit from z0, its first Jacobian options.initial_jacobian (a neighbour's
+  /// monodromy) or, if none, the monodromy at z0 (central differences of `tight`); where
+  /// that contracts every direction below kChordContraction, Newton–Picard chord steps on
+  /// it first.
+  steady::ShootingResult newton_from_start(PeriodMap& period, PeriodMap& tight, const Eigen::VectorXd& z0,
+                                               steady::ShootingOptions options, bool accelerate);
   /// Shooting's options from a cycle whose largest eccentricity ratio is `max_eps` (NaN:
   /// unknown): difference and Newton steps within the gap.
   steady::ShootingOptions shooting_options(const Chart& chart, double max_eps) const;
@@ -512,9 +527,11 @@ bool SteadyRun::measure_orbit(Chart& chart, const StartState& base, const Eigen:
 void SteadyRun::orbit_error_bars(Chart& chart, const StartState& base, PeriodMap& tight_period,
                                  const Eigen::VectorXd& z, const Eigen::MatrixXd& monodromy,
                                  const steady::ShootingOptions& options) {
-  // The orbit re-solved at rtol/100 by Newton from z*, on chord iterations with the
-  // monodromy's M − I: near a multiplier close to 1 the orbit moves by the map's error
-  // divided by 1 − |μ|, which one Newton step estimates only to first order.
+  // The orbit re-solved at rtol/100 from z*, by Newton–Picard on the monodromy's M − I:
+  // near a multiplier close to 1 the orbit moves by the map's error divided by 1 − |μ|,
+  // which one Newton step estimates only to first order. Located to 1 % of its distance
+  // from z* (kErrorBarAccuracy), not to the tight map's noise: KINSOL's line search on that
+  // noise spent 26–105 periods at rtol/100 on the printed law's orbits, where these take 3–5.
   const Eigen::MatrixXd M_minus_I = monodromy - Eigen::MatrixXd::Identity(chart.size(), chart.size());
   const Eigen::FullPivLU<Eigen::MatrixXd> newton(M_minus_I);  // a Newton step: −newton.solve(P(z) − z)
   steady::ShootingOptions tight = options;
@@ -524,17 +541,18 @@ void SteadyRun::orbit_error_bars(Chart& chart, const StartState& base, PeriodMap
   // Its residual tolerance scaled with the map's error, like its rtol: at the loose
   // tolerance z* would pass at once, however far the tight orbit lies.
   tight.tolerance = options.tolerance * kTightFactor;
-  steady::ShootingResult resolved = steady::solve_periodic_orbit(tight_period, z, tight);
+  steady::NewtonPicardOptions np;
+  np.residual_scales = tight.residual_units();
+  np.tolerance = tight.tolerance;
+  np.relative_tolerance = kErrorBarAccuracy;
+  np.noise_factor = tight.noise_factor;
+  np.max_iterations = kErrorBarIterations;
+  steady::ShootingResult resolved = steady::newton_picard(tight_period, z, M_minus_I, np);
   if (resolved.outcome == steady::ShootingOutcome::not_converged && resolved.residual >= 0.0) {
-    // Its line search refuses the steps along a curved slow manifold (Frêne short near the
-    // wall: it stalled at its first iterate): Newton–Picard from its best iterate, each
-    // chord step followed by a period, and the better of the two.
-    steady::NewtonPicardOptions np;
-    np.residual_scales = tight.residual_units();
-    np.tolerance = tight.tolerance;
-    np.noise_factor = tight.noise_factor;
-    np.max_iterations = kErrorBarIterations;
-    steady::ShootingResult again = steady::newton_picard(tight_period, resolved.z, M_minus_I, np);
+    // Chord steps that do not contract (a monodromy too far from the tight map's at its
+    // orbit): KINSOL's Newton from their best iterate, with the same M − I first, and the
+    // better of the two.
+    steady::ShootingResult again = steady::solve_periodic_orbit(tight_period, resolved.z, tight);
     again.iterations += resolved.iterations;
     again.maps += resolved.maps;
     if (again.outcome == steady::ShootingOutcome::converged || again.outcome == steady::ShootingOutcome::refused ||
@@ -571,11 +589,11 @@ void SteadyRun::orbit_error_bars(Chart& chart, const StartState& base, PeriodMap
         << resolved.residual << " after " << resolved.iterations << " iterations)";
   }
   if (!msg.str().empty()) res_.message = res_.message.empty() ? msg.str() : res_.message + "; " + msg.str();
-  // How far the orbit moves: to the re-solve's orbit, or, where it stalled, to where one
-  // more Newton step from its last iterate points (the residual left there over 1 − |μ|:
-  // a re-solve whose line search fails at once has not moved, and is no evidence).
+  // How far the orbit moves: to where one more Newton step from the re-solve's best
+  // iterate points (the residual left there over 1 − |μ|, no period more: a re-solve that
+  // stalled at once has not moved, and is no evidence).
   Eigen::VectorXd z_located = z_tight;
-  if (resolved.outcome != steady::ShootingOutcome::converged && resolved.Pz.size() == z.size())
+  if (resolved.Pz.size() == z.size())
     z_located = resolved.z - newton.solve(resolved.Pz - resolved.z);
   res_.steady.orbit_error = steady::scaled_distance(z_located, z, options.residual_units());
   StartState tight_start = base;
@@ -895,7 +913,61 @@ steady::ShootingResult SteadyRun::find_orbit(PeriodMap& period, const Eigen::Vec
   ao.tolerance = kAndersonHandOver;
   const steady::ShootingResult accelerated = steady::anderson_fixed_point(period, z0, ao);
   if (accelerated.residual < 0 || accelerated.residual >= found.residual) return found;
-  return better_of(std::move(found), steady::solve_periodic_orbit(period, accelerated.z, options), accelerated.maps);
+  steady::ShootingOptions again = options;
+  again.initial_jacobian = nullptr;  // z0's, not the accelerated point's
+  return better_of(std::move(found), steady::solve_periodic_orbit(period, accelerated.z, again), accelerated.maps);
+}
+
+steady::ShootingResult SteadyRun::newton_from_start(PeriodMap& period, PeriodMap& tight, const Eigen::VectorXd& z0,
+                                                    steady::ShootingOptions options, bool accelerate) {
+  // The start's monodromy: a neighbour's (its M − I is options.initial_jacobian), or at
+  // the transient's end Newton's first Jacobian ahead of it (the same central differences
+  // of the rtol/100 map KINSOL's first setup takes, then a fresh one every iteration).
+  Eigen::MatrixXd J0;
+  long long start_maps = 0;
+  if (!options.initial_jacobian) {
+    if (!options.central_jacobian) return find_orbit(period, z0, options, accelerate);
+    const steady::Monodromy M0 = steady::monodromy_by_differences(
+        tight, z0, z0, steady::MonodromyOptions{options.scales, options.step, true, options.difference_retries});
+    if (M0.failed) return find_orbit(period, z0, options, accelerate);
+    J0 = M0.M - Eigen::MatrixXd::Identity(z0.size(), z0.size());
+    start_maps = M0.maps;
+    options.initial_jacobian = &J0;
+    options.chord_iterations = 1;
+  }
+  const Eigen::MatrixXd& J = *options.initial_jacobian;
+  const std::vector<std::complex<double>> mu =
+      steady::floquet_multipliers(J + Eigen::MatrixXd::Identity(z0.size(), z0.size()));
+  if (!mu.empty() && std::abs(mu.front()) < kChordContraction) {
+    // A map that contracts every direction strongly changes its Jacobian little between
+    // the start and its orbit: Newton–Picard chord steps on J, two periods at rtol each
+    // (the printed law's orbits, |μ|max 0.014–0.47), where KINSOL took a fresh Jacobian
+    // every iteration, 2 n periods at rtol/100 each, and line searches on the map's noise.
+    steady::NewtonPicardOptions np;
+    np.residual_scales = options.residual_units();
+    np.tolerance = options.tolerance;
+    np.noise_factor = options.noise_factor;
+    np.max_iterations = kChordIterations;
+    steady::ShootingResult chords = steady::newton_picard(period, z0, J, np);
+    chords.maps += start_maps;
+    // Stalled at the map's own noise (the printed law's switches: 1e-6–1e-4 c at rtol
+    // 1e-8 on the full factorial's orbits), where no Newton at rtol gets further: located
+    // to its residual over 1 − |μ|max, accepted within a tenth of steady_tolerance. The
+    // error bars' re-solve at rtol/100 measures how far the orbit really is (orbit_error).
+    const double located = chords.residual / (1.0 - std::abs(mu.front()));
+    if (chords.outcome == steady::ShootingOutcome::not_converged && chords.residual >= 0.0 &&
+        located <= kChordLocated * sim_.steady_tolerance) {
+      chords.outcome = steady::ShootingOutcome::converged;
+      chords.at_noise_floor = true;
+      chords.message.clear();
+    }
+    if (chords.outcome == steady::ShootingOutcome::converged || chords.outcome == steady::ShootingOutcome::refused)
+      return chords;
+  }
+  // KINSOL from the start, J its first Jacobian.
+  steady::ShootingResult found = find_orbit(period, z0, options, accelerate);
+  found.maps += start_maps;
+  return found;
 }
 
 bool SteadyRun::solve_orbit(Chart& chart, const StartState& base, const std::vector<double>& winding,
@@ -914,7 +986,8 @@ bool SteadyRun::solve_orbit(Chart& chart, const StartState& base, const std::vec
   maps_at(1.0);
   // The fallback (simulation.shooting_fallback) serves a start from the transient only.
   const bool fallback = !from.valid() && sim_.shooting_fallback == ShootingFallback::anderson;
-  steady::ShootingResult found = find_orbit(*period, chart.reduce(base.qv), options, fallback);
+  const Eigen::VectorXd z0 = chart.reduce(base.qv);
+  steady::ShootingResult found = newton_from_start(*period, *tight_period, z0, options, fallback);
   if (!from.valid() && found.outcome != steady::ShootingOutcome::converged &&
       found.outcome != steady::ShootingOutcome::refused && found.residual >= 0 && found.residual <= kTightenBelow) {
     // Stalled at the map's own noise (near |μ| = 1 its fixed point moves by that noise

@@ -402,9 +402,10 @@ ShootingResult newton_picard(CycleMap& P, const Eigen::VectorXd& z0, const Eigen
     return out;
   }
   double best = scaled_distance(Pz, z, opt.residual_scales);
+  const double target = std::max(opt.tolerance, opt.relative_tolerance * best);
   out.Pz = Pz;
   int since_best = 0;
-  while (out.iterations < opt.max_iterations && best > opt.tolerance) {
+  while (out.iterations < opt.max_iterations && best > target) {
     Eigen::VectorXd d = -lu.solve(Pz - z);
     int flag = 1;
     for (int halvings = 0; halvings < 5 && flag > 0; ++halvings, d *= 0.5) {
@@ -426,7 +427,7 @@ ShootingResult newton_picard(CycleMap& P, const Eigen::VectorXd& z0, const Eigen
     }
   }
   out.residual = best;
-  if (best <= opt.tolerance) {
+  if (best <= target) {
     out.outcome = ShootingOutcome::converged;
   } else if (refused) {
     out.outcome = ShootingOutcome::refused;

@@ -151,6 +151,10 @@ ShootingResult anderson_fixed_point(CycleMap& P, const Eigen::VectorXd& z0, cons
 struct NewtonPicardOptions {
   std::vector<double> residual_scales;  ///< r_i
   double tolerance = 1e-11;             ///< converged when max_i |P(z)_i − z_i| / r_i <= tolerance
+  /// ... or when it is within this fraction of the start's residual (0: the tolerance
+  /// alone). An error bar's re-solve needs its orbit only to a fraction of its distance
+  /// from the start, (I − M)⁻¹ times the residual: 1e-2 locates it to 1 % of that.
+  double relative_tolerance = 0.0;
   /// A stop (stall or iteration limit) within this factor of the tolerance is the map's
   /// own noise: converged, at_noise_floor (ShootingOptions::noise_factor).
   double noise_factor = 1000.0;
