@@ -179,18 +179,66 @@ json cell(const std::string& law, double clearance_m, double viscosity_Pa_s, dou
   return d;
 }
 
-TEST(SteadyCycle, NewtonStalledAtTheMapsNoiseTriesAgainTenTimesTighter) {
-  // The printed law, 0.1 mm, 100 cP, 5000 rpm (full factorial): Newton from the transient
-  // stalls in its line search at a residual of 2.5e-6, the map's noise at rtol 1e-8, and
-  // the transient's own estimate never settles (rate 1.17). At rtol/10 Newton converges to
-  // a strongly attracting orbit (|μ|max ≈ 0.016) that rtol/100 moves by ~1e-6 c.
-  const RunResult r = run(cell("pinkus_sternlicht", 1e-4, 0.1, 5000));
+TEST(SteadyCycle, ChordsStalledAtTheMapsNoiseLocateAStronglyAttractingOrbit) {
+  // The printed law, 0.1 mm, 100 cP, 5000 rpm (full factorial): the map's noise at rtol
+  // 1e-8 is ~2.5e-6 c (its switches), where KINSOL's line search stalled and the
+  // transient's own estimate never settles (rate 1.17). The monodromy at the transient's
+  // end contracts strongly (|μ|max ≈ 0.016): chord steps on it stall at that noise, which
+  // locates the orbit to residual / (1 − |μ|) within a tenth of steady_tolerance; the
+  // orbit re-solved at rtol/100 lies ~1e-5 c from it.
+  const json doc = cell("pinkus_sternlicht", 1e-4, 0.1, 5000);
+  const RunResult r = run(doc);
   ASSERT_EQ(r.status, RunStatus::ok) << r.message;
   EXPECT_EQ(lub::classification(r), "periodic") << r.message;
   ASSERT_FALSE(r.steady.multipliers.empty());
-  EXPECT_LT(std::abs(r.steady.multipliers.front()), 0.1);
+  const double mu = std::abs(r.steady.multipliers.front());
+  EXPECT_LT(mu, 0.1);
+  EXPECT_LE(r.steady.newton_iterations, 8);  // at most kChordIterations chord steps
+  const double tol = lub::parse_scene(doc).simulation.steady_tolerance;
+  EXPECT_LE(r.steady.orbit_residual / (1.0 - mu), 0.1 * tol);
   EXPECT_LT(r.steady.orbit_error, 1e-4);
   EXPECT_LT(r.metrics.min_film_thickness_m_error, 1e-3 * r.metrics.min_film_thickness_m);
+}
+
+TEST(SteadyCycle, NewtonStalledAtTheMapsNoiseTriesAgainTenTimesTighter) {
+  // Frêne long, 0.2 mm, 200 cP, 2500 rpm (full factorial): |μ|max ≈ 1 at the transient's
+  // end, so KINSOL, whose line search stalls at a residual of ~1e-6 (the map's noise at
+  // rtol 1e-8); the map's error there moves the orbit by ~1e-4 c, well within what can
+  // be located. At rtol/10 Newton converges to the orbit, which rtol/100 moves by ~1e-4 c.
+  const json doc = cell("frene_long", 2e-4, 0.2, 2500);
+  const RunResult r = run(doc);
+  ASSERT_EQ(r.status, RunStatus::ok) << r.message;
+  EXPECT_TRUE(lub::classification(r) == "periodic" || lub::classification(r) == "periodic_unstable") << r.message;
+  ASSERT_FALSE(r.steady.multipliers.empty());
+  EXPECT_NEAR(std::abs(r.steady.multipliers.front()), 1.0, 1e-2);
+  EXPECT_LE(r.steady.orbit_residual, 1e-6);  // noise_factor x shooting_tolerance
+  EXPECT_LT(r.steady.orbit_error, lub::parse_scene(doc).simulation.steady_tolerance);
+}
+
+TEST(SteadyCycle, NoNewtonWhereTheMapsErrorWouldMoveTheOrbitBeyondLocating) {
+  // Frêne short, 0.2 mm, 400 cP, 500 rpm (full factorial): at the transient's end the
+  // map's error at rtol, over 1 − |μ|max, would move its orbit by ~0.17 c, beyond 10 ×
+  // steady_tolerance: no Newton, at rtol or rtol/10. The independent route: the same
+  // case with steady_tolerance 0.1 lets Newton run from the same 8 cycles, and it walks
+  // into the wall after 20 iterations and ~470 periods, no orbit.
+  json doc = cell("frene_short", 2e-4, 0.4, 500);
+  doc["simulation"]["steady"] = "shooting";
+  doc["simulation"]["transient_cycles"] = 8;
+  doc["simulation"]["slow_flow"] = false;
+  const RunResult r = run(doc);
+  ASSERT_EQ(r.status, RunStatus::ok) << r.message;
+  EXPECT_EQ(lub::classification(r).rfind("periodic", 0), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("no shooting (the map's error at rtol would move its orbit by"), std::string::npos)
+      << r.message;
+  EXPECT_EQ(r.steady.newton_iterations, 0);
+
+  doc["simulation"]["steady_tolerance"] = 0.1;
+  const RunResult newton = run(doc);
+  ASSERT_EQ(newton.status, RunStatus::ok) << newton.message;
+  EXPECT_EQ(lub::classification(newton).rfind("periodic", 0), std::string::npos) << newton.message;
+  EXPECT_NE(newton.message.find("shooting did not converge"), std::string::npos) << newton.message;
+  EXPECT_GT(newton.steady.newton_iterations, 0);
+  EXPECT_GT(newton.steady.periods_integrated, 5 * r.steady.periods_integrated);
 }
 
 TEST(SteadyCycle, AnOrbitThatMovesByMoreThanTheToleranceAtTighterRtolIsNotLocated) {

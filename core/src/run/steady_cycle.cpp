@@ -99,6 +99,12 @@ constexpr double kSlowContraction = 0.9;
 constexpr double kChordContraction = 0.5;
 constexpr int kChordIterations = 8;
 constexpr double kChordLocated = 0.1;
+/// Newton from the transient does not run where the map's error at rtol would move its
+/// orbit, to first order, by more than this × steady_tolerance (it could not be located:
+/// orbit_error); nor its rerun at rtol/10 where a tenth of that is still more. On the
+/// full factorial the located orbits' estimates are 1e-5–2e-4 c; where orbit_error said
+/// "not located" the estimate was 2.5–8 times below it (1.6e-3 for 1.2e-2 c).
+constexpr double kUnlocatable = 10.0;
 /// Where the slow flow got to, its cycles must repeat to this (clearances; the flow moves
 /// by far less a cycle), or the state is on no slow manifold and the flow is not reported.
 constexpr double kSlowPeriodicity = 1e-2;
@@ -278,6 +284,9 @@ class SteadyRun {
   bool solve_orbit(Chart& chart, const StartState& base, const std::vector<double>& winding, long long budget,
                    steady::ShootingOptions options, bool final, const OrbitSeed& from);
   int last_iterations_ = 0;
+  /// newton_from_start's estimate of how far the map's error at rtol moves the orbit from
+  /// the transient's end (clearances; NaN: not estimated).
+  double predicted_shift_ = kNaN;
   /// Newton on the period map from z0; if that fails and `accelerate` (the Anderson
   /// fallback), Anderson-accelerated periods from z0 and Newton again from where they got to.
   steady::ShootingResult find_orbit(PeriodMap& period, const Eigen::VectorXd& z0, const steady::ShootingOptions& options,
@@ -501,8 +510,11 @@ void SteadyRun::shooting_failed(const steady::ShootingResult& found, const Perio
     res_.message.clear();  // the budget's note says it (take_result)
     return;
   }
-  msg << "shooting did not converge (" << found.message << ", residual " << found.residual << " after "
-      << found.iterations << " Newton iterations)";
+  if (found.skipped)
+    msg << "no shooting (" << found.message << "; residual " << found.residual << " at the start)";
+  else
+    msg << "shooting did not converge (" << found.message << ", residual " << found.residual << " after "
+        << found.iterations << " Newton iterations)";
   if (!period.last_failure().empty()) msg << "; a period failed: " << period.last_failure();
   res_.message = msg.str();
 }
@@ -923,6 +935,7 @@ steady::ShootingResult SteadyRun::newton_from_start(PeriodMap& period, PeriodMap
   // The start's monodromy: a neighbour's (its M − I is options.initial_jacobian), or at
   // the transient's end Newton's first Jacobian ahead of it (the same central differences
   // of the rtol/100 map KINSOL's first setup takes, then a fresh one every iteration).
+  predicted_shift_ = kNaN;
   Eigen::MatrixXd J0;
   long long start_maps = 0;
   if (!options.initial_jacobian) {
@@ -964,6 +977,33 @@ steady::ShootingResult SteadyRun::newton_from_start(PeriodMap& period, PeriodMap
     if (chords.outcome == steady::ShootingOutcome::converged || chords.outcome == steady::ShootingOutcome::refused)
       return chords;
   }
+  if (start_maps > 0 && !accelerate) {
+    // A start with no neighbour (the transient's end, where the slow flow stops): how far
+    // the map's error at rtol moves its fixed point, to first order (I − M)⁻¹ (P(z0) −
+    // P_tight(z0)), two periods. Near |μ| = 1 the orbit Newton would find at rtol is that
+    // far from the true one; beyond kUnlocatable × steady_tolerance it could not be
+    // located (orbit_error), and Newton does not run: on the full factorial, in 59 of the
+    // 130 cells with no orbit, 12.0k of the 25.0k periods Newton spent there.
+    Eigen::VectorXd P0(z0.size()), T0(z0.size());
+    if (period.apply(z0.data(), P0.data()) == 0 && tight.apply(z0.data(), T0.data()) == 0) {
+      const Eigen::VectorXd shift = J.fullPivLu().solve(P0 - T0);
+      predicted_shift_ = steady::scaled_distance(shift, Eigen::VectorXd::Zero(z0.size()), options.residual_units());
+      start_maps += 2;
+      if (predicted_shift_ > kUnlocatable * sim_.steady_tolerance) {
+        steady::ShootingResult out;
+        out.skipped = true;
+        out.z = z0;
+        out.Pz = P0;
+        out.residual = steady::scaled_distance(P0, z0, options.residual_units());
+        out.maps = start_maps;
+        std::ostringstream msg;
+        msg << "the map's error at rtol would move its orbit by " << predicted_shift_ << " clearances (|mu|max "
+            << std::abs(mu.front()) << "), more than " << kUnlocatable << " x steady_tolerance";
+        out.message = msg.str();
+        return out;
+      }
+    }
+  }
   // KINSOL from the start, J its first Jacobian.
   steady::ShootingResult found = find_orbit(period, z0, options, accelerate);
   found.maps += start_maps;
@@ -989,7 +1029,8 @@ bool SteadyRun::solve_orbit(Chart& chart, const StartState& base, const std::vec
   const Eigen::VectorXd z0 = chart.reduce(base.qv);
   steady::ShootingResult found = newton_from_start(*period, *tight_period, z0, options, fallback);
   if (!from.valid() && found.outcome != steady::ShootingOutcome::converged &&
-      found.outcome != steady::ShootingOutcome::refused && found.residual >= 0 && found.residual <= kTightenBelow) {
+      found.outcome != steady::ShootingOutcome::refused && found.residual >= 0 && found.residual <= kTightenBelow &&
+      !(predicted_shift_ * kTightenFactor > kUnlocatable * sim_.steady_tolerance)) {
     // Stalled at the map's own noise (near |μ| = 1 its fixed point moves by that noise
     // over 1 − |μ|): Newton again on periods at rtol/10 (a start from the transient; on
     // the full factorial 19 of 52 not-converged cells get an answer, docs/theory/steady-cycles.md).

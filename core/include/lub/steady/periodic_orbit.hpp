@@ -106,6 +106,7 @@ struct ShootingResult {
   int jacobians = 0;        ///< difference Jacobians computed (not counting an initial one)
   std::string message;      ///< KINSOL's verdict when not converged
   bool at_noise_floor = false;  ///< converged by stalling within noise_factor of the tolerance
+  bool skipped = false;         ///< Newton not run (the caller's estimate: `message` says why)
 };
 
 /// Solves z = P(z) from z0 by KINSOL's Newton with a line search (globalised), the
