@@ -977,13 +977,16 @@ steady::ShootingResult SteadyRun::newton_from_start(PeriodMap& period, PeriodMap
     if (chords.outcome == steady::ShootingOutcome::converged || chords.outcome == steady::ShootingOutcome::refused)
       return chords;
   }
-  if (start_maps > 0 && !accelerate) {
+  if (start_maps > 0 && !accelerate && sim_.slow_flow) {
     // A start with no neighbour (the transient's end, where the slow flow stops): how far
     // the map's error at rtol moves its fixed point, to first order (I − M)⁻¹ (P(z0) −
     // P_tight(z0)), two periods. Near |μ| = 1 the orbit Newton would find at rtol is that
     // far from the true one; beyond kUnlocatable × steady_tolerance it could not be
     // located (orbit_error), and Newton does not run: on the full factorial, in 59 of the
-    // 130 cells with no orbit, 12.0k of the 25.0k periods Newton spent there.
+    // 130 cells with no orbit, 12.0k of the 25.0k periods Newton spent there. Only where
+    // the slow flow follows a case with no orbit and says where the journal goes: without
+    // it, Newton walking into the wall is the evidence that it drifts (with slow_flow
+    // false, 22 cells would go from drifting to not_converged).
     Eigen::VectorXd P0(z0.size()), T0(z0.size());
     if (period.apply(z0.data(), P0.data()) == 0 && tight.apply(z0.data(), T0.data()) == 0) {
       const Eigen::VectorXd shift = J.fullPivLu().solve(P0 - T0);
