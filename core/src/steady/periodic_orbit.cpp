@@ -402,6 +402,7 @@ ShootingResult newton_picard(CycleMap& P, const Eigen::VectorXd& z0, const Eigen
     return out;
   }
   double best = scaled_distance(Pz, z, opt.residual_scales);
+  out.first_residual = best;
   const double target = std::max(opt.tolerance, opt.relative_tolerance * best);
   out.Pz = Pz;
   int since_best = 0;

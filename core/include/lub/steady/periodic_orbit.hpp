@@ -107,6 +107,7 @@ struct ShootingResult {
   std::string message;      ///< KINSOL's verdict when not converged
   bool at_noise_floor = false;  ///< converged by stalling within noise_factor of the tolerance
   bool skipped = false;         ///< Newton not run (the caller's estimate: `message` says why)
+  double first_residual = -1.0; ///< newton_picard: the residual at z0 (−1: not evaluated)
 };
 
 /// Solves z = P(z) from z0 by KINSOL's Newton with a line search (globalised), the
