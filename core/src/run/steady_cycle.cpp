@@ -72,8 +72,10 @@ constexpr double kTightFactor = 0.01;
 /// halved): quick convergence takes 1–3 from a neighbour's orbit.
 constexpr int kContinuationIterations = 8;
 /// Newton iterations of the error bars' re-solve at rtol/100 (from the orbit at rtol, with
-/// its monodromy: 1–3 where the map is smooth), and the fraction of its first residual it
-/// stops at: the tight orbit located to 1 % of its distance from the orbit at rtol.
+/// its monodromy: 1–3 where the map is smooth), the fraction of its first residual it
+/// stops at (the tight orbit located to 1 % of its distance from the orbit at rtol), and
+/// the fraction below which its chords, stalled at the tight map's noise, are enough (no
+/// KINSOL after them).
 constexpr int kErrorBarIterations = 6;
 constexpr double kErrorBarAccuracy = 1e-2;
 constexpr double kErrorBarStall = 0.1;
@@ -100,11 +102,12 @@ constexpr double kSlowContraction = 0.9;
 constexpr double kChordContraction = 0.5;
 constexpr int kChordIterations = 8;
 constexpr double kChordLocated = 0.1;
-/// Newton from the transient does not run where the map's error at rtol would move its
-/// orbit, to first order, by more than this × steady_tolerance (it could not be located:
-/// orbit_error); nor its rerun at rtol/10 where a tenth of that is still more. On the
-/// full factorial the located orbits' estimates are 1e-5–2e-4 c; where orbit_error said
-/// "not located" the estimate was 2.5–8 times below it (1.6e-3 for 1.2e-2 c).
+/// With the slow flow on, Newton from the transient (or where the flow stops) does not run
+/// where the map's error at rtol would move its orbit, to first order, by more than this ×
+/// steady_tolerance (it could not be located: orbit_error); nor its rerun at rtol/10
+/// where a tenth of that is still more. On the full factorial the located orbits'
+/// estimates are 1e-5–2e-4 c; where orbit_error said "not located" the estimate was
+/// 2.5–8 times below it (1.6e-3 for 1.2e-2 c).
 constexpr double kUnlocatable = 10.0;
 /// Where the slow flow got to, its cycles must repeat to this (clearances; the flow moves
 /// by far less a cycle), or the state is on no slow manifold and the flow is not reported.
