@@ -210,6 +210,17 @@ PeriodAndMonodromy period_and_monodromy(PeriodMap& period, PeriodMap& tight, con
   return out;
 }
 
+/// Newton–Picard's options for the problem `o` poses (its residual units, tolerance and
+/// noise factor), at most `iterations` iterations.
+steady::NewtonPicardOptions newton_picard_options(const steady::ShootingOptions& o, int iterations) {
+  steady::NewtonPicardOptions np;
+  np.residual_scales = o.residual_units();
+  np.tolerance = o.tolerance;
+  np.noise_factor = o.noise_factor;
+  np.max_iterations = iterations;
+  return np;
+}
+
 class SteadyRun {
  public:
   /// `budget`: the case's max_periods and what the case spent before this run (default:
@@ -288,9 +299,6 @@ class SteadyRun {
   bool solve_orbit(Chart& chart, const StartState& base, const std::vector<double>& winding, long long budget,
                    steady::ShootingOptions options, bool final, const OrbitSeed& from);
   int last_iterations_ = 0;
-  /// newton_from_start's estimate of how far the map's error at rtol moves the orbit from
-  /// the transient's end (clearances; NaN: not estimated).
-  double predicted_shift_ = kNaN;
   /// Newton on the period map from z0; if that fails and `accelerate` (the Anderson
   /// fallback), Anderson-accelerated periods from z0 and Newton again from where they got to.
   steady::ShootingResult find_orbit(PeriodMap& period, const Eigen::VectorXd& z0, const steady::ShootingOptions& options,
@@ -298,9 +306,10 @@ class SteadyRun {
   /// find_orbit from z0, its first Jacobian options.initial_jacobian (a neighbour's
   /// monodromy) or, if none, the monodromy at z0 (central differences of `tight`); where
   /// that contracts every direction below kChordContraction, Newton–Picard chord steps on
-  /// it first.
+  /// it first. `predicted_shift`: how far the map's error at rtol moves the orbit from z0
+  /// (clearances; NaN where not estimated).
   steady::ShootingResult newton_from_start(PeriodMap& period, PeriodMap& tight, const Eigen::VectorXd& z0,
-                                               steady::ShootingOptions options, bool accelerate);
+                                           steady::ShootingOptions options, bool accelerate, double& predicted_shift);
   /// Shooting's options from a cycle whose largest eccentricity ratio is `max_eps` (NaN:
   /// unknown): difference and Newton steps within the gap.
   steady::ShootingOptions shooting_options(const Chart& chart, double max_eps) const;
@@ -557,12 +566,8 @@ void SteadyRun::orbit_error_bars(Chart& chart, const StartState& base, PeriodMap
   // Its residual tolerance scaled with the map's error, like its rtol: at the loose
   // tolerance z* would pass at once, however far the tight orbit lies.
   tight.tolerance = options.tolerance * kTightFactor;
-  steady::NewtonPicardOptions np;
-  np.residual_scales = tight.residual_units();
-  np.tolerance = tight.tolerance;
+  steady::NewtonPicardOptions np = newton_picard_options(tight, kErrorBarIterations);
   np.relative_tolerance = kErrorBarAccuracy;
-  np.noise_factor = tight.noise_factor;
-  np.max_iterations = kErrorBarIterations;
   steady::ShootingResult resolved = steady::newton_picard(tight_period, z, M_minus_I, np);
   if (resolved.outcome == steady::ShootingOutcome::not_converged && resolved.residual >= 0.0 &&
       !(resolved.residual <= kErrorBarStall * resolved.first_residual)) {
@@ -753,12 +758,8 @@ SteadyRun::SlowNewton SteadyRun::newton_where_flow_stops(Chart& chart, const Sta
     const steady::Monodromy& m = there.monodromy;
     steady::ShootingResult picard;
     if (rc == 0 && !m.failed) {
-      steady::NewtonPicardOptions np;
-      np.residual_scales = options.residual_units();
-      np.tolerance = options.tolerance;
-      np.noise_factor = options.noise_factor;
-      np.max_iterations = kSlowNewtonIterations;
-      picard = steady::newton_picard(*period, z0, m.M - Eigen::MatrixXd::Identity(near.size(), near.size()), np);
+      picard = steady::newton_picard(*period, z0, m.M - Eigen::MatrixXd::Identity(near.size(), near.size()),
+                                     newton_picard_options(options, kSlowNewtonIterations));
     }
     if (period->refused() || tight->refused()) {
       steady.kind = SteadyClass::not_converged;
@@ -939,11 +940,12 @@ steady::ShootingResult SteadyRun::find_orbit(PeriodMap& period, const Eigen::Vec
 }
 
 steady::ShootingResult SteadyRun::newton_from_start(PeriodMap& period, PeriodMap& tight, const Eigen::VectorXd& z0,
-                                                    steady::ShootingOptions options, bool accelerate) {
+                                                    steady::ShootingOptions options, bool accelerate,
+                                                    double& predicted_shift) {
   // The start's monodromy: a neighbour's (its M − I is options.initial_jacobian), or at
   // the transient's end Newton's first Jacobian ahead of it (the same central differences
   // of the rtol/100 map KINSOL's first setup takes, then a fresh one every iteration).
-  predicted_shift_ = kNaN;
+  predicted_shift = kNaN;
   Eigen::MatrixXd J0;
   long long start_maps = 0;
   if (!options.initial_jacobian) {
@@ -964,12 +966,8 @@ steady::ShootingResult SteadyRun::newton_from_start(PeriodMap& period, PeriodMap
     // the start and its orbit: Newton–Picard chord steps on J, two periods at rtol each
     // (the printed law's orbits, |μ|max 0.014–0.47), where KINSOL took a fresh Jacobian
     // every iteration, 2 n periods at rtol/100 each, and line searches on the map's noise.
-    steady::NewtonPicardOptions np;
-    np.residual_scales = options.residual_units();
-    np.tolerance = options.tolerance;
-    np.noise_factor = options.noise_factor;
-    np.max_iterations = kChordIterations;
-    steady::ShootingResult chords = steady::newton_picard(period, z0, J, np);
+    steady::ShootingResult chords =
+        steady::newton_picard(period, z0, J, newton_picard_options(options, kChordIterations));
     chords.maps += start_maps;
     // Stalled at the map's own noise (the printed law's switches: 1e-6–1e-4 c at rtol
     // 1e-8 on the full factorial's orbits), where no Newton at rtol gets further: located
@@ -998,9 +996,9 @@ steady::ShootingResult SteadyRun::newton_from_start(PeriodMap& period, PeriodMap
     Eigen::VectorXd P0(z0.size()), T0(z0.size());
     if (period.apply(z0.data(), P0.data()) == 0 && tight.apply(z0.data(), T0.data()) == 0) {
       const Eigen::VectorXd shift = J.fullPivLu().solve(P0 - T0);
-      predicted_shift_ = steady::scaled_distance(shift, Eigen::VectorXd::Zero(z0.size()), options.residual_units());
+      predicted_shift = steady::scaled_distance(shift, Eigen::VectorXd::Zero(z0.size()), options.residual_units());
       start_maps += 2;
-      if (predicted_shift_ > kUnlocatable * sim_.steady_tolerance) {
+      if (predicted_shift > kUnlocatable * sim_.steady_tolerance) {
         steady::ShootingResult out;
         out.skipped = true;
         out.z = z0;
@@ -1008,7 +1006,7 @@ steady::ShootingResult SteadyRun::newton_from_start(PeriodMap& period, PeriodMap
         out.residual = steady::scaled_distance(P0, z0, options.residual_units());
         out.maps = start_maps;
         std::ostringstream msg;
-        msg << "the map's error at rtol would move its orbit by " << predicted_shift_ << " clearances (|mu|max "
+        msg << "the map's error at rtol would move its orbit by " << predicted_shift << " clearances (|mu|max "
             << std::abs(mu.front()) << "), more than " << kUnlocatable << " x steady_tolerance";
         out.message = msg.str();
         return out;
@@ -1038,10 +1036,11 @@ bool SteadyRun::solve_orbit(Chart& chart, const StartState& base, const std::vec
   // The fallback (simulation.shooting_fallback) serves a start from the transient only.
   const bool fallback = !from.valid() && sim_.shooting_fallback == ShootingFallback::anderson;
   const Eigen::VectorXd z0 = chart.reduce(base.qv);
-  steady::ShootingResult found = newton_from_start(*period, *tight_period, z0, options, fallback);
+  double predicted_shift = kNaN;
+  steady::ShootingResult found = newton_from_start(*period, *tight_period, z0, options, fallback, predicted_shift);
   if (!from.valid() && found.outcome != steady::ShootingOutcome::converged &&
       found.outcome != steady::ShootingOutcome::refused && found.residual >= 0 && found.residual <= kTightenBelow &&
-      !(predicted_shift_ * kTightenFactor > kUnlocatable * sim_.steady_tolerance)) {
+      !(predicted_shift * kTightenFactor > kUnlocatable * sim_.steady_tolerance)) {
     // Stalled at the map's own noise (near |μ| = 1 its fixed point moves by that noise
     // over 1 − |μ|): Newton again on periods at rtol/10 (a start from the transient; on
     // the full factorial 19 of 52 not-converged cells get an answer, docs/theory/steady-cycles.md).
