@@ -5,11 +5,16 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <set>
+#include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <sys/wait.h>
@@ -247,6 +252,45 @@ TEST_F(StudyFile, SummaryOfAMissingOrForeignFileIsOneShortLine) {
   EXPECT_EQ(message(file("text.h5")), "not an HDF5 file, so not a lubsweep study file");
   lub::h5::File::create(file("plain.h5")).set_attribute("program", "lubsim");
   EXPECT_EQ(message(file("plain.h5")), "not a lubsweep study file");
+}
+
+TEST_F(StudyFile, SummarySaysWhereACaseWithoutAnOrbitGotTo) {
+  // A case without a steady cycle shows its last film, its drift a cycle and the cycles its
+  // slow flow followed; a case with an orbit shows "-" there (its metrics say it).
+  const Grid g = small_grid();
+  const std::string path = file("where.h5");
+  CaseResult orbit = fake(g, 0), drifting = fake(g, 1);
+  orbit.classification = "periodic";
+  drifting.classification = "drifting";
+  write_study(path, g, {orbit, drifting, fake(g, 2), fake(g, 3), fake(g, 4)}, true);
+  std::FILE* out = std::tmpfile();
+  ASSERT_NE(out, nullptr);
+  print_summary(path, out);
+  std::rewind(out);
+  std::vector<std::vector<std::string>> rows;
+  char line[4096];
+  while (std::fgets(line, sizeof line, out)) {
+    std::istringstream words(line);
+    rows.emplace_back(std::istream_iterator<std::string>(words), std::istream_iterator<std::string>());
+  }
+  std::fclose(out);
+  ASSERT_GE(rows.size(), 5u);
+  const std::vector<std::string>& head = rows[2];  // after the counts and the classification line
+  ASSERT_EQ(head.front(), "case");
+  const auto t = lub::h5::File::open(path).open_table("cases");
+  for (const auto& [column, name, scale] : {std::tuple{"last_h[um]", "last_cycle_min_film_m", 1e6},
+                                            std::tuple{"dh/cycle[nm]", "min_film_drift_m_per_cycle", 1e9},
+                                            std::tuple{"flow[cycles]", "slow_flow_cycles", 1.0}}) {
+    SCOPED_TRACE(column);
+    const auto at = std::find(head.begin(), head.end(), std::string(column));
+    ASSERT_NE(at, head.end());
+    const std::size_t k = static_cast<std::size_t>(at - head.begin());
+    EXPECT_EQ(rows[3].at(k), "-");  // case_0000, periodic
+    const double v = t.read_doubles(name)[1] * scale;
+    char want[64];
+    std::snprintf(want, sizeof want, std::string(column) == "flow[cycles]" ? "%.0f" : "%.3g", v);
+    EXPECT_EQ(rows[4].at(k), want);  // case_0001, drifting
+  }
 }
 
 TEST_F(StudyFile, OlderFormatIsRefusedWithAClearMessage) {

@@ -55,6 +55,22 @@ void add_columns(const h5::Table& t, const std::vector<std::string>& status, con
   numeric("peak_a[m/s2]", "peak_acceleration_m_s2", "%.4g", 1.0);
   numeric("periodicity", "periodicity", "%.2e", 1.0);
   numeric("|mu|max", "multiplier_1_modulus", "%.4f", 1.0);
+  // Where a case without a steady cycle got to: the last cycle's film, how fast it changes,
+  // and how many cycles after the transient its slow flow followed it (docs/theory/
+  // steady-cycles.md, slow flow); "-" for the cases with an orbit, whose metrics say it.
+  auto without_orbit = [&](const std::string& head, const std::string& name, const char* format, double scale) {
+    SummaryColumn c{head, {}};
+    if (!t.has_column(name)) return;
+    const std::vector<double> v = t.read_doubles(name);
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const bool orbit = cls[i] == "periodic" || cls[i] == "periodic_unstable";
+      c.cells.push_back(!orbit && std::isfinite(v[i]) && v[i] != 0.0 ? format_number(format, v[i] * scale) : "-");
+    }
+    cols.push_back(std::move(c));
+  };
+  without_orbit("last_h[um]", "last_cycle_min_film_m", "%.3g", 1e6);
+  without_orbit("dh/cycle[nm]", "min_film_drift_m_per_cycle", "%.3g", 1e9);
+  without_orbit("flow[cycles]", "slow_flow_cycles", "%.0f", 1.0);
   numeric("periods", "periods_integrated", "%.0f", 1.0);
   numeric("steps", "steps", "%.0f", 1.0);
   numeric("wall[s]", "wall_time_s", "%.2f", 1.0);
@@ -72,7 +88,9 @@ void print_counts(std::FILE* out, const std::string& path, std::size_t n, std::i
   for (const auto& c : cls) ++by_class[c];
   std::fprintf(out, "classification:");
   for (const auto& [name, count] : by_class) std::fprintf(out, " %s %zu,", name.c_str(), count);
-  std::fprintf(out, " (h_min etc. only for periodic cycles: docs/theory/steady-cycles.md)\n");
+  std::fprintf(out,
+               " (h_min etc. only for periodic cycles; without one, last_h, dh/cycle and flow say where it got to:"
+               " docs/theory/steady-cycles.md)\n");
 }
 
 /// The table: a heading line, then `n` rows, each column as wide as its widest cell.
