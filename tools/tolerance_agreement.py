@@ -5,14 +5,18 @@
 
 The two files are the same grid run twice, the second with a tighter tolerance in its
 `set` (e.g. "/solver/rtol": 1e-9 against the scene's 1e-8: docs/theory/steady-cycles.md,
-"against the same grid at rtol ÷ 10"). Cases are matched by their axes' values (the
+"against the same grid at rtol ÷ 10"), or by another route (the same grid as long
+transients, "/simulation/steady": "transient"). Cases are matched by their axes' values (the
 /cases attribute `axes`), not by hash (the hash includes the tolerance). It prints:
 
   - the label transitions, default → tight;
   - for the cases that are orbits (periodic, periodic_unstable) in both, each metric with
     an error bar: how many agree within the summed error bars |a − b| <= e_a + e_b, how
     many within twice them, and the largest ratio |a − b| / (e_a + e_b) (angles on the
-    circle); a case whose bars are NaN counts as outside;
+    circle); a case whose bars are NaN counts as outside, and how many there are is said
+    (a study of transients has none: its orbits are confirmed stops, not located ones);
+    then how far apart the two are whatever the bars, |a − b| / |a| (in rad for an angle),
+    median and largest;
   - for the cases drifting by the slow flow in both (slow_flow_cycles > 0): the tight
     run's film where its flow got to over the default's (quartiles), and its cycles over
     the default's;
@@ -71,15 +75,24 @@ def agreement(default, tight):
         if m not in a.columns or m + "_error" not in a.columns:
             continue
         angle = m.endswith("_rad")
-        ratios = []
+        ratios, apart, unbarred = [], [], 0
         for k in orbits:
             bars = float(a.at[k, m + "_error"]) + float(b.at[k, m + "_error"])
             d = difference(float(a.at[k, m]), float(b.at[k, m]), angle)
             ratios.append(d / bars if bars > 0 else (0.0 if d == 0 else math.inf))
+            unbarred += not math.isfinite(bars)
+            # How far apart, whatever the bars: in rad for an angle, else relative to the
+            # default's value.
+            scale = 1.0 if angle else abs(float(a.at[k, m]))
+            apart.append(d / scale if scale > 0 else (0.0 if d == 0 else math.inf))
         r = np.array(ratios, dtype=float)
+        x = np.array(apart, dtype=float)
         metrics[m] = {"within_1": int(np.sum(r <= 1)), "within_2": int(np.sum(r <= 2)),
                       "worst": float(np.nanmax(r)) if np.isfinite(r).any() else math.nan,
-                      "cases": len(r)}
+                      "cases": len(r), "unbarred": unbarred,
+                      "apart_median": float(np.median(x)) if len(x) else math.nan,
+                      "apart_max": float(np.max(x)) if len(x) else math.nan,
+                      "apart_unit": "rad" if angle else "relative"}
     flows = [k for k in both if str(a.at[k, "classification"]) == "drifting"
              and str(b.at[k, "classification"]) == "drifting"
              and float(a.at[k, "slow_flow_cycles"]) > 0 and float(b.at[k, "slow_flow_cycles"]) > 0]
@@ -101,12 +114,16 @@ def report(r, markdown=False):
         lines += ["", "| default → tight | cases |", "|---|---|"]
         lines += [f"| {x} → {y} | {n} |" for (x, y), n in sorted(r["labels"].items())]
         lines += ["", f"Orbits in both: {r['orbits']}", "",
-                  "| metric | within the summed error bars | within twice them | largest ratio |", "|---|---|---|---|"]
-        lines += [f"| `{m}` | {v['within_1']} | {v['within_2']} | {v['worst']:.3g} |" for m, v in r["metrics"].items()]
+                  "| metric | within the summed error bars | within twice them | largest ratio | without bars "
+                  "| apart (median, largest) |", "|---|---|---|---|---|---|"]
+        lines += [f"| `{m}` | {v['within_1']} | {v['within_2']} | {v['worst']:.3g} | {v['unbarred']} "
+                  f"| {v['apart_median']:.2g}, {v['apart_max']:.2g} ({v['apart_unit']}) |" for m, v in r["metrics"].items()]
     else:
         lines += [f"  {x} -> {y}: {n}" for (x, y), n in sorted(r["labels"].items())]
         lines.append(f"orbits in both: {r['orbits']}")
         lines += [f"  {m}: within 1x {v['within_1']}, within 2x {v['within_2']}, largest ratio {v['worst']:.3g}"
+                  + (f" ({v['unbarred']} without error bars: outside)" if v["unbarred"] else "")
+                  + f"; apart {v['apart_median']:.2g} median, {v['apart_max']:.2g} largest ({v['apart_unit']})"
                   for m, v in r["metrics"].items()]
     q = lambda x: ", ".join(f"{v:.2f}" for v in x) if x else "-"
     lines.append(f"{'' if not markdown else chr(10)}drifting by the slow flow in both: {r['flows']}; tight/default film "

@@ -34,7 +34,9 @@ def test_the_same_study_agrees_with_itself():
     r = ta.agreement(a, a.copy())
     assert r["matched"] == 3 and r["same_label"] == 3 and r["missing"] == []
     assert r["orbits"] == 2
-    assert r["metrics"]["min_film_thickness_m"] == {"within_1": 2, "within_2": 2, "worst": 0.0, "cases": 2}
+    assert r["metrics"]["min_film_thickness_m"] == {"within_1": 2, "within_2": 2, "worst": 0.0, "cases": 2,
+                                                    "unbarred": 0, "apart_median": 0.0, "apart_max": 0.0,
+                                                    "apart_unit": "relative"}
     assert r["flows"] == 1 and r["film_ratio"] == [1.0] * 5 and r["cycle_ratio"] == [1.0] * 5
 
 
@@ -66,9 +68,15 @@ def test_angles_are_compared_on_the_circle_and_missing_cases_reported():
     z = cases([row(1e-4, "frene_long", "periodic", angle=0.0, angle_err=0.0)])
     r = ta.agreement(z, z.assign(crank_angle_at_min_film_rad=6.2831853071795845))
     assert r["metrics"]["crank_angle_at_min_film_rad"]["worst"] == 0.0
-    # NaN bars are no agreement.
+    # NaN bars are no agreement, and are counted; how far apart the two are is said anyway
+    # (relative to the default's value; in rad for an angle).
     c = cases([row(1e-4, "frene_long", "periodic", h=2e-5, h_err=math.nan)])
-    assert ta.agreement(c, c.assign(min_film_thickness_m=3e-5))["metrics"]["min_film_thickness_m"]["within_2"] == 0
+    m = ta.agreement(c, c.assign(min_film_thickness_m=3e-5))["metrics"]["min_film_thickness_m"]
+    assert m["within_2"] == 0 and m["unbarred"] == 1
+    assert m["apart_max"] == pytest.approx(0.5, rel=1e-12) and m["apart_unit"] == "relative"
+    assert "1 without error bars" in ta.report(ta.agreement(c, c.assign(min_film_thickness_m=3e-5)))
+    r = ta.agreement(a, b)
+    assert r["metrics"]["crank_angle_at_min_film_rad"]["apart_max"] == pytest.approx(0.02, rel=1e-9)
 
 
 def test_studies_of_other_axes_and_bad_files_are_refused(tmp_path):
