@@ -43,10 +43,17 @@ void add_columns(const h5::Table& t, const std::vector<std::string>& status, con
   }
   cols.push_back({"status", status});
   cols.push_back({"classification", cls});
-  auto numeric = [&](const std::string& head, const std::string& name, const char* format, double scale) {
+  // A metric's column; `without_orbit`: shown only for the cases with no steady cycle (where
+  // it got to), "-" for those with one (whose metrics say it) and where it is 0 (not followed).
+  auto numeric = [&](const std::string& head, const std::string& name, const char* format, double scale,
+                     bool without_orbit = false) {
     SummaryColumn c{head, {}};
     if (!t.has_column(name)) return;
-    for (double v : t.read_doubles(name)) c.cells.push_back(std::isfinite(v) ? format_number(format, v * scale) : "-");
+    const std::vector<double> v = t.read_doubles(name);
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const bool shown = !without_orbit || (cls[i] != "periodic" && cls[i] != "periodic_unstable" && v[i] != 0.0);
+      c.cells.push_back(shown && std::isfinite(v[i]) ? format_number(format, v[i] * scale) : "-");
+    }
     cols.push_back(std::move(c));
   };
   numeric("h_min[um]", "min_film_thickness_m", "%.3f", 1e6);
@@ -57,20 +64,10 @@ void add_columns(const h5::Table& t, const std::vector<std::string>& status, con
   numeric("|mu|max", "multiplier_1_modulus", "%.4f", 1.0);
   // Where a case without a steady cycle got to: the last cycle's film, how fast it changes,
   // and how many cycles after the transient its slow flow followed it (docs/theory/
-  // steady-cycles.md, slow flow); "-" for the cases with an orbit, whose metrics say it.
-  auto without_orbit = [&](const std::string& head, const std::string& name, const char* format, double scale) {
-    SummaryColumn c{head, {}};
-    if (!t.has_column(name)) return;
-    const std::vector<double> v = t.read_doubles(name);
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      const bool orbit = cls[i] == "periodic" || cls[i] == "periodic_unstable";
-      c.cells.push_back(!orbit && std::isfinite(v[i]) && v[i] != 0.0 ? format_number(format, v[i] * scale) : "-");
-    }
-    cols.push_back(std::move(c));
-  };
-  without_orbit("last_h[um]", "last_cycle_min_film_m", "%.3g", 1e6);
-  without_orbit("dh/cycle[nm]", "min_film_drift_m_per_cycle", "%.3g", 1e9);
-  without_orbit("flow[cycles]", "slow_flow_cycles", "%.0f", 1.0);
+  // steady-cycles.md, slow flow).
+  numeric("last_h[um]", "last_cycle_min_film_m", "%.3g", 1e6, true);
+  numeric("dh/cycle[nm]", "min_film_drift_m_per_cycle", "%.3g", 1e9, true);
+  numeric("flow[cycles]", "slow_flow_cycles", "%.0f", 1.0, true);
   numeric("periods", "periods_integrated", "%.0f", 1.0);
   numeric("steps", "steps", "%.0f", 1.0);
   numeric("wall[s]", "wall_time_s", "%.2f", 1.0);
