@@ -11,8 +11,9 @@
 // Cost: CPU time (the process's, CLOCK_PROCESS_CPUTIME_ID) per cycle, measured in batches of
 // back-to-back runs at least `--min-batch-ms` long (20 ms by default: a 4-cycle run of a few
 // ms alone scattered by up to 2x between runs), in `repeats` rounds that each time every
-// point of a law (both engines and the floor at every rtol) in turn; the best round of each. The costs at errors 1e-4 c and
-// 1e-6 c come from log-log interpolation between the neighbouring tolerances; the ratio of
+// point of a law (both engines and the floor at every rtol) in turn; the best round of each.
+// The costs at errors 1e-4 c and 1e-6 c come from log-log interpolation between the
+// neighbouring tolerances; the ratio of
 // the engine's cost to the floor's at the same error is what issue 16 asks to bring
 // to ≤ 1.5, and the per-step ratio at rtol 1e-8 to ≤ 2.
 //
