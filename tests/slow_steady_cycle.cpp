@@ -111,7 +111,7 @@ TEST_P(ChangedLabel, AgreesWithATransientTenTimesTighter) {
     // No orbit inside the clearance, or none located: the tight transient settles on none.
     EXPECT_NE(lub::classification(t), "periodic") << t.message;
   }
-  if (a.steady.method == "slow_flow" && std::string(c.label) == "drifting") {
+  if (a.steady.method == lub::SteadyCycleMethod::slow_flow && std::string(c.label) == "drifting") {
     // Followed along its slow manifold (at rtol/10): the transient at rtol 1e-9, cycle by
     // cycle to the cycle the flow got to, has the same film within 10 % (each jump's error
     // is held to 5 % of it: the flow's cycle count is good to ~5 %; measured 1.6-4.5 % on

@@ -216,7 +216,7 @@ TEST(Budget, BoundsAContinuationPath) {
   const RunResult neighbour = run(reference("shooting"));
   ASSERT_TRUE(neighbour.orbit_seed.valid()) << neighbour.message;
   const RunResult free = lub::run_scene(lub::parse_scene(doc), from_orbit(neighbour, doc));
-  ASSERT_EQ(free.steady.method, "continuation") << free.message;
+  ASSERT_EQ(free.steady.method, lub::SteadyCycleMethod::continuation) << free.message;
   for (long long b : {1LL, free.steady.periods_integrated - 1}) {
     const RunResult r = lub::run_scene(lub::parse_scene(with_budget(doc, b)), from_orbit(neighbour, doc));
     EXPECT_EQ(r.status, RunStatus::ok) << r.message;

@@ -50,7 +50,7 @@ TEST(Continuation, ASceneContinuedFromItsOwnOrbitIsAtItsFixedPointAtOnce) {
 
   const RunResult rb = lub::run_scene(lub::parse_scene(a), from(ra, a, a));
   ASSERT_EQ(lub::classification(rb), "periodic") << rb.message;
-  EXPECT_EQ(rb.steady.method, "continuation") << rb.message;
+  EXPECT_EQ(rb.steady.method, lub::SteadyCycleMethod::continuation) << rb.message;
   EXPECT_EQ(rb.steady.continuation_steps, 1);
   // The seed is the orbit, placed at t = 0 instead of the transient's t = k T: the same
   // map up to its noise (the printed law's switches make it non-smooth at 1e-7–1e-6 c,
@@ -73,7 +73,7 @@ TEST(Continuation, ANeighboursOrbitReachesTheOrbitShootingFindsFromTheTransient)
   ASSERT_EQ(lub::classification(direct), "periodic") << direct.message;
   const RunResult cont = lub::run_scene(lub::parse_scene(b), from(ra, a, b));
   ASSERT_EQ(lub::classification(cont), "periodic") << cont.message;
-  EXPECT_EQ(cont.steady.method, "continuation") << cont.message;
+  EXPECT_EQ(cont.steady.method, lub::SteadyCycleMethod::continuation) << cont.message;
   // Two routes to one orbit, each with its error bar.
   const auto& m = cont.metrics;
   const auto& d = direct.metrics;

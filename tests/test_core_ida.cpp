@@ -64,7 +64,7 @@ TEST(IdaGgl, AgreesWithThePartitionedReferenceForEachPaperLaw) {
     EXPECT_EQ(ref.status, RunStatus::ok) << ref.message;
     EXPECT_EQ(g.status, RunStatus::ok) << g.message;
     if (ref.status != RunStatus::ok || g.status != RunStatus::ok) continue;
-    EXPECT_EQ(g.stats.jacobian, "structured");  // IDA's default
+    EXPECT_EQ(g.stats.jacobian, lub::JacobianKind::structured);  // IDA's default
     EXPECT_NEAR(g.metrics.min_film_thickness_m / ref.metrics.min_film_thickness_m, 1.0, 2e-3);
     EXPECT_NEAR(g.metrics.max_eps / ref.metrics.max_eps, 1.0, 2e-3);
     EXPECT_NEAR(g.metrics.peak_reaction_N / ref.metrics.peak_reaction_N, 1.0, 2e-3);

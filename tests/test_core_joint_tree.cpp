@@ -281,7 +281,7 @@ TEST(JointFormulation, ReferenceCaseAgreesWithThePartitionedFormulation) {
   const lub::RunResult j = run_with("slider_crank.json", "joint");
   ASSERT_EQ(p.status, lub::RunStatus::ok) << p.message;
   ASSERT_EQ(j.status, lub::RunStatus::ok) << j.message;
-  EXPECT_EQ(j.stats.formulation, "joint");
+  EXPECT_EQ(j.stats.formulation, lub::Formulation::joint);
   EXPECT_LT(j.stats.max_position_drift, 1e-15) << "forward kinematics: no drift but round-off";
   auto rel = [](double a, double b) { return std::abs(a - b) / std::abs(b); };
   EXPECT_LT(rel(j.metrics.min_film_thickness_m, p.metrics.min_film_thickness_m), 1e-3);
@@ -318,7 +318,7 @@ TEST(JointFormulation, AJacobianServesThreeStepsAndNewtonHolds) {
 TEST(JointFormulation, ClosedLoopFallsBackAndSaysSo) {
   const lub::RunResult r = run_with("slider_crank_ideal.json", "joint");
   ASSERT_EQ(r.status, lub::RunStatus::ok) << r.message;
-  EXPECT_EQ(r.stats.formulation, "baumgarte");
+  EXPECT_EQ(r.stats.formulation, lub::Formulation::baumgarte);
 }
 
 // Near the wall (the full factorial's 0.5 mm, 100 cP, 50 rpm printed-law case, ε 0.9999):

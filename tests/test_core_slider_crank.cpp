@@ -117,7 +117,7 @@ TEST(SliderCrankIdeal, IdaOnTheGglFormulationMatchesClosedForm) {
   // sees (q, v) only, the multipliers are recomputed by the observers from (q, v).
   const RunResult r = run_ideal(1e-10, "ida");
   ASSERT_EQ(r.status, RunStatus::ok) << r.message;
-  EXPECT_EQ(r.stats.method, "ida");
+  EXPECT_EQ(r.stats.method, lub::Method::ida);
   expect_matches_closed_form(r);
 }
 

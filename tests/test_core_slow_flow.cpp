@@ -38,7 +38,7 @@ TEST(SlowFlow, FollowsASinkingJournalHundredsOfCyclesAndAgreesWithItsTransient) 
   const RunResult r = run(sinking("auto", 40));
   ASSERT_EQ(r.status, RunStatus::ok) << r.message;
   EXPECT_EQ(lub::classification(r), "drifting") << r.message;
-  EXPECT_EQ(r.steady.method, "slow_flow");
+  EXPECT_EQ(r.steady.method, lub::SteadyCycleMethod::slow_flow);
   EXPECT_NE(r.message.find("still moving"), std::string::npos) << r.message;
   // Hundreds of cycles for the flow's 200 periods (745: each jump held to 5 % of its own
   // length, and the slope after a jump still carries the modes it excites, which decay
@@ -109,7 +109,7 @@ TEST(SlowFlow, ATransientThatContractsSlowlyGoesToItsFlowWithoutASecondNewton) {
   // full factorial's 131 such cells.
   const RunResult r = run(sinking("auto", 40));
   ASSERT_EQ(r.status, RunStatus::ok) << r.message;
-  EXPECT_EQ(r.steady.method, "slow_flow");
+  EXPECT_EQ(r.steady.method, lub::SteadyCycleMethod::slow_flow);
   EXPECT_NE(r.message.find("from cycle 8: shooting did not converge"), std::string::npos) << r.message;
   EXPECT_NE(r.message.find("no Newton from cycle 40"), std::string::npos) << r.message;
   // The transient's 40, the first Newton's ~60, the flow's 200 and the measurement where it
@@ -126,7 +126,7 @@ TEST(SlowFlow, IsAutosDefaultAndTheSceneCanTurnItOff) {
   const RunResult r = run(off);
   ASSERT_EQ(r.status, RunStatus::ok) << r.message;
   EXPECT_EQ(r.steady.slow_flow_cycles, 0.0);
-  EXPECT_NE(r.steady.method, "slow_flow");
+  EXPECT_NE(r.steady.method, lub::SteadyCycleMethod::slow_flow);
   EXPECT_EQ(r.message.find("slow"), std::string::npos) << r.message;
   // Without the flow, Newton tries again from the transient's end, as before the stage.
   EXPECT_EQ(r.message.find("no Newton from cycle"), std::string::npos) << r.message;

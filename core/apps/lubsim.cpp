@@ -135,13 +135,13 @@ int main(int argc, char** argv) {
     std::printf("status   %s%s%s\n", lub::to_string(r.status).c_str(), r.message.empty() ? "" : ": ",
                 r.message.c_str());
     const std::string cls = lub::classification(r);
-    std::printf("steady   %s (%s)%s\n", cls.c_str(), r.steady.method.c_str(),
-                cls == "periodic" || cls == "periodic_unstable"
-                    ? ""
+    const bool orbit = r.status == lub::RunStatus::ok && lub::carries_orbit(r.steady.kind);
+    std::printf("steady   %s (%s)%s\n", cls.c_str(), std::string(lub::name_of(r.steady.method)).c_str(),
+                orbit ? ""
                     : ": the metrics below are a transient's, not a steady cycle's (docs/theory/steady-cycles.md)");
-    if (r.steady.method == "shooting")
+    if (r.steady.method == lub::SteadyCycleMethod::shooting)
       std::printf("metrics  (the periodic orbit, %d cycles)\n", scene.simulation.metric_cycles);
-    else if (r.steady.method == "slow_flow")
+    else if (r.steady.method == lub::SteadyCycleMethod::slow_flow)
       std::printf("metrics  (%d cycles where the slow flow got to, about %.0f cycles after the transient's %d)\n",
                   scene.simulation.metric_cycles, r.steady.slow_flow_cycles, r.metrics.cycles_run);
     else
@@ -149,9 +149,9 @@ int main(int argc, char** argv) {
                   r.metrics.cycles_run);
     for (const auto& f : lub::metric_fields())
       std::printf("  %-34s %.6g %s\n", f.name.c_str(), f.get(r), f.unit.c_str());
+    const lub::SolverSettingNames names = lub::setting_names(r.stats);
     std::printf("solver   %s (%s) rtol %.3g atol %.3g m (per state: docs/theory/formulations.md) jacobian %s\n",
-                r.stats.method.c_str(), r.stats.formulation.c_str(), r.stats.rtol, r.stats.atol,
-                r.stats.jacobian.c_str());
+                names.method.c_str(), names.formulation.c_str(), r.stats.rtol, r.stats.atol, names.jacobian.c_str());
     for (const auto& f : lub::solver_fields())
       std::printf("  %-34s %.6g %s\n", f.name.c_str(), f.get(r), f.unit.c_str());
     std::printf("wrote    %s\n", out_path.c_str());

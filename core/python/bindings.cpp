@@ -97,7 +97,7 @@ py::dict simulate(const std::optional<std::string>& scene_path, const std::optio
   out["status"] = lub::to_string(r.status);
   out["message"] = r.message;
   out["classification"] = lub::classification(r);
-  out["steady_method"] = r.steady.method;
+  out["steady_method"] = std::string(lub::name_of(r.steady.method));
   std::vector<double> mod, arg;
   for (const auto& mu : r.steady.multipliers) mod.push_back(std::abs(mu)), arg.push_back(std::arg(mu));
   out["multiplier_modulus"] = to_array(mod);
@@ -115,9 +115,10 @@ py::dict simulate(const std::optional<std::string>& scene_path, const std::optio
   out["metrics"] = metrics;
   out["solver"] = solver;
   py::dict solver_settings;
-  solver_settings["method"] = r.stats.method;
-  solver_settings["formulation"] = r.stats.formulation;
-  solver_settings["jacobian"] = r.stats.jacobian;
+  const lub::SolverSettingNames names = lub::setting_names(r.stats);
+  solver_settings["method"] = names.method;
+  solver_settings["formulation"] = names.formulation;
+  solver_settings["jacobian"] = names.jacobian;
   solver_settings["rtol"] = r.stats.rtol;
   solver_settings["atol"] = r.stats.atol;
   out["solver_settings"] = solver_settings;

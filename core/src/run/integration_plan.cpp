@@ -49,9 +49,9 @@ std::vector<double> Tolerances::difference_scales(const std::vector<double>& ato
   return scales;
 }
 
-std::string IntegrationPlan::jacobian_name() const {
-  if (!newton) return "none";
-  return std::string(name_of(settings.user_jacobian ? JacobianKind::structured : JacobianKind::difference_quotients));
+std::optional<JacobianKind> IntegrationPlan::jacobian() const {
+  if (!newton) return std::nullopt;
+  return settings.user_jacobian ? JacobianKind::structured : JacobianKind::difference_quotients;
 }
 
 IntegrationPlan plan_integration(const Scene& scene, const Model& m, double factor) {

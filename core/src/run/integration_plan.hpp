@@ -59,8 +59,8 @@ struct IntegrationPlan {
   IntegratorSettings settings;  ///< t_stop and atol aside (the run loop sets them)
   Formulation formulation = Formulation::baumgarte;
   bool newton = false;          ///< the method iterates with Newton (uses a Jacobian)
-  /// "structured", "difference_quotients", or "none" (no Newton)
-  std::string jacobian_name() const;
+  /// The Newton iteration's Jacobian (none: the method does not iterate with Newton)
+  std::optional<JacobianKind> jacobian() const;
 };
 
 /// The plan for `scene` on `m` at rtol × `factor`.

@@ -40,7 +40,7 @@ const std::vector<ResultField>& metric_fields() {
                         sm.long_name, true});
     fields.push_back({"periodicity", "1", false, [](const RunResult& r) { return known(r.metrics.periodicity); },
                       "largest cycle-to-cycle journal orbit distance over the metric cycles / clearance (NaN: unknown)"});
-    // Error bars (set_errors, steady_cycle.cpp): NaN without simulation.error_bars.
+    // Error bars (set_errors, error_bars.cpp): NaN without simulation.error_bars.
     for (const SteadyMetric& sm : steady_metrics())
       fields.push_back({std::string(sm.name) + "_error", sm.unit, false,
                         [e = sm.error](const RunResult& r) { return r.metrics.*e; },
@@ -280,7 +280,7 @@ void write_run_file(const std::string& path, const std::string& scene_text, cons
     h5::Group m = f.require_group("metrics");
     std::vector<std::string> units;
     m.set_attribute("classification", classification(r));
-    m.set_attribute("steady_method", r.steady.method);
+    m.set_attribute("steady_method", std::string(name_of(r.steady.method)));
     m.set_attribute_int64("missing_value", kMissingInteger);  // of its integer attributes; floats: NaN
     for (const auto& fld : metric_fields()) put(m, fld, r);
     // Every Floquet multiplier (the columns above hold the four largest).
@@ -291,9 +291,10 @@ void write_run_file(const std::string& path, const std::string& scene_text, cons
     if (has_energy_balance(r))
       for (const auto& fld : energy_fields()) m.set_attribute(fld.name, fld.get(r));
     h5::Group sv = f.require_group("solver");
-    sv.set_attribute("method", r.stats.method);
-    sv.set_attribute("formulation", r.stats.formulation);
-    sv.set_attribute("jacobian", r.stats.jacobian);
+    const SolverSettingNames names = setting_names(r.stats);
+    sv.set_attribute("method", names.method);
+    sv.set_attribute("formulation", names.formulation);
+    sv.set_attribute("jacobian", names.jacobian);
     sv.set_attribute("rtol", r.stats.rtol);
     sv.set_attribute("atol", r.stats.atol);
     sv.set_attribute_int64("missing_value", kMissingInteger);

@@ -161,9 +161,10 @@ bool Runner::start_integrator() {
   is.t_stop = t_stop_;
   res_.stats.rtol = is.rtol;
   res_.stats.atol = tol_.reported_atol();
-  res_.stats.method = name_of(sol.method);
-  res_.stats.formulation = name_of(plan_.formulation);
-  res_.stats.jacobian = plan_.jacobian_name();
+  res_.stats.integrated = true;
+  res_.stats.method = sol.method;
+  res_.stats.formulation = plan_.formulation;
+  res_.stats.jacobian = plan_.jacobian();
   const bool energy = scene_.output.energy_balance;
   sys_ = std::make_unique<MultibodySystem>(m_, ws_, stab_, scene_.simulation.eps_limit, energy,
                                            plan_.formulation);
@@ -463,6 +464,25 @@ SegmentResult Runner::run() {
 SegmentResult run_segment(RunModel& rm, const SegmentOptions& opt) {
   Runner r(rm, opt);
   return r.run();
+}
+
+void accumulate(SolverStats& t, const SolverStats& s) {
+  static_cast<IntegratorStats&>(t) += s;
+  using S = SolverStats;
+  for (long long S::*c : {&S::film_law_evals_jacobian, &S::observer_evals, &S::repartitions, &S::mode_switches,
+                          &S::model_evals, &S::gravity_evals, &S::film_law_evals})
+    t.*c += s.*c;
+  t.max_position_drift = std::max(t.max_position_drift, s.max_position_drift);
+  t.max_velocity_drift = std::max(t.max_velocity_drift, s.max_velocity_drift);
+  if (!t.integrated) {
+    t.integrated = s.integrated;
+    t.method = s.method;
+    t.formulation = s.formulation;
+    t.jacobian = s.jacobian;
+    t.rtol = s.rtol;
+    t.atol = s.atol;
+    t.final_time_s = s.final_time_s;
+  }
 }
 
 }  // namespace lub::detail

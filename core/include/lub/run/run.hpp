@@ -7,12 +7,15 @@
 #include <complex>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
 #include "lub/common/constants.hpp"
+#include "lub/formulation/options.hpp"
+#include "lub/integrators/method.hpp"
 #include "lub/integrators/integrator.hpp"
 #include "lub/scene/scene.hpp"
 
@@ -51,12 +54,24 @@ struct SolverStats : IntegratorStats {
   double max_position_drift = 0.0;  ///< max |Φ| over the run (m or rad)
   double max_velocity_drift = 0.0;  ///< max |Φ̇| over the run (m/s or rad/s)
   double rtol = 0.0, atol = 0.0;
-  std::string method;
+  /// The integrator's settings as they ran, set by the run's first segment (false: none ran).
+  bool integrated = false;
+  Method method = Method::cvode_bdf;
   /// The formulation integrated: the scene's, except that a mechanism without a degree of
   /// freedom runs partitioned scenes on baumgarte (nothing to partition).
-  std::string formulation;
-  std::string jacobian;             ///< "structured", "difference_quotients" or "none" (no Newton)
+  Formulation formulation = Formulation::baumgarte;
+  std::optional<JacobianKind> jacobian;  ///< the Newton iteration's Jacobian (none: no Newton iteration)
 };
+/// The settings' names as files and Python give them ("" where no segment ran; the
+/// Jacobian "none" without a Newton iteration).
+struct SolverSettingNames {
+  std::string method, formulation, jacobian;
+};
+inline SolverSettingNames setting_names(const SolverStats& s) {
+  if (!s.integrated) return {};
+  return {std::string(name_of(s.method)), std::string(name_of(s.formulation)),
+          s.jacobian ? std::string(name_of(*s.jacobian)) : std::string("none")};
+}
 
 /// Extremes over one crank cycle (or the whole run without cycles).
 struct CycleMetrics {
@@ -93,12 +108,35 @@ struct NameTable<SteadyClass> {
   }};
 };
 
-/// How the steady cycle was found, what it is and what it cost.
+/// Whether a steady cycle of this label is a periodic orbit (stable or not): the one
+/// definition behind the sweep's continuation seeds, the study file and Python.
+constexpr bool carries_orbit(SteadyClass k) {
+  return k == SteadyClass::periodic || k == SteadyClass::periodic_unstable;
+}
+
+/// What a run's steady-cycle metrics come from.
+enum class SteadyCycleMethod {
+  transient,     ///< the transient's last cycles
+  shooting,      ///< the orbit Newton found on the period map
+  continuation,  ///< shooting from a neighbour's orbit, along a path of scenes
+  slow_flow,     ///< the cycles where the slow flow got to (no orbit)
+};
+template <>
+struct NameTable<SteadyCycleMethod> {
+  static constexpr std::array<std::pair<SteadyCycleMethod, std::string_view>, 4> entries{{
+      {SteadyCycleMethod::transient, "transient"},
+      {SteadyCycleMethod::shooting, "shooting"},
+      {SteadyCycleMethod::continuation, "continuation"},
+      {SteadyCycleMethod::slow_flow, "slow_flow"},
+  }};
+};
+
+/// How the steady cycle was found, what it is and what it cost. Its label (kind), method
+/// and the run's message are decided in one place (run/verdict.cpp) from the evidence the
+/// steady stage's strategies return.
 struct SteadyCycle {
   SteadyClass kind = SteadyClass::not_converged;
-  /// what the metrics come from: "transient", "shooting", "continuation" (shooting from
-  /// a neighbour's orbit), or "slow_flow" (the cycles where the slow flow got to)
-  std::string method = "transient";
+  SteadyCycleMethod method = SteadyCycleMethod::transient;  ///< what the metrics come from
   int continuation_steps = 0;      ///< steps along the path from the neighbour (0: not continued)
   /// ρ: successive cycles' orbit distances shrink as δ_{k+1} ≈ ρ δ_k (least squares over
   /// the transient's last cycles); NaN: not enough cycles.

@@ -1,0 +1,251 @@
+// The slow-flow strategy: where shooting from the transient found no orbit, the transient's
+// slow flow followed by projective steps (steady/slow_manifold.hpp) to where the journal
+// ends up; Newton–Picard, then shooting, where it stops near an orbit; the cycles where it
+// got to measured.
+#include <algorithm>
+#include <cmath>
+
+#include "run/steady_strategies.hpp"
+#include "run/verdict.hpp"
+
+namespace lub::detail {
+
+namespace {
+
+/// The way the slow flow went: why shooting from the transient found no orbit, the last
+/// Newton's failure where the flow stopped, the flow's last leg, cycles and periods in all.
+struct SlowFlowWay {
+  std::string shooting, newton;
+  steady::SlowManifoldResult flow;
+  double cycles = 0.0;
+  long long maps = 0;
+  bool run_budget = false;    ///< the last leg was cut short by simulation.max_periods, not slow_periods
+  bool newton_tried = false;  ///< a Newton where the flow stopped found no orbit
+};
+
+enum class SlowNewton {
+  ended,        ///< an orbit, or a verdict of its own (budget, measurement): the case ends
+  none,         ///< no orbit there (or one not located): follow the flow on
+  near_wall,    ///< not tried: near the wall only a flow that has stopped counts
+  unavailable,  ///< the flow's state could not be measured: stop following
+};
+
+SlowNewton newton_where_flow_stops(SteadyContext& cx, Chart& chart, const StartState& from,
+                                   const std::vector<double>& winding, SlowFlowWay& way, SlowFlowEvidence& ev) {
+  const SteadyTuning& t = cx.tuning;
+  SteadyCycle& steady = cx.res.steady;
+  StartState at = from;
+  if (!chart.expand(from.t, way.flow.z.data(), at.qv)) return SlowNewton::unavailable;
+  const SegmentResult one = cx.measure(at, 1.0, false, 1);
+  if (one.res.status != RunStatus::ok || one.res.cycles.empty()) return SlowNewton::unavailable;
+  // Near the wall an estimate of the distance to an orbit is no evidence that the journal
+  // gets there: Newton converges there to "stable" orbits the transient from rest passes
+  // on its way into the wall. Only a flow that has stopped is.
+  if (way.flow.outcome == steady::SlowManifoldOutcome::near && one.res.cycles.back().max_eps > t.slow_near_wall)
+    return SlowNewton::near_wall;
+  Chart near(cx.rm, at, cx.sim.shooting_coordinates);
+  steady::ShootingOptions options = cx.shooting_options(near, one.res.cycles.back().max_eps);
+  options.max_iterations = t.slow_newton_iterations;
+  steady.multipliers.clear();
+  // Newton–Picard first: where the flow stops, its state is on the slow manifold, whose
+  // fast modes settle within a period. Chord steps on the monodromy there, each followed
+  // by a period, cost the monodromy's 2 n + 1 periods and two an iteration, where KINSOL
+  // takes a fresh difference Jacobian each iteration. Only where they converge does
+  // shooting take over from their point (its Newton, the multipliers, the metrics, the
+  // error bars).
+  StartState start = at;
+  {
+    std::optional<PeriodMap> period, tight;
+    cx.period_maps(period, tight, near, at, winding, 1.0, cx.transient_step_budget());
+    const Eigen::VectorXd z0 = near.reduce(at.qv);
+    const PeriodAndMonodromy there = period_and_monodromy(*period, *tight, z0, near, options.step);
+    steady::ShootingResult picard;
+    if (there.rc == 0 && !there.monodromy.failed) {
+      picard = steady::newton_picard(*period, z0, there.monodromy.M - Eigen::MatrixXd::Identity(near.size(), near.size()),
+                                     newton_picard_options(options, t.slow_newton_iterations));
+    }
+    if (period->refused() || tight->refused()) {
+      cx.budget.stopped(cx.spent(), "no Newton where the slow flow stops");
+      steady.slow_flow_cycles = way.cycles;
+      ev.outcome = SlowFlowEvidence::Outcome::newton_refused;
+      ev.newton_tried = way.newton_tried;
+      return SlowNewton::ended;
+    }
+    if (picard.outcome != steady::ShootingOutcome::converged || !near.expand(at.t, picard.z.data(), start.qv)) {
+      const bool period_failed = there.rc != 0 || there.monodromy.failed;
+      way.newton = verdict::newton_picard_failure(
+          picard, period_failed, period_failed ? (there.rc != 0 ? period->last_failure() : tight->last_failure()) : "");
+      way.newton_tried = true;
+      return SlowNewton::none;
+    }
+  }
+  ev.orbit = solve_orbit(cx, near, start, winding, cx.transient_step_budget(), options, true, OrbitSeed{});
+  const bool unlocated = steady.orbit_error > cx.sim.steady_tolerance;
+  if (verdict::accepted(ev.orbit) || (!steady.multipliers.empty() && !unlocated) || !cx.budget.note().empty()) {
+    // An orbit, or one found but not measured, or the budget spent: its own verdict.
+    steady.slow_flow_cycles = way.cycles;
+    ev.outcome = SlowFlowEvidence::Outcome::newton;
+    ev.cycles = way.cycles;
+    ev.periods = way.maps;
+    ev.shooting = way.shooting;
+    ev.newton_tried = way.newton_tried;
+    return SlowNewton::ended;
+  }
+  // No orbit, or a fixed point of the map's error (not located, near |μ| = 1): the flow at
+  // rtol/10 still moves there, so it goes on.
+  way.newton = verdict::orbit_message(ev.orbit);
+  way.newton_tried = true;
+  steady.multipliers.clear();
+  steady.orbit_error = kNaN;
+  return SlowNewton::none;
+}
+
+/// The metrics, channels, film and drift of the cycles measured where the flow got to.
+void take_slow_flow_metrics(SteadyContext& cx, SegmentResult& measured, Chart& chart, const StartState& from,
+                            const steady::SlowManifoldResult& flow) {
+  RunResult& res = cx.res;
+  SteadyCycle& steady = res.steady;
+  const std::vector<double> h = cycle_min_films(measured.res.cycles);
+  // The run's own counts stay.
+  const Metrics kept = res.metrics;
+  res.metrics = measured.res.metrics;
+  res.metrics.cycles_run = kept.cycles_run;
+  res.metrics.cycles_to_steady = kept.cycles_to_steady;
+  res.metrics.steady = false;
+  res.series = std::move(measured.res.series);
+  steady.last_cycle_min_film_m = h.back();
+  // How it drifts: the film against the flow's state some tenth of its cycles before
+  // (consecutive cycles differ by the flow's slow change and a wobble the jumps leave in
+  // the modes that decay over tens of cycles, at times larger).
+  size_t back = flow.trail.size();
+  while (back > 0 && flow.trail_cycles[back - 1] > 0.9 * flow.cycles) --back;
+  StartState earlier = from;
+  if (back > 0 && flow.trail_cycles[back - 1] < flow.cycles &&
+      chart.expand(from.t, flow.trail[back - 1].data(), earlier.qv)) {
+    const SegmentResult then = cx.measure(earlier, 1.0, false, 1);
+    if (then.res.status == RunStatus::ok && !then.res.cycles.empty())
+      steady.min_film_drift_m_per_cycle = (h.front() - then.res.cycles.back().min_film_thickness_m) /
+                                          (flow.cycles - flow.trail_cycles[back - 1]);
+  }
+}
+
+/// Where the flow got to: measured, and what it says (or, off any slow manifold, the case
+/// as shooting left it: `before`).
+void report_slow_flow(SteadyContext& cx, const RunResult& before, Chart& chart, const StartState& from,
+                      const SlowFlowWay& way, const PeriodMap& period, SlowFlowEvidence& ev) {
+  using Outcome = SlowFlowEvidence::Outcome;
+  RunResult& res = cx.res;
+  const steady::SlowManifoldResult& flow = way.flow;
+  res.steady.slow_flow_cycles = way.cycles;
+  ev.cycles = way.cycles;
+  ev.periods = way.maps;
+  ev.flow = flow.outcome;
+  ev.shooting = way.shooting;
+  ev.newton = way.newton;
+  ev.newton_tried = way.newton_tried;
+  StartState at = from;
+  SegmentResult measured;
+  if (flow.outcome != steady::SlowManifoldOutcome::failed && chart.expand(from.t, flow.z.data(), at.qv))
+    measured = cx.measure(at, 1.0, true, cx.sim.metric_cycles + 1);  // one more: each metric cycle's periodicity known
+  const bool have = measured.res.status == RunStatus::ok && !measured.res.cycles.empty();
+  if (have && !(measured.res.metrics.periodicity <= cx.tuning.slow_periodicity)) {
+    // Its own cycles where the flow got to are far from repeating: that state is on no slow
+    // manifold, and the flow says nothing. The case's account as shooting left it (its
+    // label and message untouched since), with what the flow cost.
+    const long long periods = res.steady.periods_integrated;
+    const SolverStats stats = res.stats;
+    res = before;
+    res.steady.periods_integrated = periods;
+    res.stats = stats;
+    ev.outcome = Outcome::off_manifold;
+    ev.periodicity = measured.res.metrics.periodicity;
+    return;
+  }
+  // Where the flow got to, its own cycles collapse the film: the film fails there.
+  const bool collapses = flow.outcome != steady::SlowManifoldOutcome::failed &&
+                         (measured.res.status == RunStatus::film_collapse ||
+                          measured.res.status == RunStatus::solver_failure);
+  // Stopped by simulation.max_periods (the user's budget, not the stage's own): refused.
+  const bool refused = flow.outcome == steady::SlowManifoldOutcome::refused ||
+                       (flow.outcome == steady::SlowManifoldOutcome::budget && way.run_budget) ||
+                       !cx.budget.note().empty();
+  if (collapses || (!refused && flow.outcome == steady::SlowManifoldOutcome::failed)) {
+    ev.outcome = Outcome::film_fails;
+    ev.failure = collapses ? measured.res.message : period.last_failure();
+  } else if (refused) {
+    cx.budget.stopped(cx.spent(), "the slow flow stopped after about " + std::to_string(std::lround(way.cycles)) +
+                                      " cycles");
+    ev.outcome = Outcome::refused;
+    return;
+  } else {
+    ev.outcome = flow.outcome == steady::SlowManifoldOutcome::still ? Outcome::still : Outcome::moving;
+  }
+  if (have) {
+    ev.film_at_end = res.steady.last_cycle_min_film_m;
+    take_slow_flow_metrics(cx, measured, chart, from, flow);
+    ev.measured = true;
+  }
+}
+
+}  // namespace
+
+SlowFlowEvidence follow_slow_flow(SteadyContext& cx) {
+  const SteadyTuning& t = cx.tuning;
+  SlowFlowEvidence ev;
+  if (cx.boundaries.size() < 2) return ev;
+  const RunResult before = cx.res;  // the case as shooting left it, should the flow not hold
+  const StartState from = cx.end;
+  Chart chart(cx.rm, from, cx.sim.shooting_coordinates);
+  if (chart.size() == 0) return ev;
+  const std::vector<double> winding = cx.transient_winding();
+  // The slow flow at rtol × tighten_factor: it creeps by less than the default map's
+  // error per period.
+  std::optional<PeriodMap> period, tight;
+  cx.period_maps(period, tight, chart, from, winding, t.tighten_factor, cx.transient_step_budget());
+  steady::SlowManifoldOptions o;
+  o.scales = chart.residual_units();
+  o.hand_over = 10.0 * cx.sim.steady_tolerance;
+  // Near the wall no jump moves the journal by more than half its gap at the transient's
+  // end: there the film's forces change over a fraction of the gap, and the printed law's
+  // map is not smooth (ε̇ = 0 switches, sliding), so a jump's error estimate can miss a
+  // jump that leaves the slow manifold.
+  const double max_eps = cx.res.cycles.empty() ? kNaN : cx.res.cycles.back().max_eps;
+  if (max_eps > 0.0 && max_eps < 1.0) o.max_jump = std::min(o.max_jump, 0.5 * (1.0 - max_eps));
+  // The flow has stopped where it moves by less than the map's own error a period (~10 rtol
+  // in the clearance's unit at rtol/10).
+  o.still = 100.0 * cx.scene.solver.rtol * t.tighten_factor;
+  // Each jump's error at most a share of the jump (SlowManifoldOptions::jump_relative), or
+  // the map's own error where the flow barely moves: the error of a jump along the flow is
+  // an error in when the journal gets there, and the flow's cycle count is its answer.
+  o.jump_tolerance = o.still;
+  SlowFlowWay way;
+  way.shooting = before.message;
+  Eigen::VectorXd z = chart.reduce(from.qv);
+  for (int attempt = 0;; ++attempt) {
+    way.run_budget = cx.budget.left(cx.spent()) < t.slow_periods - way.maps;
+    o.max_maps = std::min<long long>(t.slow_periods - way.maps, cx.budget.left(cx.spent()));
+    way.flow = steady::follow_slow_manifold(*period, z, o);
+    way.cycles += way.flow.cycles;
+    way.maps += way.flow.maps;
+    z = way.flow.z;
+    const bool stopped = way.flow.outcome == steady::SlowManifoldOutcome::near ||
+                         way.flow.outcome == steady::SlowManifoldOutcome::still;
+    if (!stopped) break;
+    if (attempt >= t.slow_newton_tries &&
+        !(way.flow.outcome == steady::SlowManifoldOutcome::still && way.newton.empty())) {
+      // Newton found no orbit where the flow seemed to stop: follow it on, without asking again.
+      if (way.flow.outcome == steady::SlowManifoldOutcome::still || o.hand_over == 0.0) break;
+      o.hand_over = 0.0;
+      continue;
+    }
+    const SlowNewton tried = newton_where_flow_stops(cx, chart, from, winding, way, ev);
+    if (tried == SlowNewton::ended) return ev;
+    if (tried == SlowNewton::unavailable) break;
+    // Not close enough, or too close to the wall to trust an estimate: follow it further.
+    o.hand_over = tried == SlowNewton::near_wall ? 0.0 : o.hand_over / 10.0;
+  }
+  report_slow_flow(cx, before, chart, from, way, *period, ev);
+  return ev;
+}
+
+}  // namespace lub::detail
