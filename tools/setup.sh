@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages the project needs, if any is missing.
 # Runs `apt-get update` once, and only when something must be installed.
+# In a git work tree whose core.hooksPath is unset, enables tools/hooks (commit-msg).
 set -euo pipefail
 
 PACKAGES=(
