@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages the project needs, if any is missing.
 # Runs `apt-get update` once, and only when something must be installed.
+# In a git work tree whose core.hooksPath is unset, enables tools/hooks (commit-msg).
 set -euo pipefail
 
 PACKAGES=(
@@ -39,4 +40,17 @@ if ((${#missing[@]})); then
   $SUDO apt-get install -y --no-install-recommends "${missing[@]}"
 else
   echo "setup: all Debian packages present" >&2
+fi
+
+# The commit-message rule (tools/hooks/commit-msg, docs/guide/contributing.md) as git's
+# commit-msg hook, in a git work tree whose core.hooksPath is not set yet.
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+if command -v git >/dev/null && git -C "$root" rev-parse --is-inside-work-tree >/dev/null 2>&1; then
+  hooks="$(git -C "$root" config --get core.hooksPath || true)"
+  if [ -z "$hooks" ]; then
+    git -C "$root" config core.hooksPath tools/hooks
+    echo "setup: commit messages checked before each commit (git config core.hooksPath tools/hooks)" >&2
+  elif [ "$hooks" != "tools/hooks" ]; then
+    echo "setup: core.hooksPath is $hooks: tools/hooks/commit-msg not enabled" >&2
+  fi
 fi

@@ -4,8 +4,8 @@
     PYTHONPATH=build/python /usr/bin/python3 tools/tolerance_agreement.py default.h5 tight.h5 [--markdown]
 
 The two files are the same grid run twice, the second with a tighter tolerance in its
-`set` (e.g. "/solver/rtol": 1e-9 against the scene's 1e-8: docs/theory/steady-cycles.md,
-"against the same grid at rtol ÷ 10"), or by another route (the same grid as long
+`set` (e.g. "/solver/rtol": 1e-9 against the scene's 1e-8: docs/validation/steady-cycles.md,
+"Against the same grid at rtol/10"), or by another route (the same grid as long
 transients, "/simulation/steady": "transient"). Cases are matched by their axes' values (the
 /cases attribute `axes`), not by hash (the hash includes the tolerance). It prints:
 

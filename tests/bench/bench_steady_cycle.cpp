@@ -1,4 +1,4 @@
-// What a steady cycle costs, and what its accuracy costs (docs/theory/steady-cycles.md):
+// What a steady cycle costs, and what its accuracy costs (docs/validation/steady-cycles.md):
 // `simulation.steady = auto` (the study default) on four cells of the full factorial, at
 // the scene's rtol 1e-8 and ten and a hundred times tighter, against the 40-cycle
 // transient alone. For each: the label, h_min and its error bar (the orbit re-solved at
