@@ -218,7 +218,7 @@ struct SimulationSpec {
 
 /// Periods one search for an orbit (shooting or auto after its transient, a continuation
 /// path) may spend by default: 5 times the most an auto case of full_factorial.json takes
-/// in all (804 periods, 40 cycles of transient included; docs/theory/steady-cycles.md, budgets).
+/// in all (804 periods, 40 cycles of transient included; docs/validation/steady-cycles.md).
 inline constexpr long long kSteadyStagePeriods = 4000;
 /// Periods the period map's confirmations of a transient's steady verdict may spend by
 /// default: each P(z) and the monodromy's 2 n central differences, n the shooting unknowns
