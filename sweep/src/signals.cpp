@@ -3,6 +3,8 @@
 // under an MPI launcher.
 #include "signals.hpp"
 
+#include <fmt/format.h>
+
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -42,11 +44,11 @@ void Interrupts::leave(int sig) {
   if (leaving_.exchange(true))
     for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));  // the other thread leaves
   if (have_file_) {
-    std::fprintf(stderr, "lubsweep: interrupted: %zu of %zu cases saved in %s; run the same command to resume\n",
-                 saved_.load(), total_.load(), file_->c_str());
+    fmt::print(stderr, "lubsweep: interrupted: {} of {} cases saved in {}; run the same command to resume\n",
+               saved_.load(), total_.load(), *file_);
     ::unlink(lock_file_->c_str());
   } else {
-    std::fprintf(stderr, "lubsweep: interrupted; nothing written\n");
+    fmt::print(stderr, "lubsweep: interrupted; nothing written\n");
   }
   std::fflush(stdout);
   std::fflush(stderr);

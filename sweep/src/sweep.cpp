@@ -3,6 +3,7 @@
 // signal handling in signals.cpp.
 #include "lub/sweep/sweep.hpp"
 
+#include <fmt/format.h>
 #include <mpi.h>
 
 #include <chrono>
@@ -44,27 +45,27 @@ int prepare(const Options& o, Grid& grid, ResumeState& resume, bool& reuse_file,
   try {
     grid = load_grid(o.grid);
   } catch (const InputError& e) {
-    std::fprintf(stderr, "lubsweep: %s: %s\n", o.grid.c_str(), e.what());
+    fmt::print(stderr, "lubsweep: {}: {}\n", o.grid, e.what());
     return kExitBadInput;
   }
   // Plausibility warnings: once per grid (each distinct one), stored in the study file; errors under --strict.
   for (const std::string& w : grid.warnings)
-    std::fprintf(stderr, "lubsweep: %s%s%s\n", o.strict ? (o.grid + ": ").c_str() : "warning: ", w.c_str(),
-                 o.strict ? "; refused under --strict" : "");
+    fmt::print(stderr, "lubsweep: {}{}{}\n", o.strict ? o.grid + ": " : "warning: ", w,
+               o.strict ? "; refused under --strict" : "");
   if (o.strict && !grid.warnings.empty()) return kExitBadInput;
   if (o.check) return 0;
   if (const auto problem = output_path_problem(o.output)) {
-    std::fprintf(stderr, "lubsweep: %s\n", problem->c_str());
+    fmt::print(stderr, "lubsweep: {}\n", *problem);
     return kExitBadInput;
   }
   // One sweep per output file: the lock is held until this sweep ends (run_sweep).
   try {
     lock = OutputLock(o.output);
   } catch (const InputError& e) {
-    std::fprintf(stderr, "lubsweep: %s\n", e.what());
+    fmt::print(stderr, "lubsweep: {}\n", e.what());
     return kExitBadInput;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "lubsweep: %s\n", e.what());
+    fmt::print(stderr, "lubsweep: {}\n", e.what());
     return kExitBadInput;
   }
   reuse_file = false;
@@ -73,11 +74,10 @@ int prepare(const Options& o, Grid& grid, ResumeState& resume, bool& reuse_file,
       resume = read_existing(o.output, grid, o.retry_failed, build_revision(), o.drop_other_cases);
       reuse_file = true;
     } catch (const InputError& e) {
-      std::fprintf(stderr, "lubsweep: %s\n", e.what());
+      fmt::print(stderr, "lubsweep: {}\n", e.what());
       return kExitBadInput;
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "lubsweep: -o %s: cannot read it: %s (use --restart to overwrite it)\n", o.output.c_str(),
-                   e.what());
+      fmt::print(stderr, "lubsweep: -o {}: cannot read it: {} (use --restart to overwrite it)\n", o.output, e.what());
       return kExitBadInput;
     }
   }
@@ -85,40 +85,40 @@ int prepare(const Options& o, Grid& grid, ResumeState& resume, bool& reuse_file,
 }
 
 void list_cases(const Grid& g) {
-  std::printf("%s: %zu cases, %zu axes, %zu sub-grids\n", g.file.c_str(), g.cases.size(), g.axes.size(),
-              g.blocks.size());
+  fmt::print("{}: {} cases, {} axes, {} sub-grids\n", g.file, g.cases.size(), g.axes.size(), g.blocks.size());
   for (const Block& b : g.blocks) {
-    std::printf("  grid %-16s %-9s %zu cases", b.name.c_str(), b.factorial ? "factorial" : "list", b.case_ids.size());
+    fmt::print("  grid {:<16} {:<9} {} cases", b.name, b.factorial ? "factorial" : "list", b.case_ids.size());
     if (b.factorial && !b.shape.empty()) {
-      std::printf(" (");
+      fmt::print(" (");
       for (std::size_t i = 0; i < b.shape.size(); ++i)
-        std::printf("%s%zu %s", i ? " x " : "", b.shape[i], g.axes[static_cast<std::size_t>(b.axes[i])].name.c_str());
-      std::printf(")");
+        fmt::print("{}{} {}", i ? " x " : "", b.shape[i], g.axes[static_cast<std::size_t>(b.axes[i])].name);
+      fmt::print(")");
     }
-    std::printf("\n");
+    fmt::print("\n");
   }
-  for (const Case& c : g.cases) std::printf("  %s %.12s  %s\n", c.name.c_str(), c.hash.c_str(), c.label.c_str());
+  for (const Case& c : g.cases) fmt::print("  {} {:.12}  {}\n", c.name, c.hash, c.label);
 }
 
 /// The opening lines on stderr: what runs, what the file holds.
 void print_start(const Options& o, const Grid& grid, const ResumeState& resume, bool reuse_file, int nranks,
                  std::size_t to_run) {
   if (!o.quiet) {
-    std::fprintf(stderr, "lubsweep: %s: %zu cases on %d rank%s", o.grid.c_str(), grid.cases.size(), nranks,
-                 nranks > 1 ? "s" : "");
+    fmt::print(stderr, "lubsweep: {}: {} cases on {} rank{}", o.grid, grid.cases.size(), nranks, nranks > 1 ? "s" : "");
     if (reuse_file)
-      std::fprintf(stderr, "; %s holds %zu of them (%zu to run)", o.output.c_str(), resume.done.size(), to_run);
-    std::fprintf(stderr, "\n");
+      fmt::print(stderr, "; {} holds {} of them ({} to run)", o.output, resume.done.size(), to_run);
+    fmt::print(stderr, "\n");
     if (resume.other_rows)
-      std::fprintf(stderr, "lubsweep: dropping %zu rows of %s that are not cases of this grid\n", resume.other_rows,
-                   o.output.c_str());
+      fmt::print(stderr, "lubsweep: dropping {} rows of {} that are not cases of this grid\n", resume.other_rows,
+                 o.output);
     if (resume.incompatible_rows)
-      std::fprintf(stderr, "lubsweep: %s has not every result column of this build (another version?): its %zu rows are not reused\n",
-                   o.output.c_str(), resume.incompatible_rows);
+      fmt::print(stderr,
+                 "lubsweep: {} has not every result column of this build (another version?): its {} rows are not "
+                 "reused\n",
+                 o.output, resume.incompatible_rows);
     if (resume.other_revision)
-      std::fprintf(stderr, "lubsweep: %zu rows of %s were computed by another build revision: running them again\n",
-                   resume.other_revision, o.output.c_str());
-    if (resume.retried) std::fprintf(stderr, "lubsweep: running %zu failed cases again\n", resume.retried);
+      fmt::print(stderr, "lubsweep: {} rows of {} were computed by another build revision: running them again\n",
+                 resume.other_revision, o.output);
+    if (resume.retried) fmt::print(stderr, "lubsweep: running {} failed cases again\n", resume.retried);
   }
 }
 
@@ -139,7 +139,7 @@ int coordinate(const Options& o, const Grid& grid, const ResumeState& resume, bo
   try {
     writer = std::make_unique<StudyWriter>(o.output, grid, resume.done, reuse_file ? o.output : std::string());
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "lubsweep: cannot write %s: %s\n", o.output.c_str(), e.what());
+    fmt::print(stderr, "lubsweep: cannot write {}: {}\n", o.output, e.what());
     transport.abort(kExitIoError);
   }
 
@@ -158,7 +158,7 @@ int coordinate(const Options& o, const Grid& grid, const ResumeState& resume, bo
       what();
       interrupts.saved(writer->rows() - writer->pending());
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "lubsweep: cannot write %s: %s\n", o.output.c_str(), e.what());
+      fmt::print(stderr, "lubsweep: cannot write {}: {}\n", o.output, e.what());
       transport.abort(kExitIoError);
     }
   };
@@ -181,20 +181,20 @@ int coordinate(const Options& o, const Grid& grid, const ResumeState& resume, bo
     const Case& c = grid.cases.at(static_cast<std::size_t>(r.case_id));
     write([&] { writer->append(r); });
     const std::string line = progress.record(c, r, seconds_since(t0));
-    if (!o.quiet) std::fprintf(stderr, "lubsweep: %s\n", line.c_str());
+    if (!o.quiet) fmt::print(stderr, "lubsweep: {}\n", line);
     if (o.kill_after >= 0 && ++new_rows >= o.kill_after) {  // tests only: killed with these rows on disk
       writer->flush();
       std::raise(SIGKILL);
     }
   };
   s.on_abort = [&](const CaseResult& r) {
-    std::fprintf(stderr, "lubsweep: %s failed (%s: %s); on_failure = abort: stopping\n",
-                 grid.cases.at(static_cast<std::size_t>(r.case_id)).name.c_str(), r.status.c_str(), r.message.c_str());
+    fmt::print(stderr, "lubsweep: {} failed ({}: {}); on_failure = abort: stopping\n",
+               grid.cases.at(static_cast<std::size_t>(r.case_id)).name, r.status, r.message);
   };
   try {
     schedule(grid, queue, transport, s);
   } catch (const TransportError& e) {
-    std::fprintf(stderr, "lubsweep: %s\n", e.what());
+    fmt::print(stderr, "lubsweep: {}\n", e.what());
     transport.abort(kExitIoError);
   }
 
@@ -209,17 +209,17 @@ int finish(const Options& o, const Grid& grid, StudyWriter& writer, const Progre
     writer.finalize();
     detail::Interrupts::process().saved(writer.rows());
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "lubsweep: cannot write %s: %s\n", o.output.c_str(), e.what());
+    fmt::print(stderr, "lubsweep: cannot write {}: {}\n", o.output, e.what());
     return kExitIoError;
   }
   if (!o.quiet)
-    std::fprintf(stderr, "lubsweep: wrote %s: %zu of %zu cases, %zu not ok, %s\n", o.output.c_str(), progress.done(),
-                 grid.cases.size(), progress.failed(), format_duration(seconds_since(t0)).c_str());
+    fmt::print(stderr, "lubsweep: wrote {}: {} of {} cases, {} not ok, {}\n", o.output, progress.done(),
+               grid.cases.size(), progress.failed(), format_duration(seconds_since(t0)));
   if (o.summary) {
     try {
       print_summary(o.output, stdout);
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "lubsweep: %s: %s\n", o.output.c_str(), e.what());
+      fmt::print(stderr, "lubsweep: {}: {}\n", o.output, e.what());
       return kExitIoError;
     }
   }
@@ -237,7 +237,7 @@ int run_sweep(const Options& o) {
     try {
       print_summary(o.summary_of, stdout);
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "lubsweep: --summary %s: %s\n", o.summary_of.c_str(), e.what());
+      fmt::print(stderr, "lubsweep: --summary {}: {}\n", o.summary_of, e.what());
       return kExitBadInput;
     }
     return 0;
