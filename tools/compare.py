@@ -2,7 +2,7 @@
 """Compare two outputs: one tool, one subcommand per question (each in tools/compare/).
 
     /usr/bin/python3 tools/compare.py identical A.h5 B.h5 [--ignore NAME ...]
-    PYTHONPATH=build/python /usr/bin/python3 tools/compare.py study STUDY.h5 BASELINE.h5 [--rtol R] [--tol M=R[:A]|skip]
+    PYTHONPATH=build/python /usr/bin/python3 tools/compare.py study STUDY.h5 BASELINE.h5 [--rtol R] [--tol ...]
     PYTHONPATH=build/python /usr/bin/python3 tools/compare.py nightly STUDY.h5 [--baseline CSV] [--report DIR] [--accept]
     PYTHONPATH=build/python /usr/bin/python3 tools/compare.py tolerance DEFAULT.h5 TIGHT.h5 [--markdown]
     /usr/bin/python3 tools/compare.py builds OLD_BUILD NEW_BUILD [--full-factorial]
@@ -65,7 +65,8 @@ def main(argv=None):
                        description="two builds on the same cases: every file and report the same")
     b.add_argument("old", help="the build directory of the old revision")
     b.add_argument("new", help="the build directory of the new revision")
-    b.add_argument("--full-factorial", action="store_true", help="also configs/grids/full_factorial.json (~4 min a build)")
+    b.add_argument("--full-factorial", action="store_true",
+                   help="also configs/grids/full_factorial.json (~4 min a build)")
     b.set_defaults(run=run_builds)
     args = ap.parse_args(argv)
     try:

@@ -28,7 +28,7 @@ while (($#)); do
   shift
 done
 py=/usr/bin/python3
-# nightly.py reads the study with lubjoint.study (the build's Python package).
+# compare.py nightly reads the study with lubjoint.study (the build's Python package).
 export PYTHONPATH="$build_dir/python${PYTHONPATH:+:$PYTHONPATH}"
 if ((build)); then bash "$root/tools/build.sh"; fi
 lubsweep="$build_dir/sweep/lubsweep"
