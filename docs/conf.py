@@ -1,7 +1,7 @@
-"""Sphinx configuration of the lubjoint documentation site (built by tools/docs.sh).
+"""Sphinx configuration of the lubjoint documentation site (built by tools/docs/site.sh).
 
 The pages are Markdown (MyST); the Python API comes from lubjoint's docstrings (autodoc),
-imported from the build tree: LUB_PYTHON_DIR (tools/docs.sh sets it), else ../build/python.
+imported from the build tree: LUB_PYTHON_DIR (tools/docs/site.sh sets it), else ../build/python.
 """
 import os
 import sys

@@ -53,14 +53,35 @@ TEST(ProgramsCli, EveryProgramAndSubcommandAnswersHelpWithItsOptions) {
         "--cavitation", "--n-theta", "--n-z", "--groove", "--strict"}},
       {"/core/lubbearing", "steady -h", {"--load-N"}},
       {"/sweep/lubsweep", "--help",
-       {"GRID.json", "--output", "--restart", "--drop-other-cases", "--retry-failed", "--check", "--strict",
-        "--summary", "--no-summary", "--quiet", "--version", "/cases", "/grids", "/scene_patches", "/series"}},
+       {"GRID.json", "-o,--output STUDY.h5", "--restart", "--drop-other-cases", "--retry-failed", "--check",
+        "--strict", "--summary STUDY.h5", "--no-summary", "-q,--quiet", "--version", "/cases", "/grids",
+        "/scene_patches", "/series", "mpirun -np N lubsweep GRID.json -o STUDY.h5", "Exit status"}},
+      {"/sweep/lubsweep", "-h", {"--output"}},
   };
   for (const auto& c : cases) {
     const Result r = run(c.path, c.args);
     EXPECT_EQ(r.status, 0) << c.path << " " << c.args << "\n" << r.out;
     for (const std::string& m : c.mentions)
       EXPECT_NE(r.out.find(m), std::string::npos) << c.path << " " << c.args << " does not name " << m << "\n" << r.out;
+  }
+  // Every option of every program's help says what it does: a description after its name.
+  for (const Program& p : kPrograms) {
+    const std::string help = run(p.path, "--help").out;
+    const std::regex option(R"(^  (-\S+)( [A-Z][A-Za-z0-9.=_]*( \.\.\.)?)? *(.*)$)");
+    std::size_t options = 0;
+    std::size_t from = help.find("\nOptions:\n");
+    ASSERT_NE(from, std::string::npos) << p.name << "\n" << help;
+    for (std::size_t at = help.find('\n', from + 1) + 1; at < help.size() && help[at] != '\n';) {
+      const std::size_t end = help.find('\n', at);
+      const std::string line = help.substr(at, end - at);
+      std::smatch m;
+      if (std::regex_match(line, m, option)) {
+        ++options;
+        EXPECT_FALSE(m[4].str().empty()) << p.name << ": " << m[1] << " has no description\n" << help;
+      }
+      at = end + 1;
+    }
+    EXPECT_GE(options, 2u) << p.name << "\n" << help;
   }
   // The help describes the files as they are: the study file has no /scenes group.
   EXPECT_EQ(run("/sweep/lubsweep", "--help").out.find("/scenes"), std::string::npos);

@@ -665,6 +665,24 @@ TEST(SweepOptions, CommandLine) {
   Options h;
   EXPECT_FALSE(parse_options({"--help"}, h, help, text));
   EXPECT_TRUE(help);
+  // CLI11's generated help: every option with its value's name and its description, and
+  // the exit statuses.
+  for (const char* line : {"-h,--help                   print this text and exit",
+                           "-o,--output STUDY.h5        the study file (required)",
+                           "--restart                   ignore an existing output file",
+                           "--drop-other-cases          resume, dropping the file's rows",
+                           "--retry-failed              run again the cases the file records as not ok",
+                           "--check                     validate the grid and list its cases",
+                           "--strict                    a plausibility warning",
+                           "--summary STUDY.h5          print the study's table and exit",
+                           "--no-summary                no table at the end",
+                           "-q,--quiet                  no progress lines on stderr",
+                           "--version                   print the version", "grid GRID.json",
+                           "Exit status: 0 the study is complete", "130/143 interrupted"})
+    EXPECT_NE(text.find(line), std::string::npos) << "the help lacks \"" << line << "\":\n" << text;
+  Options short_help;
+  EXPECT_FALSE(parse_options({"g.json", "-h"}, short_help, help, text));
+  EXPECT_TRUE(help) << "-h anywhere asks for the help";
   Options r;
   EXPECT_EQ(*parse_options({"g.json", "-o", "x", "--restart", "--retry-failed"}, r, help, text),
             "--restart and --retry-failed exclude each other");

@@ -11,7 +11,7 @@ PACKAGES=(
   libopenmpi-dev openmpi-bin
   libhdf5-dev hdf5-tools
   nlohmann-json3-dev
-  libssl-dev libcli11-dev
+  libssl-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev googletest
   libbenchmark-dev
   python3-numpy python3-h5py python3-matplotlib

@@ -6,10 +6,11 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <utility>
+
+#include <fmt/format.h>
 
 #include "grid_parts.hpp"
 #include "lub/io/json_reader.hpp"
@@ -23,7 +24,7 @@ using nlohmann::json;
 namespace detail {
 
 std::string index_path(const std::string& path, std::size_t i) {
-  return path + "[" + std::to_string(i) + "]";
+  return fmt::format("{}[{}]", path, i);
 }
 
 std::string key_path(const std::string& path, const std::string& key) {
@@ -312,18 +313,12 @@ void expand_blocks(Grid& g, Context& cx, std::vector<PendingBlock>& pending) {
 std::string case_name(int id, std::size_t total) {
   int width = 4;
   for (std::size_t t = total > 0 ? total - 1 : 0; t >= 10000; t /= 10) ++width;
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "case_%0*d", width, id);
-  return buf;
+  return fmt::format("case_{:0{}d}", id, width);
 }
 
 std::string value_text(const json& v) {
   if (v.is_string()) return v.get<std::string>();
-  if (v.is_number_float()) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%g", v.get<double>());
-    return buf;
-  }
+  if (v.is_number_float()) return fmt::format("{:g}", v.get<double>());
   if (v.is_null()) return "-";
   return v.dump();
 }

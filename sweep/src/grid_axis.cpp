@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include <fmt/format.h>
+
 #include "grid_parts.hpp"
 #include "lub/io/json_reader.hpp"
 
@@ -99,14 +101,14 @@ Axis named_axis(AxisKind kind, const Context& cx, const std::string& path) {
       fail(path, json(axis.name), "the base scene has no driver" +
                                       (cx.driver_name.empty() ? std::string() : " named \"" + cx.driver_name + "\"") +
                                       " (set grid.driver)");
-    axis.pointer = "/drivers/" + std::to_string(*cx.driver) + "/" + m.key;
+    axis.pointer = fmt::format("/drivers/{}/{}", *cx.driver, m.key);
   } else {
     if (!cx.joint)
       fail(path, json(axis.name),
            "the base scene has no lubricated_revolute joint" +
                (cx.joint_name.empty() ? std::string(" named by metrics.joint") : " named \"" + cx.joint_name + "\"") +
                " (set grid.joint)");
-    axis.pointer = "/joints/" + std::to_string(*cx.joint) + "/" + m.key;
+    axis.pointer = fmt::format("/joints/{}/{}", *cx.joint, m.key);
   }
   axis.units = m.units;
   axis.numeric = kind != AxisKind::force_law;

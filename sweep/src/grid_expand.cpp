@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <utility>
 
+#include <fmt/format.h>
+
 #include "grid_parts.hpp"
 #include "lub/io/json_reader.hpp"
 #include "lub/sweep/hash.hpp"
@@ -81,7 +83,7 @@ void Expander::declare_axes(Block& b, const json& axes, const std::string& path)
 void Expander::factorial(Block& b, const std::string& path) {
   std::size_t n = 1;
   for (std::size_t e : b.shape) {
-    if (n > kMaxCases / e) throw InputError(path + ": the full factorial has more than " + std::to_string(kMaxCases) + " cases");
+    if (n > kMaxCases / e) throw InputError(fmt::format("{}: the full factorial has more than {} cases", path, kMaxCases));
     n *= e;
   }
   std::vector<std::size_t> at(b.shape.size(), 0);
@@ -178,7 +180,7 @@ int Expander::add_case(json scene, const std::string& label, const std::string& 
     return found->second;
   }
   if (!valid) warnings = parse_or_blame(scene, what, given).warnings;
-  if (g_.cases.size() >= kMaxCases) throw InputError("grid: more than " + std::to_string(kMaxCases) + " cases");
+  if (g_.cases.size() >= kMaxCases) throw InputError(fmt::format("grid: more than {} cases", kMaxCases));
   c.id = static_cast<int>(g_.cases.size());
   c.label = label.empty() ? "base scene" : label;
   by_hash_[c.hash] = c.id;

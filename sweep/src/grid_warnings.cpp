@@ -4,6 +4,8 @@
 #include <map>
 #include <utility>
 
+#include <fmt/format.h>
+
 #include "grid_parts.hpp"
 
 namespace lub::sweep::detail {
@@ -20,8 +22,8 @@ std::vector<std::string> distinct_warnings(const Grid& g, const std::vector<std:
   std::vector<std::string> out;
   for (const std::string& w : order) {
     const auto& [count, first] = seen.at(w);
-    out.push_back(w + "; in " + std::to_string(count) + " of " + std::to_string(g.cases.size()) +
-                  " cases (the first " + g.cases.at(first).name + ")");
+    out.push_back(
+        fmt::format("{}; in {} of {} cases (the first {})", w, count, g.cases.size(), g.cases.at(first).name));
   }
   return out;
 }

@@ -5,6 +5,8 @@
 #include <iterator>
 #include <thread>
 
+#include <fmt/format.h>
+
 namespace lub::sweep {
 
 namespace {
@@ -96,7 +98,7 @@ std::optional<WorkerMessage> MpiCoordinator::poll(std::chrono::microseconds time
     try {
       m.result = decode(bytes);
     } catch (const std::exception& e) {
-      throw TransportError("rank " + std::to_string(st.MPI_SOURCE) + ": " + e.what());
+      throw TransportError(fmt::format("rank {}: {}", st.MPI_SOURCE, e.what()));
     }
   }
   return m;

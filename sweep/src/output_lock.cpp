@@ -13,6 +13,8 @@
 #include <thread>
 #include <utility>
 
+#include <fmt/format.h>
+
 #include "lub/io/json_reader.hpp"
 
 namespace lub::sweep {
@@ -83,8 +85,7 @@ OutputLock::OutputLock(const std::string& study_path, double patience_s) : path_
   std::tm tm{};
   ::gmtime_r(&now, &tm);
   std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  const std::string content =
-      "pid " + std::to_string(::getpid()) + " on host " + host + ", since " + when + "\n";
+  const std::string content = fmt::format("pid {} on host {}, since {}\n", ::getpid(), host, when);
   if (::ftruncate(fd_, 0) != 0 || ::pwrite(fd_, content.data(), content.size(), 0) < 0) {
     // The lock holds without its text; the refusal message then says less.
   }

@@ -2,10 +2,11 @@
 // (check_format, read_existing), and the series of its reused cases (study_parts.hpp).
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <map>
 #include <stdexcept>
+
+#include <fmt/format.h>
 
 #include "lub/io/json_reader.hpp"
 #include "lub/run/run_io.hpp"
@@ -61,9 +62,7 @@ std::string row_label(const h5::Table& t, const std::vector<std::string>& axes, 
       v = t.read_strings(a).at(i);
     } else {
       const double x = t.read_doubles(a).at(i);
-      char buf[32];
-      std::snprintf(buf, sizeof buf, "%g", x);
-      v = std::isnan(x) ? "unset" : buf;
+      v = std::isnan(x) ? "unset" : fmt::format("{:g}", x);
     }
     label += (label.empty() ? "" : " ") + a + "=" + v;
   }
@@ -90,12 +89,12 @@ InputError other_cases_error(const std::string& path, const h5::Table& t, const 
   for (const auto& a : grid_axes)
     if (std::find(file_axes.begin(), file_axes.end(), a) == file_axes.end()) only_grid.push_back(a);
   const std::vector<std::string> names = t.read_strings("name");
-  std::string msg = "-o " + path + ": the file holds " + std::to_string(other.size()) + " computed case" +
-                    (other.size() == 1 ? "" : "s") + " that " + (other.size() == 1 ? "is not a case" : "are not cases") +
-                    " of the grid " + (grid.file.empty() ? std::string("given") : grid.file) + ": ";
+  std::string msg = fmt::format("-o {}: the file holds {} computed case{} that {} of the grid {}: ", path, other.size(),
+                                other.size() == 1 ? "" : "s", other.size() == 1 ? "is not a case" : "are not cases",
+                                grid.file.empty() ? std::string("given") : grid.file);
   for (std::size_t k = 0; k < other.size() && k < 5; ++k)
     msg += (k ? ", " : "") + names.at(other[k]) + row_label(t, file_axes, other[k]);
-  if (other.size() > 5) msg += ", and " + std::to_string(other.size() - 5) + " more";
+  if (other.size() > 5) msg += fmt::format(", and {} more", other.size() - 5);
   if (only_file.empty() && only_grid.empty())
     msg += "; same axes (" + joined(grid_axes) + "), other values or settings";
   else
@@ -161,9 +160,9 @@ ResumeState read_existing(const std::string& path, const Grid& grid, bool retry_
   const std::size_t n = t.rows();
   if (!has_result_columns(t)) {
     if (n > 0 && !drop_other_cases)
-      throw InputError("-o " + path + ": its " + std::to_string(n) +
-                       " rows lack result columns of this build (another version?), so they cannot be reused" +
-                       kDropHint);
+      throw InputError(fmt::format("-o {}: its {} rows lack result columns of this build (another version?), so they "
+                                   "cannot be reused{}",
+                                   path, n, kDropHint));
     st.incompatible_rows = n;
     return st;
   }

@@ -7,6 +7,8 @@
 #include <system_error>
 #include <map>
 
+#include <fmt/format.h>
+
 #include "lub/io/json_reader.hpp"
 #include "lub/sweep/study_file.hpp"
 
@@ -20,13 +22,8 @@ struct SummaryColumn {
   std::vector<std::string> cells;
 };
 
-std::string format_number(const char* format, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
 
-/// The columns of the table after `case`: the axes (numbers in %g, "-" where unset), status,
+/// The columns of the table after `case`: the axes (numbers in {:g}, "-" where unset), status,
 /// classification (`cls`), then the key metrics that `t` has, each scaled and formatted.
 void add_columns(const h5::Table& t, const std::vector<std::string>& status, const std::vector<std::string>& cls,
                  std::vector<SummaryColumn>& cols) {
@@ -37,7 +34,7 @@ void add_columns(const h5::Table& t, const std::vector<std::string>& status, con
     if (column.type == h5::ColumnType::String) {
       c.cells = t.read_strings(a);
     } else {
-      for (double v : t.read_doubles(a)) c.cells.push_back(std::isnan(v) ? "-" : format_number("%g", v));
+      for (double v : t.read_doubles(a)) c.cells.push_back(std::isnan(v) ? "-" : fmt::format("{:g}", v));
     }
     cols.push_back(std::move(c));
   }
@@ -52,25 +49,25 @@ void add_columns(const h5::Table& t, const std::vector<std::string>& status, con
     const std::vector<double> v = t.read_doubles(name);
     for (std::size_t i = 0; i < v.size(); ++i) {
       const bool shown = !without_orbit || (cls[i] != "periodic" && cls[i] != "periodic_unstable" && v[i] != 0.0);
-      c.cells.push_back(shown && std::isfinite(v[i]) ? format_number(format, v[i] * scale) : "-");
+      c.cells.push_back(shown && std::isfinite(v[i]) ? fmt::format(fmt::runtime(format), v[i] * scale) : "-");
     }
     cols.push_back(std::move(c));
   };
-  numeric("h_min[um]", "min_film_thickness_m", "%.3f", 1e6);
-  numeric("max_eps", "max_eps", "%.4f", 1.0);
-  numeric("peak_F[N]", "peak_reaction_N", "%.4g", 1.0);
-  numeric("peak_a[m/s2]", "peak_acceleration_m_s2", "%.4g", 1.0);
-  numeric("periodicity", "periodicity", "%.2e", 1.0);
-  numeric("|mu|max", "multiplier_1_modulus", "%.4f", 1.0);
+  numeric("h_min[um]", "min_film_thickness_m", "{:.3f}", 1e6);
+  numeric("max_eps", "max_eps", "{:.4f}", 1.0);
+  numeric("peak_F[N]", "peak_reaction_N", "{:.4g}", 1.0);
+  numeric("peak_a[m/s2]", "peak_acceleration_m_s2", "{:.4g}", 1.0);
+  numeric("periodicity", "periodicity", "{:.2e}", 1.0);
+  numeric("|mu|max", "multiplier_1_modulus", "{:.4f}", 1.0);
   // Where a case without a steady cycle got to: the last cycle's film, how fast it changes,
   // and how many cycles after the transient its slow flow followed it (docs/theory/
   // steady-cycles.md, slow flow).
-  numeric("last_h[um]", "last_cycle_min_film_m", "%.3g", 1e6, true);
-  numeric("dh/cycle[nm]", "min_film_drift_m_per_cycle", "%.3g", 1e9, true);
-  numeric("flow[cycles]", "slow_flow_cycles", "%.0f", 1.0, true);
-  numeric("periods", "periods_integrated", "%.0f", 1.0);
-  numeric("steps", "steps", "%.0f", 1.0);
-  numeric("wall[s]", "wall_time_s", "%.2f", 1.0);
+  numeric("last_h[um]", "last_cycle_min_film_m", "{:.3g}", 1e6, true);
+  numeric("dh/cycle[nm]", "min_film_drift_m_per_cycle", "{:.3g}", 1e9, true);
+  numeric("flow[cycles]", "slow_flow_cycles", "{:.0f}", 1.0, true);
+  numeric("periods", "periods_integrated", "{:.0f}", 1.0);
+  numeric("steps", "steps", "{:.0f}", 1.0);
+  numeric("wall[s]", "wall_time_s", "{:.2f}", 1.0);
 }
 
 /// The two lines above the table: how many cases, how many ok, and the count of each
@@ -79,15 +76,21 @@ void print_counts(std::FILE* out, const std::string& path, std::size_t n, std::i
                   const std::vector<std::string>& status, const std::vector<std::string>& cls) {
   std::size_t failed = 0;
   for (const auto& s : status) failed += s != "ok";
-  std::fprintf(out, "%s: %zu of %lld cases, %zu ok, %zu not ok%s\n", path.c_str(), n, static_cast<long long>(total),
-               n - failed, failed, static_cast<std::int64_t>(n) < total ? " (incomplete: re-run to resume)" : "");
+  fmt::print(out, "{}: {} of {} cases, {} ok, {} not ok{}\n", path, n, total, n - failed, failed,
+             static_cast<std::int64_t>(n) < total ? " (incomplete: re-run to resume)" : "");
   std::map<std::string, std::size_t> by_class;
   for (const auto& c : cls) ++by_class[c];
-  std::fprintf(out, "classification:");
-  for (const auto& [name, count] : by_class) std::fprintf(out, " %s %zu,", name.c_str(), count);
-  std::fprintf(out,
-               " (h_min etc. only for periodic cycles; without one, last_h, dh/cycle and flow say where it got to:"
-               " docs/theory/steady-cycles.md)\n");
+  fmt::print(out, "classification:");
+  for (const auto& [name, count] : by_class) fmt::print(out, " {} {},", name, count);
+  fmt::print(out,
+             " (h_min etc. only for periodic cycles; without one, last_h, dh/cycle and flow say where it got to:"
+             " docs/theory/steady-cycles.md)\n");
+}
+
+/// `s` and spaces up to `width` bytes (fmt's own padding would count UTF-8 characters, and
+/// the widths are in bytes).
+std::string padded(const std::string& s, std::size_t width) {
+  return s.size() < width ? s + std::string(width - s.size(), ' ') : s;
 }
 
 /// The table: a heading line, then `n` rows, each column as wide as its widest cell.
@@ -99,12 +102,12 @@ void print_table(std::FILE* out, const std::vector<SummaryColumn>& cols, std::si
     width.push_back(w);
   }
   for (std::size_t k = 0; k < cols.size(); ++k)
-    std::fprintf(out, "%s%-*s", k ? "  " : "", static_cast<int>(width[k]), cols[k].head.c_str());
-  std::fprintf(out, "\n");
+    fmt::print(out, "{}{}", k ? "  " : "", padded(cols[k].head, width[k]));
+  fmt::print(out, "\n");
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t k = 0; k < cols.size(); ++k)
-      std::fprintf(out, "%s%-*s", k ? "  " : "", static_cast<int>(width[k]), cols[k].cells[i].c_str());
-    std::fprintf(out, "\n");
+      fmt::print(out, "{}{}", k ? "  " : "", padded(cols[k].cells[i], width[k]));
+    fmt::print(out, "\n");
   }
 }
 
@@ -137,7 +140,7 @@ void print_summary(const std::string& path, std::FILE* out) {
   print_counts(out, path, n, total, status, cls);
   print_table(out, cols, n);
   for (std::size_t i = 0; i < n; ++i)
-    if (status[i] != "ok") std::fprintf(out, "%s: %s: %s\n", names[i].c_str(), status[i].c_str(), message[i].c_str());
+    if (status[i] != "ok") fmt::print(out, "{}: {}: {}\n", names[i], status[i], message[i]);
 }
 
 }  // namespace lub::sweep

@@ -5,6 +5,7 @@
 #include <deque>
 #include <mutex>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 namespace lub::sweep {
@@ -88,7 +89,7 @@ class InProcessTransport::Coordinator final : public CoordinatorTransport {
   void send_task(int worker, const Task& task) override { box(worker).put(task); }
   void send_stop(int worker) override { box(worker).put(std::nullopt); }
   [[noreturn]] void abort(int code) override {
-    throw std::runtime_error("in-process sweep aborted (exit status " + std::to_string(code) + ")");
+    throw std::runtime_error(fmt::format("in-process sweep aborted (exit status {})", code));
   }
 
  private:

@@ -20,7 +20,7 @@
 //   build/tests/bench/bench_floor_accuracy [--repeats N] [--min-batch-ms MS]
 //                                          [--formulation joint|partitioned|baumgarte] (default: joint)
 //
-// One point (for an instruction count under callgrind, tools/floor_instructions.py):
+// One point (for an instruction count under callgrind, tools/perf/floor_instructions.py):
 //   build/tests/bench/bench_floor_accuracy --point LAW RTOL engine|floor [--formulation F]
 //                                          [--floor-kernels sundials|small]
 // runs one integration once and prints its steps per cycle and the eccentricity vector at

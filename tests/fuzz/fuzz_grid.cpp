@@ -5,7 +5,7 @@
 // accepted grid is checked: every case has a scene, a hash, a value per axis, and every
 // sub-grid's case ids are cases of the grid, as many as its shape says.
 // Built like fuzz_scene (tests/fuzz/CMakeLists.txt): a plain replay program in every build
-// (ctest fuzz_grid_replay), libFuzzer with ASan and UBSan in tools/fuzz.sh's clang build.
+// (ctest fuzz_grid_replay), libFuzzer with ASan and UBSan in tools/check/fuzz.sh's clang build.
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>

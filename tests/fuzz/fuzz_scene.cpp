@@ -8,7 +8,7 @@
 //  2. as a `--set POINTER=VALUE` assignment (first line only) applied to a small valid
 //     scene, which is then validated: this reaches the deep rules that random JSON rarely
 //     gets to.
-// Built with libFuzzer + ASan + UBSan by tools/fuzz.sh (clang), and as a plain replay
+// Built with libFuzzer + ASan + UBSan by tools/check/fuzz.sh (clang), and as a plain replay
 // program (replay_main.cpp) that ctest runs over the seed corpus in every build.
 #include <cmath>
 #include <cstdint>

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# tools/hooks/commit-msg as git's hook and tools/check_commits.sh over a range, in a scratch
+# tools/hooks/commit-msg as git's hook and tools/check/commits.sh over a range, in a scratch
 # repository: a message that follows the rule commits, a long subject, a second line that is
 # not blank and a missing body are refused with the rule named, a merge needs only its
 # subject, and the range check lists exactly the commits that skipped the hook.
@@ -11,9 +11,9 @@ trap 'rm -rf "$tmp"' EXIT
 repo="$tmp/repo"
 git init -q -b main "$repo"
 cd "$repo"
-mkdir -p tools/hooks
+mkdir -p tools/hooks tools/check
 cp "$src/tools/hooks/commit-msg" tools/hooks/
-cp "$src/tools/check_commits.sh" tools/
+cp "$src/tools/check/commits.sh" tools/check/
 git config user.name test && git config user.email test@example.invalid
 git config core.hooksPath tools/hooks
 failed=0
@@ -52,12 +52,12 @@ commit $'on a side branch\n\nTo merge it back.'
 git checkout -q main
 out="$(git merge -q --no-ff --no-edit side 2>&1)" && rc=0 || rc=$?
 check "a merge with git's message commits" 0 "$rc" "$out"
-out="$(bash tools/check_commits.sh "$base" 2>&1)" && rc=0 || rc=$?
+out="$(bash tools/check/commits.sh "$base" 2>&1)" && rc=0 || rc=$?
 check "the range check lists the commit that skipped the hook" 1 "$rc" "$out" "^$bad skipped the hook"
 n="$(grep -c '^[0-9a-f]\{7,\} ' <<<"$out" || true)"
 check "and only it" 1 "$n" "$out"
-out="$(bash tools/check_commits.sh HEAD~1 2>&1)" && rc=0 || rc=$?
+out="$(bash tools/check/commits.sh HEAD~1 2>&1)" && rc=0 || rc=$?
 check "a range of good commits and a merge passes" 0 "$rc" "$out"
-out="$(bash tools/check_commits.sh 0000000000000000000000000000000000000000 2>&1)" && rc=0 || rc=$?
+out="$(bash tools/check/commits.sh 0000000000000000000000000000000000000000 2>&1)" && rc=0 || rc=$?
 check "a base not in the clone skips" 77 "$rc" "$out" "not in this clone"
 exit "$failed"

@@ -17,8 +17,8 @@
 #       one_cycle a grid of one-cycle cases (cheap_4096.json in small) costs one period a
 #                 case in the study's default steady method and in continuation; exit 77
 #                 (skipped) without Debian's h5py
-#       tools     the Python tools on a small study (compare_study.py finds a regression,
-#                 plot_paper.py and sweep_map.py draw); exit 77 (skipped) without Debian's
+#       tools     the Python tools on a small study (compare.py study finds a regression,
+#                 plot/paper.py and plot/sweep_map.py draw); exit 77 (skipped) without Debian's
 #                 h5py, matplotlib, xarray, h5netcdf, pandas
 set -euo pipefail
 what="$1" mpiexec="$2" lubsweep="$3" compare="$4" work="$5"
@@ -180,7 +180,7 @@ tools)
   tools="$here/../../tools"
   "$py" -c "import h5py, matplotlib, numpy, xarray, h5netcdf, pandas" 2>/dev/null || { echo "no h5py/matplotlib/xarray/h5netcdf/pandas: skipped"; exit 77; }
   run 2 s.h5
-  "$py" "$tools/compare_study.py" s.h5 s.h5 -q
+  "$py" "$tools/compare.py" study s.h5 s.h5 -q
   cp s.h5 worse.h5
   "$py" - <<'PY'
 import h5py, math
@@ -191,15 +191,15 @@ with h5py.File("worse.h5", "r+") as f:
     open("edited", "w").write(f["cases/name"][i].decode())
 PY
   set +e
-  "$py" "$tools/compare_study.py" worse.h5 s.h5 -q > compare.log
+  "$py" "$tools/compare.py" study worse.h5 s.h5 -q > compare.log
   rc=$?
   set -e
-  [ "$rc" -eq 1 ] || { cat compare.log >&2; fail "compare_study.py missed a 1 % change of peak_reaction_N (exit $rc)"; }
-  grep -q "REGRESSION $(cat edited): peak_reaction_N" compare.log || { cat compare.log >&2; fail "compare_study.py message"; }
-  "$py" "$tools/plot_paper.py" s.h5 -o figures > figures.log
-  [ -s figures/fig05_reference.png ] || fail "plot_paper.py drew no reference figure"
-  "$py" "$tools/sweep_map.py" s.h5 -x speed_rpm -y force_law --fix solver.rtol=1e-6 -m max_eps -m steps -o maps > maps.log
-  [ -s maps/map_max_eps_speed_rpm_force_law.png ] || fail "sweep_map.py drew no map"
+  [ "$rc" -eq 1 ] || { cat compare.log >&2; fail "compare.py study missed a 1 % change of peak_reaction_N (exit $rc)"; }
+  grep -q "REGRESSION $(cat edited): peak_reaction_N" compare.log || { cat compare.log >&2; fail "compare.py study message"; }
+  "$py" "$tools/plot/paper.py" s.h5 -o figures > figures.log
+  [ -s figures/fig05_reference.png ] || fail "plot/paper.py drew no reference figure"
+  "$py" "$tools/plot/sweep_map.py" s.h5 -x speed_rpm -y force_law --fix solver.rtol=1e-6 -m max_eps -m steps -o maps > maps.log
+  [ -s maps/map_max_eps_speed_rpm_force_law.png ] || fail "plot/sweep_map.py drew no map"
   ;;
 *)
   fail "unknown test $what"

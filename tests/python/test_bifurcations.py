@@ -1,5 +1,5 @@
 """lubjoint.study.bifurcation_edges (core/python/lubjoint/bifurcations.py) on synthetic /cases
-tables, and its marks on tools/plot_steady.py's classification map (label python):
+tables, and its marks on tools/plot/steady.py's classification map (label python):
 
     PYTHONPATH=build/python /usr/bin/python3 -m pytest tests/python/test_bifurcations.py
 
@@ -188,7 +188,7 @@ def test_a_study_without_multiplier_columns_has_only_orbit_lost_edges():
 
 @pytest.fixture(scope="module")
 def plot_steady():
-    path = Path(__file__).resolve().parents[2] / "tools" / "plot_steady.py"
+    path = Path(__file__).resolve().parents[2] / "tools" / "plot" / "steady.py"
     spec = importlib.util.spec_from_file_location("plot_steady", path)
     mod = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mod)

@@ -1,6 +1,6 @@
 """The chain on a study lubsweep wrote: the paper grid of the nightly test (the ctest fixture
 paper_study; simulation.steady = auto, so periodic cases carry their Floquet multipliers),
-through lubjoint.study.cases, bifurcation_edges and tools/plot_steady.py (label nightly;python)."""
+through lubjoint.study.cases, bifurcation_edges and tools/plot/steady.py (label nightly;python)."""
 import math
 import subprocess
 import sys
@@ -38,7 +38,7 @@ def test_every_edge_of_the_paper_study_follows_the_rule(paper_study):
 
 
 def test_plot_steady_draws_the_edges_of_the_paper_study(source_dir, paper_study, tmp_path):
-    p = subprocess.run([sys.executable, str(source_dir / "tools" / "plot_steady.py"), str(paper_study), "-o",
+    p = subprocess.run([sys.executable, str(source_dir / "tools" / "plot" / "steady.py"), str(paper_study), "-o",
                         str(tmp_path)], capture_output=True, text=True, timeout=240)
     assert p.returncode == 0, p.stderr
     assert (tmp_path / "steady_classification.png").stat().st_size > 0

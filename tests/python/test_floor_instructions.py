@@ -1,4 +1,4 @@
-"""tools/floor_instructions.py: its interpolation, and the benchmark's one-point mode it
+"""tools/perf/floor_instructions.py: its interpolation, and the benchmark's one-point mode it
 runs under callgrind (bench_floor_accuracy --point): the engine and the floor, two
 independent routes, end the same cycles at the same place; bad input exits 2."""
 import math
@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 SOURCE = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(SOURCE / "tools"))
+sys.path.insert(0, str(SOURCE / "tools" / "perf"))
 import floor_instructions as fi  # noqa: E402
 
 BUILD = Path(os.environ.get("LUB_BUILD_DIR", SOURCE / "build"))

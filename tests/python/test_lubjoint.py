@@ -472,15 +472,17 @@ def test_one_missing_value_convention(study_file, tmp_path):
 
 def test_tools_read_study_files_only_through_lubjoint_study():
     # One reader of study files (lubjoint.study: one list of formats, one message for an old
-    # file): no tool opens HDF5 itself, except h5_identical.py, which compares any two HDF5
-    # files byte for byte and reads no study semantics.
+    # file): no tool opens HDF5 itself, except compare/identical.py, which compares any two
+    # HDF5 files byte for byte and reads no study semantics. Tools in subfolders included.
     tools = SOURCE / "tools"
-    readers = [p.name for p in sorted(tools.glob("*.py")) + sorted(tools.glob("*.sh"))
-               if p.name not in ("h5_identical.py", "setup.sh")  # setup.sh installs python3-h5py
+    scripts = sorted(tools.rglob("*.py")) + sorted(tools.rglob("*.sh"))
+    assert len(scripts) > 20, [str(p) for p in scripts]
+    readers = [str(p.relative_to(tools)) for p in scripts
+               if str(p.relative_to(tools)) not in ("compare/identical.py", "setup.sh")  # setup.sh installs python3-h5py
                and ("h5py" in p.read_text() or "open_dataset" in p.read_text())]
     assert readers == [], f"tools reading HDF5 without lubjoint.study: {readers}"
-    for p in ("compare_study.py", "nightly.py", "plot_paper.py", "plot_steady.py", "sweep_map.py",
-              "work_precision.py", "scaling_model.py", "tolerance_agreement.py"):
+    for p in ("compare/study.py", "compare/nightly.py", "compare/tolerance.py", "plot/paper.py", "plot/steady.py",
+              "plot/sweep_map.py", "perf/work_precision.py", "perf/scaling_model.py"):
         assert "from lubjoint import study" in (tools / p).read_text(), p
 
 

@@ -1,4 +1,4 @@
-"""The nightly comparison (tools/nightly.py) on the paper grid's study: it passes against
+"""The nightly comparison (tools/compare/nightly.py) on the paper grid's study: it passes against
 the committed baseline, and editing one baseline value by 1 % makes it fail, naming the
 case and the metric."""
 import csv
@@ -11,7 +11,7 @@ REFERENCE = ("0.0005", "0.4", "5000.0", "pinkus_sternlicht")  # the paper's refe
 
 
 def compare(source_dir, study, baseline, report=None):
-    cmd = [sys.executable, str(source_dir / "tools" / "nightly.py"), "compare", str(study), "--baseline", str(baseline)]
+    cmd = [sys.executable, str(source_dir / "tools" / "compare.py"), "nightly", str(study), "--baseline", str(baseline)]
     if report:
         cmd += ["--report", str(report)]
     return subprocess.run(cmd, capture_output=True, text=True)
@@ -85,4 +85,4 @@ def test_a_changed_status_and_a_missing_case_are_regressions(source_dir, paper_s
 
 def test_a_missing_baseline_is_bad_input(source_dir, paper_study, tmp_path):
     r = compare(source_dir, paper_study, tmp_path / "absent.csv")
-    assert r.returncode == 2 and "tools/nightly.sh --accept" in r.stderr, r.stderr
+    assert r.returncode == 2 and "tools/check/nightly.sh --accept" in r.stderr, r.stderr

@@ -1,4 +1,4 @@
-"""tools/scaling_model.py: the discrete-event model of lubsweep's scheduler against cases whose
+"""tools/perf/scaling_model.py: the discrete-event model of lubsweep's scheduler against cases whose
 walls follow by hand (one rank; equal cases on P ranks; a coordinator-bound grid; the
 longest case), and its command line on a small study file."""
 import json
@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 SOURCE = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(SOURCE / "tools"))
+sys.path.insert(0, str(SOURCE / "tools" / "perf"))
 import scaling_model as sm  # noqa: E402
 
 
@@ -73,7 +73,7 @@ def test_command_line_on_a_study_file(tmp_path):
                                     "finalize_s": 0.07}) + "\n")
     out = tmp_path / "model.json"
     wall1 = walls.sum() + 0.5
-    r = subprocess.run([sys.executable, str(SOURCE / "tools/scaling_model.py"), str(study), "--overhead", str(overhead),
+    r = subprocess.run([sys.executable, str(SOURCE / "tools/perf/scaling_model.py"), str(study), "--overhead", str(overhead),
                         "--wall1", str(wall1), "--ranks", "1", "2", "16", "--json", str(out),
                         "--check", f"2={study}:{wall1 / 2}"], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr

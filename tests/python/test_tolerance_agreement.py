@@ -1,4 +1,4 @@
-"""tools/tolerance_agreement.py: a study against the same grid integrated more tightly, on
+"""tools/compare.py tolerance: a study against the same grid integrated more tightly, on
 /cases tables whose answers follow by hand (labels, error bars, angles on the circle,
 cases missing), and its command line on bad input (exit 2)."""
 import math
@@ -10,8 +10,8 @@ import pandas as pd
 import pytest
 
 SOURCE = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(SOURCE / "tools"))
-import tolerance_agreement as ta  # noqa: E402
+sys.path.insert(0, str(SOURCE / "tools" / "compare"))
+import tolerance as ta  # noqa: E402
 
 
 def cases(rows):
@@ -87,7 +87,7 @@ def test_studies_of_other_axes_and_bad_files_are_refused(tmp_path):
         ta.agreement(a, b)
     bad = tmp_path / "not_a_study.h5"
     bad.write_text("nothing")
-    p = subprocess.run([sys.executable, str(SOURCE / "tools" / "tolerance_agreement.py"), str(bad), str(bad)],
+    p = subprocess.run([sys.executable, str(SOURCE / "tools" / "compare.py"), "tolerance", str(bad), str(bad)],
                        capture_output=True, text=True)
     assert p.returncode == 2, p.stderr
     assert "not_a_study.h5" in p.stderr

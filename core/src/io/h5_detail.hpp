@@ -1,7 +1,7 @@
-// What the two halves of the HDF5 layer share (internal to lub_io): error reporting, the
-// owner of a temporary HDF5 id, the string type and 1-D row transfers. h5.cpp holds the
-// RAII layer (files, groups, datasets, attributes), h5_table.cpp the table and
-// dimension-scale convention (lub/io/h5_table.hpp).
+// What the parts of the HDF5 layer share (internal to lub_io): error reporting, the owner
+// of a temporary HDF5 id, string types, dataspaces and 1-D row transfers (h5_detail.cpp).
+// h5.cpp holds the RAII layer's files, groups and datasets, h5_attribute.cpp their
+// attributes, h5_table.cpp the table and dimension-scale convention (lub/io/h5_table.hpp).
 #pragma once
 
 #include <hdf5.h>
@@ -29,6 +29,12 @@ void quiet();
 /// Close any HDF5 id (< 0: nothing), clearing the error stack.
 void close_id(hid_t id) noexcept;
 
+/// The file name and the object path of an open id ("?" if HDF5 gives none).
+std::string file_name_of(hid_t id);
+std::string object_path_of(hid_t id);
+/// `get(id)` for an open id ("" for a closed one), leaving no HDF5 error behind.
+std::string name_or_empty(hid_t id, std::string (*get)(hid_t));
+
 /// Owner of a temporary id.
 class Hid {
  public:
@@ -54,6 +60,19 @@ class Hid {
 
 /// Variable-length UTF-8 string type.
 Hid vlen_string_type(hid_t err_loc);
+/// Variable-length string type of character set `cset`.
+Hid vlen_string_type(hid_t err_loc, H5T_cset_t cset);
+/// Frees the strings HDF5 allocated into `buf` (a read of `mem_type` over `space`).
+void reclaim_vlen(hid_t mem_type, hid_t space, void* buf);
+/// The number of elements of dataspace `space` (0 on error).
+std::size_t npoints(hid_t space);
+/// `n` fixed-length strings of `size` bytes each, NUL-terminated or padded (trailing
+/// spaces dropped too if `space_padded`).
+std::vector<std::string> split_fixed_strings(const char* buf, std::size_t n, std::size_t size, bool space_padded);
+
+/// A 1-D dataspace of `n` elements, and a scalar one.
+Hid simple_space(hid_t err_loc, std::size_t n);
+Hid scalar_space(hid_t err_loc);
 
 /// Selects rows [start, start + count) of the 1-D dataset `ds` in `file_space` and makes
 /// `mem_space` a 1-D space of `count` elements; false if any step failed.

@@ -2,7 +2,7 @@
 // study file's writer run a real grid (its scenes travel as tasks, results of every column
 // come back and are written), but each case is a stand-in that spins for --case-us
 // microseconds and returns NaN metrics. What it prints feeds the scaling model
-// (tools/scaling_model.py):
+// (tools/perf/scaling_model.py):
 //  - the coordinator's service per result, µs of its thread's CPU time: rank 0 serving remote
 //    workers only (its own worker off), cases of zero cost, with and without the writer
 //    (batched as lubsweep batches): what bounds rank 0's throughput at many ranks;

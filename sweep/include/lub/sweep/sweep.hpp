@@ -1,4 +1,5 @@
-// lubsweep's driver: options, and the sweep on MPI_COMM_WORLD.
+// lubsweep's driver: options (cli.cpp), signals (signals.cpp) and the sweep on MPI_COMM_WORLD
+// (sweep.cpp).
 //
 // Rank 0 validates the grid and the output before any work, then coordinates
 // (scheduler.hpp over mpi_transport.hpp): it hands out cases one at a time to whichever
@@ -54,11 +55,9 @@ void end_with_launcher();
 ///   1 s later in any case), and exits 1: rank 0 must end first.
 void setup_process(int rank);
 
-
-extern const char* const kUsage;
-
-/// Parses the command line (argv[1..]). Returns an error message, or nullopt on success;
-/// `help` is set for -h/--help and --version prints into `help_text`.
+/// Parses the command line (argv[1..]) (cli.cpp). Returns an error message, or nullopt on
+/// success; `help` is set for -h/--help (CLI11's generated help into `help_text`) and for
+/// --version (the version line into `help_text`).
 std::optional<std::string> parse_options(const std::vector<std::string>& args, Options& out, bool& help,
                                          std::string& help_text);
 

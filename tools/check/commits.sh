@@ -2,16 +2,16 @@
 # Every commit in BASE..HEAD against the commit-message rule of tools/hooks/commit-msg
 # (a subject of at most 72 characters, a blank line, a body; a merge: the subject only).
 # ctest runs it (lint_commit_messages) from the commit before the rule, ebecac5.
-#   bash tools/check_commits.sh BASE
+#   bash tools/check/commits.sh BASE
 # Exit 0: every commit follows the rule; 1: the offenders are listed; 2: usage;
 # 77: BASE is not in this clone (a shallow clone) or this is not a git work tree: skipped.
 set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 hook="$root/tools/hooks/commit-msg"
 base="${1:-}"
 case "$base" in
   -h|--help) sed -n '2,7p' "$0"; exit 0 ;;
-  ""|-*) echo "check_commits: usage: bash tools/check_commits.sh BASE (see --help)" >&2; exit 2 ;;
+  ""|-*) echo "check_commits: usage: bash tools/check/commits.sh BASE (see --help)" >&2; exit 2 ;;
 esac
 if ! git -C "$root" rev-parse --is-inside-work-tree >/dev/null 2>&1; then
   echo "check_commits: $root is not a git work tree: skipped" >&2

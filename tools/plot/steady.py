@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Figures of steady cycles (docs/theory/steady-cycles.md).
 
-    PYTHONPATH=build/python /usr/bin/python3 tools/plot_steady.py STUDY.h5 -o DIR [--orbit]
+    PYTHONPATH=build/python /usr/bin/python3 tools/plot/steady.py STUDY.h5 -o DIR [--orbit]
 
 From a study over clearance x viscosity x crank speed x force law (configs/grids/
 full_factorial.json):

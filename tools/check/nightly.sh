@@ -1,19 +1,19 @@
 #!/usr/bin/env bash
 # The nightly reproduction: build, run the paper's study (configs/grids/paper.json) on two
 # MPI ranks from scratch, compare it with the committed baseline tests/baselines/paper.csv
-# (tools/nightly.py: per-metric tolerances, keyed by the cases' axis values), write a
+# (tools/compare/nightly.py: per-metric tolerances, keyed by the cases' axis values), write a
 # report. docs/validation/nightly.md.
 #
-#   bash tools/nightly.sh              build, run, compare: exit 0 ok, 1 a regression
+#   bash tools/check/nightly.sh              build, run, compare: exit 0 ok, 1 a regression
 #                                      (the lines name the case and the metric), 2 bad input
-#   bash tools/nightly.sh --accept     build, run, and write the baseline from this run
+#   bash tools/check/nightly.sh --accept     build, run, and write the baseline from this run
 #                                      (review `git diff tests/baselines/paper.csv`, commit)
 # Options: --no-build (use the build as it is), --build-dir DIR (default build/),
 #          -o DIR (default out/nightly: study.h5, report.md, a figure per changed case,
 #          accepted_study.h5 after --accept, whose series the figures then show beside
 #          the new ones), --baseline FILE (default tests/baselines/paper.csv).
 set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 accept=0 build=1 build_dir="$root/build" out="$root/out/nightly" baseline="$root/tests/baselines/paper.csv"
 while (($#)); do
   case "$1" in
@@ -28,7 +28,7 @@ while (($#)); do
   shift
 done
 py=/usr/bin/python3
-# nightly.py reads the study with lubjoint.study (the build's Python package).
+# compare.py nightly reads the study with lubjoint.study (the build's Python package).
 export PYTHONPATH="$build_dir/python${PYTHONPATH:+:$PYTHONPATH}"
 if ((build)); then bash "$root/tools/build.sh"; fi
 lubsweep="$build_dir/sweep/lubsweep"
@@ -45,11 +45,11 @@ mpirun "${mpi_args[@]}" "$lubsweep" "$root/configs/grids/paper.json" -o "$out/st
 echo "nightly: paper grid run in $(( $(date +%s) - start )) s: $out/study.h5"
 
 if ((accept)); then
-  "$py" "$root/tools/nightly.py" accept "$out/study.h5" --baseline "$baseline"
+  "$py" "$root/tools/compare.py" nightly --accept "$out/study.h5" --baseline "$baseline"
   cp "$out/study.h5" "$out/accepted_study.h5"
   echo "nightly: review with 'git diff $baseline' and commit it"
   exit 0
 fi
 accepted=()
 if [ -f "$out/accepted_study.h5" ]; then accepted=(--accepted-study "$out/accepted_study.h5"); fi
-"$py" "$root/tools/nightly.py" compare "$out/study.h5" --baseline "$baseline" --report "$out" "${accepted[@]}"
+"$py" "$root/tools/compare.py" nightly "$out/study.h5" --baseline "$baseline" --report "$out" "${accepted[@]}"

@@ -13,7 +13,7 @@ largest distance, in clearances, between the eccentricity vectors at the cycle e
 the floor's at rtol 1e-12. The cost at 1e-4 c and 1e-6 c comes from log-log
 interpolation between the bracketing tolerances.
 
-    /usr/bin/python3 tools/floor_instructions.py [--build build] [--laws a,b] [--formulation joint] [-j 2]
+    /usr/bin/python3 tools/perf/floor_instructions.py [--build build] [--laws a,b] [--formulation joint] [-j 2]
                                                  [--floor-kernels sundials|small]
 
 Prints a markdown table: per cycle at equal accuracy, per step at rtol 1e-8, and the

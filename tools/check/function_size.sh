@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # No function in core/src or sweep/src over LINES lines (default 100): clang-tidy's
 # readability-function-size on every source file, from the build's compile_commands.json.
-#   bash tools/function_size.sh [BUILD_DIR] [LINES]
+#   bash tools/check/function_size.sh [BUILD_DIR] [LINES]
 # Exit 0: none over; 1: the functions over the limit are listed; 2: no clang-tidy or no
 # compile_commands.json.
 set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 build="${1:-$root/build}"
 lines="${2:-100}"
 command -v clang-tidy >/dev/null || { echo "function_size: clang-tidy not found (tools/setup.sh installs it)" >&2; exit 2; }

@@ -1,7 +1,6 @@
-#!/usr/bin/python3
-"""Compare a lubsweep study file against a baseline (the nightly reproduction).
+"""compare.py study: a lubsweep study file against a baseline study file.
 
-    PYTHONPATH=build/python /usr/bin/python3 tools/compare_study.py out/study.h5 baseline/study.h5 \\
+    PYTHONPATH=build/python /usr/bin/python3 tools/compare.py study out/study.h5 baseline/study.h5 \\
         [--rtol 1e-3] [--tol peak_reaction_N=0.05] [--tol periodicity=0:1e-3] [--steps-rtol 0.5]
 
 Cases are matched by the hash of their scene. A regression, and exit status 1, is:
@@ -15,9 +14,7 @@ flags a solver cost (steps) grown by more than the fraction R.
 Cases only in the study are reported, not regressions. Exit 0: no regression; 1: a
 regression; 2: bad input. Reads through xarray/pandas (lubjoint.study).
 """
-import argparse
 import math
-import sys
 
 from lubjoint import study as study_reader  # (PYTHONPATH=build/python: docs/guide/post-processing.md)
 
@@ -26,24 +23,25 @@ def tolerances(base, rtol, items):
     tol = {m: ((0.0, 0.0) if base[m].dtype.kind in "iu" else (rtol, 0.0)) for m in base.attrs["metrics"]}
     for it in items:
         if "=" not in it:
-            raise SystemExit(f"compare_study: --tol {it}: must be METRIC=RTOL[:ATOL] or METRIC=skip")
+            raise SystemExit(f"compare study: --tol {it}: must be METRIC=RTOL[:ATOL] or METRIC=skip")
         m, v = it.split("=", 1)
         if m not in base.columns:
-            raise SystemExit(f"compare_study: --tol {it}: {m} is not a column of /cases")
+            raise SystemExit(f"compare study: --tol {it}: {m} is not a column of /cases")
         r, _, a = v.partition(":")
         tol[m] = None if v == "skip" else (float(r), float(a or 0.0))
     return tol
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def add_arguments(ap):
     ap.add_argument("study")
     ap.add_argument("baseline")
     ap.add_argument("--rtol", type=float, default=1e-3, help="default relative tolerance of the metrics")
     ap.add_argument("--tol", action="append", default=[], help="METRIC=RTOL[:ATOL] or METRIC=skip")
     ap.add_argument("--steps-rtol", type=float, default=None, help="flag solver steps grown by more than this fraction")
     ap.add_argument("-q", "--quiet", action="store_true", help="print regressions only")
-    args = ap.parse_args()
+
+
+def run(args):
     for p in (args.study, args.baseline):
         study_reader.check_or_exit(p)
     new = study_reader.cases(args.study).set_index("hash")
@@ -80,7 +78,7 @@ def main():
     extra = list(new.loc[~new.index.isin(base.index), "name"])
 
     if not args.quiet:
-        print(f"compare_study: {args.study} against {args.baseline}: {len(base)} baseline cases")
+        print(f"compare study: {args.study} against {args.baseline}: {len(base)} baseline cases")
         if worst:
             print(f"  {'metric':34s} {'largest rel. deviation':>22s}  case")
             for m, (r, c) in worst.items():
@@ -90,15 +88,5 @@ def main():
     for r in regressions:
         print("REGRESSION " + r)
     if not args.quiet or regressions:
-        print(f"compare_study: {len(regressions)} regression{'s' if len(regressions) != 1 else ''}")
+        print(f"compare study: {len(regressions)} regression{'s' if len(regressions) != 1 else ''}")
     return 1 if regressions else 0
-
-
-if __name__ == "__main__":
-    try:
-        sys.exit(main())
-    except SystemExit as e:  # a message: bad input, exit 2 (1 means a regression)
-        if isinstance(e.code, str):
-            print(e.code, file=sys.stderr)
-            sys.exit(2)
-        raise

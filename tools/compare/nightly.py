@@ -1,30 +1,27 @@
-#!/usr/bin/python3
-"""The nightly reproduction of the paper's study against the committed baseline.
+"""compare.py nightly: the nightly reproduction of the paper's study against the committed baseline.
 
-    PYTHONPATH=build/python /usr/bin/python3 tools/nightly.py compare STUDY.h5 [--baseline tests/baselines/paper.csv]
+    PYTHONPATH=build/python /usr/bin/python3 tools/compare.py nightly STUDY.h5 [--baseline tests/baselines/paper.csv]
                                       [--report DIR] [--accepted-study OLD.h5]
-    PYTHONPATH=build/python /usr/bin/python3 tools/nightly.py accept STUDY.h5 [--baseline tests/baselines/paper.csv]
+    PYTHONPATH=build/python /usr/bin/python3 tools/compare.py nightly --accept STUDY.h5 [--baseline tests/baselines/paper.csv]
 
-`tools/nightly.sh` runs the paper grid and calls these; see docs/validation/nightly.md.
+`tools/check/nightly.sh` runs the paper grid and calls these; see docs/validation/nightly.md.
 
 The baseline is a CSV file, one row per case of configs/grids/paper.json, keyed by the
 case's axis values (clearance_m, viscosity_Pa_s, speed_rpm, force_law: every case has a
 value on every axis, read back from its scene), not by its hash, so a change of the scene
 format or the build does not orphan it. The hash is kept as a column for reference.
 
-`compare` exits 1 on a regression and names the case (its axis values and its name) and
+The comparison exits 1 on a regression and names the case (its axis values and its name) and
 the metric: a baseline case missing from the study, a case not in the baseline, a changed
 status, or a metric outside its tolerance (TOLERANCES below:
 |now - baseline| > atol + rtol |baseline|); changes of NOTES are reported only. It writes DIR/report.md (what changed, by how
 much) and, for each changed case, DIR/<case>.png: the case's film thickness and orbit
 (the accepted study's series beside them if --accepted-study is given) and its metrics
-against the baseline's. Exit 2: bad input.
+against the baseline's. --accept writes the baseline from STUDY instead. Exit 2: bad input.
 """
-import argparse
 import csv
 import math
 import os
-import sys
 
 from lubjoint import study as study_reader  # (PYTHONPATH=build/python: docs/guide/post-processing.md)
 
@@ -122,7 +119,7 @@ def read_baseline(path):
         with open(path, newline="") as f:
             lines = [ln for ln in f if not ln.startswith("#")]
     except OSError as e:
-        raise SystemExit(f"nightly: baseline {path}: {e} (create one with tools/nightly.sh --accept)")
+        raise SystemExit(f"nightly: baseline {path}: {e} (create one with tools/check/nightly.sh --accept)")
     rows = {}
     for i, r in enumerate(csv.DictReader(lines), start=2):
         try:
@@ -139,11 +136,11 @@ def accept(study, baseline):
     cols = KEY + ["case", "hash", "status", "classification"] + list(TOLERANCES) + INFO
     tmp = baseline + ".partial"
     with open(tmp, "w", newline="") as f:
-        f.write("# Baseline of the nightly reproduction (tools/nightly.sh): the metrics of every case of\n"
+        f.write("# Baseline of the nightly reproduction (tools/check/nightly.sh): the metrics of every case of\n"
                 "# configs/grids/paper.json, keyed by the axis columns clearance_m [m], viscosity_Pa_s [Pa s],\n"
                 "# speed_rpm [min-1], force_law. Units in the column names (metrics as in /cases); steps and\n"
-                "# wall_time_s are recorded, not compared. Tolerances: TOLERANCES in tools/nightly.py.\n"
-                "# Regenerate with: tools/nightly.sh --accept (then review the diff and commit it).\n")
+                "# wall_time_s are recorded, not compared. Tolerances: TOLERANCES in tools/compare/nightly.py.\n"
+                "# Regenerate with: tools/check/nightly.sh --accept (then review the diff and commit it).\n")
         w = csv.DictWriter(f, fieldnames=cols, extrasaction="ignore", lineterminator="\n")
         w.writeheader()
         for k in sorted(rows, key=lambda k: rows[k]["case"]):
@@ -247,7 +244,7 @@ def compare(study, baseline, report_dir, accepted):
     for k, n in now.items():
         if k not in base:
             regressions.append(f"{key_text(k)} ({n['case']}): not in the baseline (the grid changed: "
-                               "tools/nightly.sh --accept)")
+                               "tools/check/nightly.sh --accept)")
 
     lines = [f"# Nightly reproduction: {'REGRESSION' if regressions else 'ok'}", "",
              f"Study `{study}` against baseline `{baseline}`: {len(base)} baseline cases, {len(now)} in the study, "
@@ -287,25 +284,16 @@ def compare(study, baseline, report_dir, accepted):
     return 1 if regressions else 0
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("command", choices=["compare", "accept"])
+def add_arguments(ap):
     ap.add_argument("study")
     here = os.path.dirname(os.path.abspath(__file__))
-    ap.add_argument("--baseline", default=os.path.join(here, "..", "tests", "baselines", "paper.csv"))
+    ap.add_argument("--baseline", default=os.path.join(here, "..", "..", "tests", "baselines", "paper.csv"))
     ap.add_argument("--report", default=None, help="directory of report.md and the figures")
     ap.add_argument("--accepted-study", default=None, help="the study the baseline was accepted from, if kept")
-    args = ap.parse_args()
-    if args.command == "accept":
+    ap.add_argument("--accept", action="store_true", help="write the baseline from the study instead of comparing")
+
+
+def run(args):
+    if args.accept:
         return accept(args.study, args.baseline)
     return compare(args.study, args.baseline, args.report, args.accepted_study)
-
-
-if __name__ == "__main__":
-    try:
-        sys.exit(main())
-    except SystemExit as e:
-        if isinstance(e.code, str):
-            print(e.code, file=sys.stderr)
-            sys.exit(2)
-        raise

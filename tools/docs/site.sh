@@ -2,10 +2,10 @@
 # Builds the documentation site: docs/ (Markdown, MyST) and the Python API from lubjoint's
 # docstrings (autodoc, the module built into BUILD/python) into BUILD/docs/html with Sphinx,
 # warnings as errors. ctest runs it (docs_site).
-#   bash tools/docs.sh [--build-dir BUILD] [--no-setup] [--no-build]
+#   bash tools/docs/site.sh [--build-dir BUILD] [--no-setup] [--no-build]
 # --no-setup skips tools/setup.sh (Debian packages); --no-build skips building the module.
 set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 build="$root/build"
 setup=1
 compile=1
@@ -15,7 +15,7 @@ while (($#)); do
     --no-setup) setup=0; shift ;;
     --no-build) compile=0; shift ;;
     -h|--help) sed -n '2,6p' "$0"; exit 0 ;;
-    *) echo "docs.sh: unknown argument $1 (see --help)" >&2; exit 2 ;;
+    *) echo "site.sh: unknown argument $1 (see --help)" >&2; exit 2 ;;
   esac
 done
 if ((setup)); then bash "$root/tools/setup.sh"; fi
@@ -29,4 +29,4 @@ export PYTHONDONTWRITEBYTECODE=1
 rm -rf "$build/docs/html" "$build/docs/doctrees"
 /usr/bin/python3 -m sphinx -b html -W --keep-going -q -j 1 \
   -d "$build/docs/doctrees" "$root/docs" "$build/docs/html"
-echo "docs.sh: $build/docs/html/index.html" >&2
+echo "site.sh: $build/docs/html/index.html" >&2

@@ -1,7 +1,6 @@
-#!/usr/bin/python3
-"""Are two HDF5 files (run or study files) identical, wall-clock values aside?
+"""compare.py identical: are two HDF5 files (run or study files) identical, wall-clock values aside?
 
-    /usr/bin/python3 tools/h5_identical.py A.h5 B.h5 [--ignore NAME ...]
+    /usr/bin/python3 tools/compare.py identical A.h5 B.h5 [--ignore NAME ...]
 
 Walks both files: every group, dataset (shape, dtype, bytes) and attribute must match,
 bit for bit (object references by the names they point to). Ignored by default: what a
@@ -9,7 +8,6 @@ clock or the build stamps, and which MPI rank ran a case (rank, wall_time_s, rev
 DEFAULT_IGNORE); --ignore adds names. Shows that a refactor changed no number, steps and
 counters included. Exit 0: identical; 1: the first differences listed; 2: bad input.
 """
-import argparse
 import sys
 
 import h5py
@@ -75,18 +73,19 @@ def compare(a, b, ignore, path, diffs):
         compare(a[k], b[k], ignore, f"{path}/{k}" if path != "/" else f"/{k}", diffs)
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def add_arguments(ap):
     ap.add_argument("a")
     ap.add_argument("b")
     ap.add_argument("--ignore", action="append", default=[], help="a group, dataset, attribute or field name")
-    args = ap.parse_args()
+
+
+def run(args):
     diffs = []
     try:
         with h5py.File(args.a, "r") as fa, h5py.File(args.b, "r") as fb:
             compare(fa, fb, DEFAULT_IGNORE | set(args.ignore), "/", diffs)
     except OSError as e:
-        print(f"h5_identical: {e}", file=sys.stderr)
+        print(f"compare identical: {e}", file=sys.stderr)
         return 2
     for d in diffs[:40]:
         print(d)
@@ -94,7 +93,3 @@ def main():
         print(f"... and {len(diffs) - 40} more")
     print("identical" if not diffs else f"{len(diffs)} differences")
     return 0 if not diffs else 1
-
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -4,12 +4,12 @@
 #      each at -np 1 and -np 2, one after the other: wall, case time, efficiency;
 #   2. bench_sweep_overhead (mpirun -np 2): the coordinator's cost per result, the message
 #      round trip, bytes per case and rank 0's memory;
-#   3. tools/scaling_model.py fed with both: predicted efficiency at 1-1024 ranks, checked
+#   3. tools/perf/scaling_model.py fed with both: predicted efficiency at 1-1024 ranks, checked
 #      against the -np 2 runs.
 # Writes out/scaling/ (the study files, overhead.json, model_*.json). Takes ~4 minutes.
-#   bash tools/scaling.sh [--no-build]
+#   bash tools/perf/scaling.sh [--no-build]
 set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 if [ "${1:-}" != "--no-build" ]; then bash "$root/tools/build.sh"; fi
 cd "$root"
 export PYTHONPATH="$root/build/python${PYTHONPATH:+:$PYTHONPATH}"  # lubjoint.study reads the studies
@@ -56,10 +56,10 @@ mpirun -np 2 "${over[@]}" build/tests/bench/bench_sweep_overhead configs/grids/c
 
 for name in full_factorial_transient cheap_4096; do
   echo "== $name"
-  /usr/bin/python3 tools/scaling_model.py "$out/${name}_np1.h5" --overhead "$out/overhead.json" \
+  /usr/bin/python3 tools/perf/scaling_model.py "$out/${name}_np1.h5" --overhead "$out/overhead.json" \
     --wall1 "${wall[$name,1]}" --measured "2=${wall[$name,2]}" \
     --check "2=$out/${name}_np2.h5:${wall[$name,2]}" --json "$out/model_$name.json"
 done
 echo "== cheap_4096 x 25 (102 400 cases)"
-/usr/bin/python3 tools/scaling_model.py "$out/cheap_4096_np1.h5" --overhead "$out/overhead.json" \
+/usr/bin/python3 tools/perf/scaling_model.py "$out/cheap_4096_np1.h5" --overhead "$out/overhead.json" \
   --wall1 "${wall[cheap_4096,1]}" --replicate 25 --json "$out/model_cheap_4096_x25.json"

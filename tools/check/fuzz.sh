@@ -4,11 +4,11 @@
 # build, build/, stays g++), and starts from the seed corpus configs/scenes/*.json and
 # tests/fuzz/corpus/*.
 #
-#   bash tools/fuzz.sh                      # 200000 inputs (LUB_FUZZ_RUNS), about a minute
-#   LUB_FUZZ_RUNS=5000000 bash tools/fuzz.sh
-#   bash tools/fuzz.sh -max_total_time=600  # any further arguments go to libFuzzer
-#   bash tools/fuzz.sh -runs=0              # replay the corpus only
-#   LUB_FUZZ_TARGET=grid bash tools/fuzz.sh # the grid reader instead (fuzz_grid.cpp; seeds
+#   bash tools/check/fuzz.sh                      # 200000 inputs (LUB_FUZZ_RUNS), about a minute
+#   LUB_FUZZ_RUNS=5000000 bash tools/check/fuzz.sh
+#   bash tools/check/fuzz.sh -max_total_time=600  # any further arguments go to libFuzzer
+#   bash tools/check/fuzz.sh -runs=0              # replay the corpus only
+#   LUB_FUZZ_TARGET=grid bash tools/check/fuzz.sh # the grid reader instead (fuzz_grid.cpp; seeds
 #                                           # configs/grids/*.json, tests/fuzz/grid_corpus/*)
 #
 # New interesting inputs accumulate in build-fuzz/fuzz-corpus/; a crashing input is written
@@ -16,7 +16,7 @@
 # is fixed, copy the input into tests/fuzz/corpus/ so ctest's replay (fuzz_scene_replay)
 # keeps checking it.
 set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 bash "$root/tools/setup.sh"
 build="$root/build-fuzz"
 # -O1 -g without -DNDEBUG: Eigen's and the standard library's assertions stay on.

@@ -2,7 +2,7 @@
 """Checks configs/scene.schema.json: it is a valid JSON Schema (draft 2020-12), every scene
 given validates against it, and it refuses a few malformed scenes (so it is not vacuous).
 
-    /usr/bin/python3 tools/check_scene_schema.py configs/scene.schema.json configs/scenes
+    /usr/bin/python3 tools/check/scene_schema.py configs/scene.schema.json configs/scenes
 
 (each SCENE argument is a file, or a directory whose *.json files, in subdirectories too,
 are all checked)

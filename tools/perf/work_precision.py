@@ -15,7 +15,7 @@ Errors, all dimensionless:
              reaction_force channel's samples over the last recorded cycle (at the same
              crank angles in every case)
 
-    PYTHONPATH=build/python /usr/bin/python3 tools/work_precision.py out/accuracy_reference.h5 \
+    PYTHONPATH=build/python /usr/bin/python3 tools/perf/work_precision.py out/accuracy_reference.h5 \
         --png out/work_precision.png --table out/work_precision.md
 
 Exit status 0, or 2 for a file that is not an accuracy study.

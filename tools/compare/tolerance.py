@@ -1,7 +1,6 @@
-#!/usr/bin/python3
-"""Do a study's labels and metrics hold when its grid is integrated more tightly?
+"""compare.py tolerance: do a study's labels and metrics hold when its grid is integrated more tightly?
 
-    PYTHONPATH=build/python /usr/bin/python3 tools/tolerance_agreement.py default.h5 tight.h5 [--markdown]
+    PYTHONPATH=build/python /usr/bin/python3 tools/compare.py tolerance default.h5 tight.h5 [--markdown]
 
 The two files are the same grid run twice, the second with a tighter tolerance in its
 `set` (e.g. "/solver/rtol": 1e-9 against the scene's 1e-8: docs/validation/steady-cycles.md,
@@ -24,7 +23,6 @@ transients, "/simulation/steady": "transient"). Cases are matched by their axes'
 
 Exit 0; 2: bad input (not a study file, files of different axes).
 """
-import argparse
 import math
 import sys
 
@@ -131,26 +129,23 @@ def report(r, markdown=False):
     return "\n".join(lines)
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def add_arguments(ap):
     ap.add_argument("default", help="the study at the grid's own tolerance")
     ap.add_argument("tight", help="the same grid with a tighter tolerance in its set")
     ap.add_argument("--markdown", action="store_true", help="tables in Markdown (for the docs)")
-    args = ap.parse_args()
+
+
+def run(args):
     for p in (args.default, args.tight):
         try:
             study_reader.check(p)
         except (study_reader.StudyFormatError, OSError) as e:
-            print(f"tolerance_agreement: {p}: {e}", file=sys.stderr)
+            print(f"compare tolerance: {p}: {e}", file=sys.stderr)
             return 2
     try:
         r = agreement(study_reader.cases(args.default), study_reader.cases(args.tight))
     except ValueError as e:
-        print(f"tolerance_agreement: {e}", file=sys.stderr)
+        print(f"compare tolerance: {e}", file=sys.stderr)
         return 2
     print(report(r, args.markdown))
     return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

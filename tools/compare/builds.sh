@@ -1,15 +1,15 @@
 #!/usr/bin/env bash
-# Do two builds give the same numbers? Runs the same cases with both and compares every
-# output file bit for bit (tools/h5_identical.py: wall times, the revision and which rank
-# ran a case aside) and every printed report (wall times aside). For refactors that must
-# change no number.
-#   bash tools/same_numbers.sh OLD_BUILD_DIR NEW_BUILD_DIR [--full-factorial]
+# compare.py builds: do two builds give the same numbers? Runs the same cases with both and
+# compares every output file bit for bit (compare.py identical: wall times, the revision and
+# which rank ran a case aside) and every printed report (wall times aside). For refactors
+# that must change no number.
+#   /usr/bin/python3 tools/compare.py builds OLD_BUILD_DIR NEW_BUILD_DIR [--full-factorial]
 # Cases: every scene in configs/scenes (hard cases included), the reference scene with
 # shooting, auto, error bars, every formulation and four methods (lubsim); the paper grid
 # at -np 2 (lubsweep); with --full-factorial also configs/grids/full_factorial.json
 # (~4 min a build on 2 cores). Exit 0: identical; 1: differences listed.
 set -uo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 old="$1"; new="$2"; full="${3:-}"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 work="$(mktemp -d)"
@@ -45,7 +45,7 @@ done
 diff "$work/old/status" "$work/new/status" || bad=1
 for f in "$work"/old/*.h5; do
   n="$(basename "$f")"
-  r="$(/usr/bin/python3 "$root/tools/h5_identical.py" "$f" "$work/new/$n" | tail -1)"
+  r="$(/usr/bin/python3 "$root/tools/compare.py" identical "$f" "$work/new/$n" | tail -1)"
   [ "$r" = identical ] || { echo "$n: $r"; bad=1; }
 done
 for f in "$work"/old/*.out; do
@@ -53,5 +53,5 @@ for f in "$work"/old/*.out; do
   diff -q <(grep -av "wall_time_s\|^wrote" "$f") <(grep -av "wall_time_s\|^wrote" "$work/new/$n") >/dev/null ||
     { echo "$n: the printed report differs"; bad=1; }
 done
-[ "$bad" = 0 ] && echo "same_numbers: identical ($(ls "$work"/old/*.h5 | wc -l) files)"
+[ "$bad" = 0 ] && echo "compare builds: identical ($(ls "$work"/old/*.h5 | wc -l) files)"
 exit "$bad"

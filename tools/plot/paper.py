@@ -2,7 +2,7 @@
 """The paper's figures from a lubsweep study file (configs/grids/paper.json or one of the
 paper_*.json grids).
 
-    PYTHONPATH=build/python /usr/bin/python3 tools/plot_paper.py out/study.h5 [-o out/figures]
+    PYTHONPATH=build/python /usr/bin/python3 tools/plot/paper.py out/study.h5 [-o out/figures]
 
 Writes PNGs (Agg backend, no display needed):
   fig05_reference.png           the reference case (0.5 mm, 400 cP, 5000 rpm, Pinkus-Sternlicht):

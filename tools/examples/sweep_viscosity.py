@@ -1,5 +1,5 @@
 """Minimum film thickness of the paper's slider-crank against viscosity, swept from Python.
-Run: PYTHONPATH=build/python /usr/bin/python3 tools/sweep_viscosity.py  ->  out/sweep_viscosity.png"""
+Run: PYTHONPATH=build/python /usr/bin/python3 tools/examples/sweep_viscosity.py  ->  out/sweep_viscosity.png"""
 import os, matplotlib; matplotlib.use("Agg")
 import matplotlib.pyplot as plt, numpy as np, lubjoint
 

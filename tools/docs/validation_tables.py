@@ -2,8 +2,8 @@
 """Prints the tables of docs/validation/reference-case.md and docs/validation/hard-cases.md
 as Markdown, from runs of this build (a few seconds on 2 cores):
 
-    PYTHONPATH=build/python /usr/bin/python3 tools/validation_tables.py reference-case
-    PYTHONPATH=build/python /usr/bin/python3 tools/validation_tables.py hard-cases
+    PYTHONPATH=build/python /usr/bin/python3 tools/docs/validation_tables.py reference-case
+    PYTHONPATH=build/python /usr/bin/python3 tools/docs/validation_tables.py hard-cases
 
 reference-case: the paper's slider-crank (configs/scenes/slider_crank.json) with each of
 the paper's three force laws; hard-cases: every scene of configs/scenes/hard/ as it is.
@@ -18,7 +18,7 @@ import sys
 
 import lubjoint  # PYTHONPATH=build/python
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 PAPER_LAWS = ("pinkus_sternlicht", "frene_long", "frene_short")
 
 

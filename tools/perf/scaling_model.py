@@ -18,7 +18,7 @@ thread that shares its core with the coordinator (each service delays its case);
 otherwise; a message takes half a round trip each way. With more ranks than one machine's
 cores it assumes one rank per core and the same per-case costs.
 
-    PYTHONPATH=build/python /usr/bin/python3 tools/scaling_model.py STUDY_NP1.h5 --overhead bench.json \
+    PYTHONPATH=build/python /usr/bin/python3 tools/perf/scaling_model.py STUDY_NP1.h5 --overhead bench.json \
         --measured 2=WALL_NP2 --wall1 WALL_NP1 [--ranks 1 2 16 64 256 1024] [--replicate K]
 
 Prints a table (ranks, predicted wall, efficiency, coordinator utilisation, what limits it);

@@ -2,9 +2,9 @@
 """Sweep maps: a metric of a lubsweep study over two of its axes, as a colour map with
 the value printed in each cell.
 
-    PYTHONPATH=build/python /usr/bin/python3 tools/sweep_map.py out/ff.h5 -x clearance_m -y viscosity_Pa_s \\
+    PYTHONPATH=build/python /usr/bin/python3 tools/plot/sweep_map.py out/ff.h5 -x clearance_m -y viscosity_Pa_s \\
         --fix speed_rpm=5000 --fix force_law=pinkus_sternlicht -m max_eps -o out/maps
-    PYTHONPATH=build/python /usr/bin/python3 tools/sweep_map.py out/ff.h5 -x speed_rpm -y clearance_m -m all ...
+    PYTHONPATH=build/python /usr/bin/python3 tools/plot/sweep_map.py out/ff.h5 -x speed_rpm -y clearance_m -m all ...
 
 Every other axis that varies among the rows must be fixed with --fix AXIS=VALUE (the
 message lists their values). `-m all` draws one map per metric column. Cases that are

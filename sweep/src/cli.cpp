@@ -1,0 +1,105 @@
+// lubsweep's command line (CLI11): the options, their help as CLI11 generates it (the man
+// page is help2man's reading of it), and the checks of what goes together.
+#include <CLI/CLI.hpp>
+
+#include <cstdlib>
+
+#include "lub/run/run_io.hpp"
+#include "lub/sweep/sweep.hpp"
+
+namespace lub::sweep {
+
+namespace {
+
+const char* const kDescription =
+    "lubsweep: runs every case of GRID.json (docs/guide/grids.md) and writes STUDY.h5: /cases (one row\n"
+    "per case: axis values, status, metrics, solver statistics), /grids (case ids over each sub-grid's\n"
+    "axes, with dimension scales, and the results over them), /scene and /scene_patches (each case's\n"
+    "scene as a JSON Patch of the root attribute reference_scene), /series (the channels a case keeps).\n"
+    "Every rank computes, rank 0 included; rank 0 alone writes the file. A study runs as\n"
+    "\n"
+    "  mpirun -np N lubsweep GRID.json -o STUDY.h5 [options]\n"
+    "\n"
+    "and its table prints with\n"
+    "\n"
+    "  lubsweep --summary STUDY.h5\n";
+
+const char* const kFooter =
+    "Exit status: 0 the study is complete (a case that could not be integrated is a\n"
+    "result: recorded with its status and message); 3 it stopped early (on_failure =\n"
+    "abort): re-run to resume; 2 bad input (grid, options, output: nothing written);\n"
+    "1 the file could not be written; 130/143 interrupted (SIGINT/SIGTERM): every case\n"
+    "finished is saved, re-run to resume.";
+
+std::string version_line() {
+  return "lubsweep " + program_version() + " (revision " + build_revision() + ", " + LUB_BUILD_TYPE + " build)\n";
+}
+
+/// The options of `o` on `app` (`version` for --version).
+void add_options(CLI::App& app, Options& o, bool& version) {
+  app.footer(kFooter);
+  app.set_help_flag("-h,--help", "print this text and exit");
+  app.add_option("grid", o.grid, "the grid file (required unless --summary)")->type_name("GRID.json");
+  app.add_option("-o,--output", o.output,
+                 "the study file (required). If it exists and is a study file, the cases it already holds "
+                 "(matched by the hash of their scene) are not run again: re-running a killed sweep resumes it")
+      ->type_name("STUDY.h5");
+  app.add_flag("--restart", o.restart, "ignore an existing output file and start afresh");
+  app.add_flag("--drop-other-cases", o.drop_other_cases,
+               "resume, dropping the file's rows that are not cases of this grid (without it such a file is "
+               "refused: exit 2)");
+  app.add_flag("--retry-failed", o.retry_failed, "run again the cases the file records as not ok");
+  app.add_flag("--check", o.check, "validate the grid and list its cases; run nothing");
+  app.add_flag("--strict", o.strict,
+               "a plausibility warning (a viscosity, clearance or speed that looks like a unit slip) is an "
+               "error: exit 2, nothing written");
+  app.add_option("--summary", o.summary_of, "print the study's table and exit")->type_name("STUDY.h5");
+  app.add_flag_callback("--no-summary", [&o] { o.summary = false; },
+                        "no table at the end (by default the study's table is printed)");
+  app.add_flag("-q,--quiet", o.quiet, "no progress lines on stderr");
+  app.add_flag("--version", version, "print the version, revision and build type and exit");
+}
+
+/// What goes together, once parsed: an error message, or nullopt.
+std::optional<std::string> check(Options& o) {
+  if (!o.summary_of.empty()) {
+    if (!o.grid.empty() || !o.output.empty()) return "--summary takes only a study file";
+    return std::nullopt;
+  }
+  if (o.grid.empty()) return "no grid given";
+  if (o.output.empty() && !o.check) return "no output file given (-o STUDY.h5)";
+  if (o.restart && o.retry_failed) return "--restart and --retry-failed exclude each other";
+  if (const char* k = std::getenv("LUBSWEEP_TEST_KILL_AFTER")) o.kill_after = std::atol(k);
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<std::string> parse_options(const std::vector<std::string>& args, Options& o, bool& help,
+                                         std::string& help_text) {
+  CLI::App app(kDescription, "lubsweep");
+  help = false;
+  bool version = false;
+  add_options(app, o, version);
+  try {
+    app.parse(std::vector<std::string>(args.rbegin(), args.rend()));  // CLI11 wants them last first
+  } catch (const CLI::CallForHelp&) {
+    help = true;
+    help_text = app.help();
+    return std::nullopt;
+  } catch (const CLI::ExtrasError&) {
+    const std::string extra = app.remaining().front();
+    if (!extra.empty() && extra[0] == '-') return "unknown option " + extra;
+    return "more than one grid given (" + o.grid + ", " + extra + ")";
+  } catch (const CLI::ParseError& e) {
+    return std::string(e.what());
+  }
+  if (version) {
+    help = true;
+    help_text = version_line();
+    return std::nullopt;
+  }
+  return check(o);
+}
+
+}  // namespace lub::sweep
