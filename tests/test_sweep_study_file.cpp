@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -51,12 +52,13 @@ Grid small_grid() {
 }
 
 /// A made-up result: distinct values per case, series for even ids.
-CaseResult fake(const Grid& g, int id, const std::string& status = "ok") {
+CaseResult fake(const Grid& g, int id, CaseStatus status = CaseStatus::ok) {
   CaseResult r;
   r.case_id = id;
   r.rank = id % 2;
   r.status = status;
-  r.message = status == "ok" ? "" : "it broke";
+  r.classification = case_class(status).value_or(CaseClass::periodic);
+  r.message = status == CaseStatus::ok ? "" : "it broke";
   r.revision = lub::build_revision();
   const auto fields = result_fields();
   for (std::size_t i = 0; i < fields.size(); ++i) r.values.push_back(fields[i].integer ? double(id + i) : 0.5 * id + 0.001 * i);
@@ -182,7 +184,7 @@ TEST_F(StudyFile, GridVariablesHoldNaNMetricsForCasesNotOkAndSayWhy) {
   const Grid g = small_grid();
   const std::string path = file("s.h5");
   // Cases 3 and 4 never run: an incomplete study.
-  write_study(path, g, {fake(g, 0), fake(g, 1, "film_collapse"), fake(g, 2)}, true);
+  write_study(path, g, {fake(g, 0), fake(g, 1, CaseStatus::film_collapse), fake(g, 2)}, true);
   const auto f = lub::h5::File::open(path);
   const auto h = f.open_dataset("grids/main/min_film_thickness_m").read_doubles();
   EXPECT_FALSE(std::isnan(h[0]));
@@ -260,8 +262,8 @@ TEST_F(StudyFile, SummarySaysWhereACaseWithoutAnOrbitGotTo) {
   const Grid g = small_grid();
   const std::string path = file("where.h5");
   CaseResult orbit = fake(g, 0), drifting = fake(g, 1);
-  orbit.classification = "periodic";
-  drifting.classification = "drifting";
+  orbit.classification = CaseClass::periodic;
+  drifting.classification = CaseClass::drifting;
   write_study(path, g, {orbit, drifting, fake(g, 2), fake(g, 3), fake(g, 4)}, true);
   std::FILE* out = std::tmpfile();
   ASSERT_NE(out, nullptr);
@@ -326,10 +328,12 @@ TEST_F(StudyFile, FinalFileIsInCaseIdOrderWhateverTheArrivalOrder) {
 TEST_F(StudyFile, ResumeFindsTheCasesByHash) {
   const Grid g = small_grid();
   const std::string path = file("r.h5");
-  write_study(path, g, {fake(g, 2), fake(g, 3, "film_collapse")}, false);  // the live file
+  write_study(path, g, {fake(g, 2), fake(g, 3, CaseStatus::film_collapse)}, false);  // the live file
   ResumeState st = read_existing(path, g, false, lub::build_revision());
   ASSERT_EQ(st.done.size(), 2u);
-  EXPECT_EQ(st.done.at(3).status, "film_collapse");
+  EXPECT_EQ(st.done.at(3).status, CaseStatus::film_collapse);
+  EXPECT_EQ(st.done.at(3).classification, CaseClass::film_collapse);
+  EXPECT_EQ(st.done.at(2).classification, CaseClass::periodic);
   EXPECT_EQ(st.done.at(3).message, "it broke");
   EXPECT_EQ(st.done.at(2).values, fake(g, 2).values);
   EXPECT_EQ(st.other_rows, 0u);
@@ -526,14 +530,15 @@ TEST_F(StudyFile, ForeignOutputFileIsRefused) {
 TEST(SweepCase, RunsAScene) {
   const Grid g = small_grid();
   const CaseResult r = run_case(2, g.cases[2].scene, 7);  // frene_short, 5000 rpm, 2 cycles
-  EXPECT_EQ(r.status, "ok") << r.message;
+  EXPECT_EQ(r.status, CaseStatus::ok) << r.message;
   EXPECT_EQ(r.case_id, 2);
   EXPECT_EQ(r.rank, 7);
   ASSERT_EQ(r.values.size(), result_fields().size());
   // A study reports steady metrics only for a steady cycle (two cycles of Frêne short are
   // none); counts, the periodicity measure and the solver's statistics always.
-  const bool steady = r.classification == "periodic" || r.classification == "periodic_unstable";
-  EXPECT_TRUE(steady || r.classification == "drifting" || r.classification == "not_converged") << r.classification;
+  const bool steady = has_orbit(r.classification);
+  EXPECT_TRUE(steady || r.classification == CaseClass::drifting || r.classification == CaseClass::not_converged)
+      << r.classification;
   const std::set<std::string> always = {"periodicity", "steady", "cycles_run",
                                         "safe_film_thickness_m", "below_safe_film", "newton_iterations",
                                         "transient_cycles", "periods_integrated"};
@@ -550,7 +555,7 @@ TEST(SweepCase, RunsAScene) {
   // Unknown is NaN for every field, integers included (a writer of integers stores -1).
   std::size_t to_steady = 0;
   while (fields[to_steady].name != "cycles_to_steady") ++to_steady;
-  EXPECT_EQ(std::isnan(r.values[to_steady]), r.classification != "periodic") << r.values[to_steady];
+  EXPECT_EQ(std::isnan(r.values[to_steady]), r.classification != CaseClass::periodic) << r.values[to_steady];
   EXPECT_EQ(r.series.names, (std::vector<std::string>{"t", "h_min"}));
   // Only the last cycle is kept, sampled 90 times (both ends included).
   EXPECT_EQ(r.series.data[0].size(), 91u);
@@ -579,8 +584,8 @@ TEST(SweepCase, APeriodicCaseStoresItsPeriodicOrbitNotTheTransient) {
   doc["outputs"]["last_cycles"] = 2;
   doc["outputs"]["sample_interval_s"] = 0.012 / 120;  // 120 samples a cycle: one at every 3° of crank
   const CaseResult r = run_case(0, lub::parse_scene(doc), 0);
-  ASSERT_EQ(r.status, "ok") << r.message;
-  ASSERT_EQ(r.classification, "periodic") << r.message;
+  ASSERT_EQ(r.status, CaseStatus::ok) << r.message;
+  ASSERT_EQ(r.classification, CaseClass::periodic) << r.message;
   ASSERT_EQ(r.series.names, (std::vector<std::string>{"t", "e_x", "e_y"}));
   const std::vector<double>& t = r.series.data[0];
   const std::vector<double>& ex = r.series.data[1];
@@ -597,22 +602,61 @@ TEST(SweepCase, APeriodicCaseStoresItsPeriodicOrbitNotTheTransient) {
 
 TEST(SweepCase, FailuresAreValues) {
   const CaseResult bad = run_case(1, "{not json", 0);
-  EXPECT_EQ(bad.status, "error");
+  EXPECT_EQ(bad.status, CaseStatus::error);
+  EXPECT_EQ(bad.classification, CaseClass::error);
   EXPECT_FALSE(bad.message.empty());
   EXPECT_TRUE(std::isnan(bad.values[0]));
   const CaseResult invalid = run_case(1, R"({"bodies": []})", 0);
-  EXPECT_EQ(invalid.status, "invalid_scene");
+  EXPECT_EQ(invalid.status, CaseStatus::invalid_scene);
+  EXPECT_EQ(invalid.classification, CaseClass::invalid_scene);
   EXPECT_EQ(invalid.message.substr(0, 7), "bodies ");
+}
+
+// A case's status and classification are the core's names (RunStatus, SteadyClass) and
+// the sweep's own two, from one table each: what the study file holds and resume reads back.
+TEST(SweepCase, OutcomeNamesAreTheCoresAndTheSweepsTwo) {
+  std::vector<std::string> status = lub::names_of<lub::RunStatus>();
+  status.insert(status.end(), {"invalid_scene", "error"});
+  EXPECT_EQ(lub::names_of<CaseStatus>(), status);
+  std::vector<std::string> cls = lub::names_of<lub::SteadyClass>();
+  cls.insert(cls.end(), status.begin() + 1, status.end());  // ok has no classification of its own
+  EXPECT_EQ(lub::names_of<CaseClass>(), cls);
+  for (const auto& [k, name] : lub::NameTable<lub::SteadyClass>::entries) {
+    EXPECT_EQ(lub::name_of(case_class(k)), name);
+    EXPECT_EQ(has_orbit(case_class(k)), lub::has_orbit(k)) << name;
+  }
+  for (const auto& [s, name] : lub::NameTable<lub::RunStatus>::entries) EXPECT_EQ(lub::name_of(case_status(s)), name);
+  for (const auto& [s, name] : lub::NameTable<CaseStatus>::entries) {
+    if (s != CaseStatus::ok) {
+      EXPECT_EQ(lub::name_of(*case_class(s)), name);
+    }
+  }
+  EXPECT_FALSE(case_class(CaseStatus::ok));
+  EXPECT_TRUE(ran(CaseClass::budget_exceeded) && ran(CaseClass::drifting));
+  EXPECT_FALSE(ran(CaseClass::invalid_scene) || ran(CaseClass::error));
+  // A message naming no status is refused, not misread.
+  const Grid g = small_grid();
+  json m = json::from_msgpack(encode(fake(g, 1)));
+  m["status"] = "fine";
+  const std::vector<std::uint8_t> bytes = json::to_msgpack(m);
+  try {
+    decode(std::string(bytes.begin(), bytes.end()));
+    FAIL() << "an unknown status was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("\"status\" = \"fine\": not one of ok, film_collapse"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(SweepCase, EncodeDecodeRoundTrip) {
   const Grid g = small_grid();
-  CaseResult r = fake(g, 4, "solver_failure");
+  CaseResult r = fake(g, 4, CaseStatus::solver_failure);
   r.values[1] = std::nan("");
   const CaseResult d = decode(encode(r));
   EXPECT_EQ(d.case_id, 4);
   EXPECT_EQ(d.rank, r.rank);
   EXPECT_EQ(d.status, r.status);
+  EXPECT_EQ(d.classification, CaseClass::solver_failure);
   EXPECT_EQ(d.message, r.message);
   EXPECT_EQ(d.revision, r.revision);
   ASSERT_EQ(d.values.size(), r.values.size());
@@ -636,7 +680,7 @@ TEST(SweepProgress, LineAndEta) {
   EXPECT_NE(line.find("frene_short"), std::string::npos);
   EXPECT_NE(line.find("0 failed"), std::string::npos);
   EXPECT_NEAR(p.eta_s(2.0), 6.0, 1e-12);  // 3 left at 2 s per case
-  r.status = "film_collapse";
+  r.status = CaseStatus::film_collapse;
   line = p.record(g.cases[3], r, 4.0);
   EXPECT_NE(line.find("1 failed"), std::string::npos);
   EXPECT_EQ(format_duration(0.5), "0.50 s");

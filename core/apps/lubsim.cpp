@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "lub/io/output_path.hpp"
+#include "lub/run/orbit.hpp"
 #include "lub/run/run.hpp"
 #include "lub/run/run_io.hpp"
 #include "lub/scene/scene.hpp"
@@ -136,7 +137,7 @@ int main(int argc, char** argv) {
                 r.message.c_str());
     const std::string cls = lub::classification(r);
     std::printf("steady   %s (%s)%s\n", cls.c_str(), r.steady.method.c_str(),
-                cls == "periodic" || cls == "periodic_unstable"
+                r.status == lub::RunStatus::ok && lub::has_orbit(r.steady.kind)
                     ? ""
                     : ": the metrics below are a transient's, not a steady cycle's (docs/theory/steady-cycles.md)");
     if (r.steady.method == "shooting")

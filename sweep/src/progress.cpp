@@ -38,7 +38,7 @@ std::string Progress::record(const Case& c, const CaseResult& r, double elapsed_
   const int width = static_cast<int>(std::to_string(total_).size());
   char head[96];
   std::snprintf(head, sizeof head, "[%*zu/%zu] ", width, done_, total_);
-  std::string line = head + c.name + " " + r.status + " " + format_duration(wall) + " rank " +
+  std::string line = head + c.name + " " + r.status.str() + " " + format_duration(wall) + " rank " +
                      std::to_string(r.rank) + " | " + c.label + " | " + std::to_string(failed_) + " failed";
   line += done_ < total_ ? " | ETA " + format_duration(eta_s(elapsed_s)) : " | all done in " + format_duration(elapsed_s);
   return line;

@@ -25,6 +25,12 @@ constexpr const char* kClassificationLongName =
     "above 1), drifting (no periodic orbit inside the clearance), not_converged; for a case that is "
     "not ok its status";
 
+/// The status and classification of a sub-grid's point without a row (never a case's).
+constexpr const char* kNotRun = "not_run";
+
+/// The status columns' long_name: "outcome: " and every CaseStatus.
+std::string status_long_name() { return "outcome: " + names_list<CaseStatus>(); }
+
 h5::Cell axis_cell(const Axis& a, const json& v) {
   if (a.numeric) return v.is_number() ? v.get<double>() : std::nan("");
   if (v.is_null()) return std::string();
@@ -212,16 +218,15 @@ void write_grid_results(h5::File& f, const Grid& g, const std::map<int, CaseResu
     }
     std::vector<std::string> status, message, cls;
     for (const CaseResult* r : rs) {
-      status.push_back(r ? r->status : "not_run");
+      status.push_back(r ? r->status.str() : std::string(kNotRun));
       message.push_back(r ? r->message : "");
-      cls.push_back(r ? r->classification : "not_run");
+      cls.push_back(r ? r->classification.str() : std::string(kNotRun));
     }
     h5::Dataset cl = bg.write_strings("classification", cls, shape);
     cl.set_attribute("long_name", std::string(kClassificationLongName));
     attach_like_index(bg, b, g, cl);
     h5::Dataset st = bg.write_strings("status", status, shape);
-    st.set_attribute("long_name",
-                     "outcome: ok, film_collapse, solver_failure, budget_exceeded, invalid_scene, error, or not_run");
+    st.set_attribute("long_name", status_long_name() + ", or " + kNotRun);
     attach_like_index(bg, b, g, st);
     h5::Dataset msg = bg.write_strings("message", message, shape);
     msg.set_attribute("long_name", "why a case is not ok");
@@ -270,8 +275,7 @@ std::vector<h5::Column> case_columns(const Grid& g) {
   for (const Axis& a : g.axes)
     c.push_back({a.name, a.numeric ? ColumnType::Float64 : ColumnType::String, a.numeric ? a.units : "",
                  axis_long_name(a)});
-  c.push_back({"status", ColumnType::String, "",
-               "outcome: ok, film_collapse, solver_failure, budget_exceeded, invalid_scene, error"});
+  c.push_back({"status", ColumnType::String, "", status_long_name()});
   c.push_back({"message", ColumnType::String, "", "why a case is not ok"});
   c.push_back({"classification", ColumnType::String, "", kClassificationLongName});
   for (const auto& f : result_fields())
@@ -290,9 +294,9 @@ h5::Row case_row(const Grid& g, const CaseResult& r) {
   const Case& c = g.cases.at(static_cast<std::size_t>(r.case_id));
   h5::Row row = {static_cast<std::int64_t>(c.id), c.name, c.hash};
   for (std::size_t i = 0; i < g.axes.size(); ++i) row.push_back(axis_cell(g.axes[i], c.axis_values[i]));
-  row.push_back(r.status);
+  row.push_back(r.status.str());
   row.push_back(r.message);
-  row.push_back(r.classification);
+  row.push_back(r.classification.str());
   const auto fields = result_fields();
   for (std::size_t i = 0; i < fields.size(); ++i) {
     const double v = i < r.values.size() ? r.values[i] : std::nan("");

@@ -20,6 +20,15 @@ struct SummaryColumn {
   std::vector<std::string> cells;
 };
 
+/// Whether a status read from the file is ok (CaseStatus's table).
+bool is_ok(const std::string& status) { return parse_name<CaseStatus>(status) == CaseStatus::ok; }
+
+/// Whether a classification read from the file is a periodic orbit (an unknown name: not).
+bool is_orbit(const std::string& cls) {
+  const auto c = parse_name<CaseClass>(cls);
+  return c && has_orbit(*c);
+}
+
 std::string format_number(const char* format, double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, format, v);
@@ -51,7 +60,7 @@ void add_columns(const h5::Table& t, const std::vector<std::string>& status, con
     if (!t.has_column(name)) return;
     const std::vector<double> v = t.read_doubles(name);
     for (std::size_t i = 0; i < v.size(); ++i) {
-      const bool shown = !without_orbit || (cls[i] != "periodic" && cls[i] != "periodic_unstable" && v[i] != 0.0);
+      const bool shown = !without_orbit || (!is_orbit(cls[i]) && v[i] != 0.0);
       c.cells.push_back(shown && std::isfinite(v[i]) ? format_number(format, v[i] * scale) : "-");
     }
     cols.push_back(std::move(c));
@@ -78,7 +87,7 @@ void add_columns(const h5::Table& t, const std::vector<std::string>& status, con
 void print_counts(std::FILE* out, const std::string& path, std::size_t n, std::int64_t total,
                   const std::vector<std::string>& status, const std::vector<std::string>& cls) {
   std::size_t failed = 0;
-  for (const auto& s : status) failed += s != "ok";
+  for (const auto& s : status) failed += !is_ok(s);
   std::fprintf(out, "%s: %zu of %lld cases, %zu ok, %zu not ok%s\n", path.c_str(), n, static_cast<long long>(total),
                n - failed, failed, static_cast<std::int64_t>(n) < total ? " (incomplete: re-run to resume)" : "");
   std::map<std::string, std::size_t> by_class;
@@ -137,7 +146,7 @@ void print_summary(const std::string& path, std::FILE* out) {
   print_counts(out, path, n, total, status, cls);
   print_table(out, cols, n);
   for (std::size_t i = 0; i < n; ++i)
-    if (status[i] != "ok") std::fprintf(out, "%s: %s: %s\n", names[i].c_str(), status[i].c_str(), message[i].c_str());
+    if (!is_ok(status[i])) std::fprintf(out, "%s: %s: %s\n", names[i].c_str(), status[i].c_str(), message[i].c_str());
 }
 
 }  // namespace lub::sweep
