@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "lub/scene/scene.hpp"
 #include "lub/sweep/grid.hpp"
 
 namespace {
@@ -83,6 +84,34 @@ TEST(ContinuationTree, SpansEachForceLawFromItsThickestFilmThroughNeighbours) {
 TEST(ContinuationTree, CasesThatDoNotAskForContinuationHaveNoParent) {
   const Grid g = grid("auto");
   for (int p : lub::sweep::continuation_parents(g)) EXPECT_EQ(p, -1);
+}
+
+// The tree asks each case's parsed scene whether it continues (Case::steady, read where the
+// case is built), whichever way the grid says it: here an axis over simulation.steady,
+// continuation for half the cases. Only those are linked, and only to each other.
+TEST(ContinuationTree, AsksEachCasesParsedScene) {
+  json g = {{"scene", "slider_crank.json"},
+            {"set", {{"/simulation/max_cycles", 40}}},
+            {"axes",
+             {{{"name", "clearance_m"}, {"values", {0.0005, 0.0002, 0.0001}}},
+              {{"pointer", "/simulation/steady"}, {"name", "steady_method"}, {"values", {"auto", "continuation"}}}}}};
+  const Grid grid = lub::sweep::parse_grid(g.dump(), kScenes, "test.json");
+  ASSERT_EQ(grid.cases.size(), 6u);
+  for (const auto& c : grid.cases)
+    EXPECT_EQ(c.steady, lub::parse_scene(json::parse(c.scene)).simulation.steady) << c.label;
+  const std::vector<int> parent = lub::sweep::continuation_parents(grid);
+  int linked = 0;
+  for (const auto& c : grid.cases) {
+    const int p = parent[static_cast<std::size_t>(c.id)];
+    if (c.steady != lub::SteadyMethod::continuation) {
+      EXPECT_EQ(p, -1) << c.label;
+      continue;
+    }
+    if (p < 0) continue;  // the seed
+    ++linked;
+    EXPECT_EQ(grid.cases[static_cast<std::size_t>(p)].steady, lub::SteadyMethod::continuation) << c.label;
+  }
+  EXPECT_EQ(linked, 2) << "three continued cells: a seed and two children";
 }
 
 }  // namespace

@@ -15,11 +15,7 @@ namespace {
 
 using nlohmann::json;
 
-bool continues(const Case& c) {
-  const json scene = json::parse(c.scene);
-  const json::json_pointer steady("/simulation/steady");
-  return scene.contains(steady) && scene.at(steady) == "continuation";
-}
+bool continues(const Case& c) { return c.steady == SteadyMethod::continuation; }
 
 /// How an axis moves the Sommerfeld number μ ω (R/c)²: its exponent (0: unknown).
 double sommerfeld_exponent(const Axis& a) {
