@@ -43,7 +43,7 @@ const std::string kScenes = std::string(LUB_SOURCE_DIR) + "/configs/scenes";
 Grid small_grid() {
   return parse_grid(R"({
       "scene": "slider_crank.json",
-      "set": {"/solver/rtol": 1e-6},
+      "set": {"/solver/rtol": 1e-6, "/simulation/steady": "auto"},
       "study": {"max_cycles": 2, "metric_cycles": 1, "channels": ["h_min"], "last_cycles": 1, "samples_per_cycle": 90},
       "grids": [{"name": "main", "axes": [{"name": "force_law", "values": ["ideal", "frene_short"]},
                                           {"name": "speed_rpm", "values": [5000, 500]}]},
@@ -374,7 +374,7 @@ TEST_F(StudyFile, AFileOfAnotherGridIsRefusedNamingTheCasesAndAxes) {
   const auto before = fs::last_write_time(path);
   const Grid smaller = parse_grid(R"({
       "scene": "slider_crank.json",
-      "set": {"/solver/rtol": 1e-6},
+      "set": {"/solver/rtol": 1e-6, "/simulation/steady": "auto"},
       "study": {"max_cycles": 2, "metric_cycles": 1, "channels": ["h_min"], "last_cycles": 1, "samples_per_cycle": 90},
       "grids": [{"name": "main", "axes": [{"name": "force_law", "values": ["ideal", "frene_short"]},
                                           {"name": "speed_rpm", "values": [5000]}]},
@@ -441,7 +441,7 @@ TEST_F(StudyFile, ResumeIntoAnExtendedGridKeepsEachCaseItsOwnSeries) {
   write_study(path, g, {fake(g, 2)}, false);
   const Grid wider = parse_grid(R"({
       "scene": "slider_crank.json",
-      "set": {"/solver/rtol": 1e-6},
+      "set": {"/solver/rtol": 1e-6, "/simulation/steady": "auto"},
       "study": {"max_cycles": 2, "metric_cycles": 1, "channels": ["h_min"], "last_cycles": 1, "samples_per_cycle": 90},
       "grids": [{"name": "main", "axes": [{"name": "force_law", "values": ["frene_long", "ideal", "frene_short"]},
                                           {"name": "speed_rpm", "values": [5000, 500]}]},

@@ -1,5 +1,5 @@
 // What a steady cycle costs, and what its accuracy costs (docs/theory/steady-cycles.md):
-// `simulation.steady = auto` (the study default) on four cells of the full factorial, at
+// `simulation.steady = auto` (the study grids' choice) on four cells of the full factorial, at
 // the scene's rtol 1e-8 and ten and a hundred times tighter, against the 40-cycle
 // transient alone. For each: the label, h_min and its error bar (the orbit re-solved at
 // rtol/100), orbit_error (how far that re-solve moves the orbit, clearances), the periods

@@ -352,7 +352,7 @@ def test_gil_released_during_run():
 def study_file(tmp_path_factory):
     d = tmp_path_factory.mktemp("study")
     grid = {"scene": str(SCENE), "study": {"max_cycles": 2, "metric_cycles": 1, "channels": ["h_min"]},  # 2: a steady stage (1: the transient alone)
-            "axes": [{"name": "viscosity_Pa_s", "values": [0.4, 0.2]}]}
+            "set": {"/simulation/steady": "auto"}, "axes": [{"name": "viscosity_Pa_s", "values": [0.4, 0.2]}]}
     (d / "grid.json").write_text(json.dumps(grid))
     env = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"}
     p = run([LUBSWEEP, d / "grid.json", "-o", d / "study.h5"], env=env, timeout=300)
