@@ -22,7 +22,9 @@
 #include <unistd.h>
 
 #include "lub/io/json_reader.hpp"
+#include "lub/run/orbit_seed_fields.hpp"
 #include "lub/sweep/case_result.hpp"
+#include "lub/sweep/continuation_tree.hpp"
 #include "lub/io/output_path.hpp"
 #include "fixtures/temp_dir_test.hpp"
 #include "lub/sweep/grid.hpp"
@@ -178,6 +180,90 @@ TEST_F(StudyFile, LayoutUnitsAndAttributes) {
   EXPECT_EQ(f.open_group("series/case_0002").attribute_strings("channels"), (std::vector<std::string>{"t", "h_min"}));
   EXPECT_TRUE(f.open_dataset("series/case_0002/t").is_scale());
   EXPECT_TRUE(f.open_dataset("series/case_0002/h_min").has_attribute("DIMENSION_LIST"));
+}
+
+// The file says what a reader in another language would otherwise restate (lubjoint.study
+// reads these): which classifications carry an orbit, how a row of orbit_seed is packed,
+// and the grid's lattice neighbours. Written with the header: the live file has them too.
+TEST_F(StudyFile, TheFileDescribesItsOwnLayout) {
+  const Grid g = small_grid();
+  for (const bool finalize : {false, true}) {
+    SCOPED_TRACE(finalize ? "finalized" : "live");
+    const std::string path = file(finalize ? "final.h5" : "live.h5");
+    write_study(path, g, {fake(g, 0), fake(g, 1)}, finalize);
+    const auto f = lub::h5::File::open(path);
+    const auto t = f.open_table("cases");
+    std::vector<std::string> orbit, no_orbit;
+    for (const auto& [c, name] : lub::NameTable<CaseClass>::entries) {
+      if (has_orbit(c)) orbit.emplace_back(name);
+      if (!has_orbit(c) && ran(c)) no_orbit.emplace_back(name);
+    }
+    EXPECT_EQ(t.attribute_strings("orbit_classifications"), (std::vector<std::string>{"periodic", "periodic_unstable"}));
+    EXPECT_EQ(t.attribute_strings("orbit_classifications"), orbit);
+    EXPECT_EQ(t.attribute_strings("no_orbit_classifications"),
+              (std::vector<std::string>{"drifting", "not_converged", "film_collapse", "solver_failure", "budget_exceeded"}));
+    EXPECT_EQ(t.attribute_strings("no_orbit_classifications"), no_orbit);
+
+    const auto seed = t.column("orbit_seed");
+    EXPECT_EQ(seed.attribute_int64("layout"), lub::orbit_seed_layout());
+    std::vector<std::string> names, shapes, types, units;
+    for (const auto& fld : lub::orbit_seed_fields()) {
+      names.emplace_back(fld.name);
+      shapes.emplace_back(lub::name_of(fld.shape));
+      types.emplace_back(fld.integer ? "int64" : "float64");
+      units.emplace_back(fld.unit);
+    }
+    EXPECT_EQ(seed.attribute_strings("fields"), names);
+    EXPECT_EQ(seed.attribute_strings("field_shapes"), shapes);
+    EXPECT_EQ(seed.attribute_strings("field_types"), types);
+    EXPECT_EQ(seed.attribute_strings("field_units"), units);
+    EXPECT_EQ(seed.attribute_strings("field_long_names").size(), names.size());
+    EXPECT_TRUE(seed.has_attribute("packing"));
+
+    const auto edges = lattice_edges(g);
+    ASSERT_FALSE(edges.empty());
+    const auto lower = f.open_dataset("lattice/case_a").read_int64s();
+    const auto upper = f.open_dataset("lattice/case_b").read_int64s();
+    const auto axis = f.open_dataset("lattice/axis").read_strings();
+    ASSERT_EQ(lower.size(), edges.size());
+    ASSERT_EQ(upper.size(), edges.size());
+    ASSERT_EQ(axis.size(), edges.size());
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+      EXPECT_EQ(lower[i], edges[i].lower);
+      EXPECT_EQ(upper[i], edges[i].upper);
+      EXPECT_EQ(axis[i], g.axes[static_cast<std::size_t>(edges[i].axis)].name);
+    }
+    EXPECT_TRUE(f.open_dataset("lattice/edge").is_scale());
+  }
+}
+
+// A file of format 5 written before the self-description (no orbit_classifications, no
+// orbit_seed packing) resumes as before: resume reads none of it, and the file it writes
+// has it.
+TEST_F(StudyFile, AFileWithoutItsSelfDescriptionResumes) {
+  const Grid g = small_grid();
+  const std::string path = file("older.h5");
+  write_study(path, g, {fake(g, 0), fake(g, 3, CaseStatus::film_collapse)}, true);
+  {
+    auto f = lub::h5::File::open(path, lub::h5::File::Mode::ReadWrite);
+    auto t = f.open_table("cases");
+    t.remove_attribute("orbit_classifications");
+    t.remove_attribute("no_orbit_classifications");
+    auto seed = t.column("orbit_seed");
+    for (const char* a : {"layout", "fields", "field_shapes", "field_types", "field_units", "field_long_names", "packing"})
+      seed.remove_attribute(a);
+  }
+  const ResumeState st = read_existing(path, g, false, lub::build_revision());
+  ASSERT_EQ(st.done.size(), 2u);
+  EXPECT_EQ(st.done.at(3).classification, CaseClass::film_collapse);
+  {
+    StudyWriter w(path, g, st.done, path);
+    w.finalize();
+  }
+  const auto t = lub::h5::File::open(path).open_table("cases");
+  EXPECT_EQ(t.rows(), 2u);
+  EXPECT_TRUE(t.has_attribute("orbit_classifications"));
+  EXPECT_TRUE(t.column("orbit_seed").has_attribute("fields"));
 }
 
 TEST_F(StudyFile, GridVariablesHoldNaNMetricsForCasesNotOkAndSayWhy) {
