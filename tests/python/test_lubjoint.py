@@ -487,22 +487,28 @@ def test_tools_read_study_files_only_through_lubjoint_study():
         assert "from lubjoint import study" in (tools / p).read_text(), p
 
 
-def test_a_continued_study_keeps_each_orbit_and_its_parent(tmp_path):
+@pytest.fixture(scope="module")
+def continued_study(tmp_path_factory):
     # Two speeds of the printed law with simulation.steady = continuation: the 2500 rpm
-    # case starts from the 5000 rpm case's orbit (the seed: largest mu omega / c^2), and
-    # each case's orbit is in /cases, readable by lubjoint.study.orbit_seed.
+    # case starts from the 5000 rpm case's orbit (the seed: largest mu omega / c^2).
+    d = tmp_path_factory.mktemp("continued")
     grid = {"scene": str(SCENE), "study": {"max_cycles": 40, "stop_when_steady": True, "channels": []},
             "set": {"/simulation/steady": "continuation", "/solver/formulation": "partitioned"},
             "driver": "crank_speed", "axes": [{"name": "speed_rpm", "values": [5000, 2500]}]}
-    (tmp_path / "grid.json").write_text(json.dumps(grid))
+    (d / "grid.json").write_text(json.dumps(grid))
     env = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"}
-    p = run([LUBSWEEP, tmp_path / "grid.json", "-o", tmp_path / "study.h5", "-q"], env=env, timeout=300)
+    p = run([LUBSWEEP, d / "grid.json", "-o", d / "study.h5", "-q"], env=env, timeout=300)
     assert p.returncode == 0, p.stderr
-    df = lubjoint.study.cases(tmp_path / "study.h5")
+    return d / "study.h5"
+
+
+def test_a_continued_study_keeps_each_orbit_and_its_parent(continued_study):
+    # Each case's orbit is in /cases, readable by lubjoint.study.orbit_seed.
+    df = lubjoint.study.cases(continued_study)
     assert list(df["classification"].astype(str)) == ["periodic", "periodic"]
     assert list(df["continued_from"]) == [-1, 0]
     for case in (0, 1):
-        seed = lubjoint.study.orbit_seed(tmp_path / "study.h5", case)
+        seed = lubjoint.study.orbit_seed(continued_study, case)
         n = 2 * len(seed["chart"])  # the independent coordinates and their velocities
         assert seed["monodromy"].shape == (n, n) and len(seed["deviation"]) == len(seed["winding"])
         # The seed's monodromy is the orbit's, in each state's unit (S^-1 M S): the same
@@ -510,4 +516,93 @@ def test_a_continued_study_keeps_each_orbit_and_its_parent(tmp_path):
         mu = sorted(np.abs(np.linalg.eigvals(seed["monodromy"])), reverse=True)
         reported = [df.loc[case, f"multiplier_{k}_modulus"] for k in range(1, 5)]
         np.testing.assert_allclose(mu[:4], reported, rtol=1e-9, atol=1e-12)
-    assert lubjoint.study.orbit_seed(tmp_path / "study.h5", 0)["max_eps"] > 0
+    assert lubjoint.study.orbit_seed(continued_study, 0)["max_eps"] > 0
+
+
+def copy_of(path, tmp_path, name="copy.h5"):
+    import shutil
+
+    return Path(shutil.copyfile(path, tmp_path / name))
+
+
+def strings(values):
+    """A list of str as HDF5 variable-length strings, as lubsweep writes its string attributes."""
+    return np.array([str(v.decode() if isinstance(v, bytes) else v) for v in values], dtype=h5py.string_dtype())
+
+
+def test_the_study_file_describes_itself_and_the_reader_restates_none_of_it(continued_study, tmp_path):
+    # What lubsweep wrote (from lub::orbit_seed_fields, CaseClass, lattice_edges), as the
+    # reader gives it.
+    cases = lubjoint.study.cases(continued_study)
+    assert lubjoint.study.orbit_classifications(cases) == ("periodic", "periodic_unstable")
+    assert lubjoint.study.no_orbit_classifications(cases) == (
+        "drifting", "not_converged", "film_collapse", "solver_failure", "budget_exceeded")
+    assert lubjoint.study.lattice_edges(cases) == [(1, 0, "speed_rpm")]  # 2500 rpm below 5000 rpm
+    layout = lubjoint.study.orbit_seed_layout(continued_study)
+    assert layout["layout"] == 1
+    assert [f[:3] for f in layout["fields"]] == [
+        ("deviation", "vector", "float64"), ("modes", "vector", "int64"), ("chart", "vector", "int64"),
+        ("monodromy", "square_matrix_column_major", "float64"), ("winding", "vector", "float64"),
+        ("max_eps", "scalar", "float64"), ("steps_per_period", "scalar", "float64")]
+    seed = lubjoint.study.orbit_seed(continued_study, 1)
+
+    # The file's word is obeyed. Its orbit labels: told that periodic is no orbit, the two
+    # cells' edge is an orbit lost.
+    other = copy_of(continued_study, tmp_path)
+    with h5py.File(other, "a") as f:
+        f["cases"].attrs["orbit_classifications"] = strings(["periodic_unstable"])
+        f["cases"].attrs["no_orbit_classifications"] = strings(["periodic"])
+    told = lubjoint.study.cases(other)
+    assert lubjoint.study.orbit_classifications(told) == ("periodic_unstable",)
+    assert "orbit_lost" not in list(lubjoint.study.bifurcation_edges(told).kind)  # no orbit at either end
+    with h5py.File(other, "a") as f:
+        f["cases"].attrs["orbit_classifications"] = strings(["periodic"])
+        f["cases"].attrs["no_orbit_classifications"] = strings(["periodic"])
+    assert list(lubjoint.study.bifurcation_edges(lubjoint.study.cases(other)).kind) == ["orbit_lost"]
+    # Its seed layout: fields decoded by the names and order the file gives (here the two
+    # scalars renamed and swapped in the list: the values follow the list, not the reader).
+    with h5py.File(other, "a") as f:
+        a = f["cases/orbit_seed"].attrs
+        for key in ("fields", "field_shapes", "field_types", "field_units", "field_long_names"):
+            v = list(a[key])
+            a[key] = strings(v[:5] + [v[6], v[5]])
+        a["fields"] = strings(list(a["fields"])[:5] + ["first", "second"])
+    renamed = lubjoint.study.orbit_seed(other, 1)
+    assert sorted(renamed) == sorted(["deviation", "modes", "chart", "monodromy", "winding", "first", "second"])
+    assert (renamed["first"], renamed["second"]) == (seed["max_eps"], seed["steps_per_period"])
+    np.testing.assert_array_equal(renamed["monodromy"], seed["monodromy"])
+    # Its lattice: the edges the file lists, not a recomputed lattice.
+    with h5py.File(other, "a") as f:
+        del f["lattice"]
+        g = f.create_group("lattice")
+        g["case_a"], g["case_b"], g["axis"] = np.array([0], dtype=np.int64), np.array([1], dtype=np.int64), strings(["speed_rpm"])
+    assert lubjoint.study.lattice_edges(lubjoint.study.cases(other)) == [(0, 1, "speed_rpm")]
+    # Another layout number is refused, naming it.
+    with h5py.File(other, "a") as f:
+        f["cases/orbit_seed"].attrs["layout"] = 2
+    with pytest.raises(lubjoint.StudyFormatError, match="layout 1.*the file says 2"):
+        lubjoint.study.orbit_seed(other, 1)
+
+
+def test_a_study_file_without_its_self_description_reads_and_says_what_is_missing(continued_study, tmp_path):
+    # A file of format 5 written before lubsweep described itself: everything that does not
+    # need the description reads as before; what needs it raises, naming what is missing
+    # and what to do.
+    old = copy_of(continued_study, tmp_path, "old.h5")
+    with h5py.File(old, "a") as f:
+        for a in ("orbit_classifications", "no_orbit_classifications"):
+            del f["cases"].attrs[a]
+        for a in ("layout", "fields", "field_shapes", "field_types", "field_units", "field_long_names", "packing"):
+            del f["cases/orbit_seed"].attrs[a]
+        del f["lattice"]
+    s = lubjoint.load_study(old)
+    assert s.cases.sizes["case"] == 2
+    cases = lubjoint.study.cases(old)
+    assert "lattice" not in cases.attrs and list(cases["continued_from"]) == [-1, 0]
+    with pytest.raises(lubjoint.StudyFormatError, match="has no attribute layout: a study file written before "
+                                                        "lubsweep described its own layout: re-run the sweep"):
+        lubjoint.study.orbit_seed(old, 1)
+    with pytest.raises(lubjoint.StudyFormatError, match="no /cases attribute orbit_classifications.*re-run the sweep"):
+        lubjoint.study.bifurcation_edges(cases)
+    with pytest.raises(lubjoint.StudyFormatError, match="orbit_classifications"):
+        lubjoint.study.orbit_classifications(cases)
