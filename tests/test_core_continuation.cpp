@@ -5,8 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
+#include "lub/run/orbit_seed_fields.hpp"
 #include "lub/run/run.hpp"
 
 namespace {
@@ -35,6 +39,54 @@ lub::ContinuationStart from(const RunResult& r, const json& a, const json& b) {
             s["drivers"][0]["speed_rpm"] = std::exp((1 - l) * std::log(wa) + l * std::log(wb));
             return lub::parse_scene(s);
           }};
+}
+
+// The packed seed (the study file's /cases/orbit_seed) is what orbit_seed_fields() says it
+// is, field by field: a reader that decodes by that list (lubjoint.study.orbit_seed, from
+// the attributes the study file writes from it) gets every member back. Layout 1 pinned.
+TEST(Continuation, APackedSeedIsWhatItsFieldListSays) {
+  lub::OrbitSeed s;
+  s.deviation = {0.1, -0.2, 0.3, 0.4};
+  s.modes = {2};
+  s.chart = {1, 3};
+  for (int i = 0; i < 16; ++i) s.monodromy.push_back(0.01 * i);
+  s.winding = {0.0, 6.25, 0.0, 0.0};
+  s.max_eps = 0.75;
+  s.steps_per_period = 123.0;
+  const std::vector<double> row = lub::pack_seed(s);
+  const std::map<std::string, std::vector<double>> members = {
+      {"deviation", s.deviation}, {"modes", {2.0}}, {"chart", {1.0, 3.0}}, {"monodromy", s.monodromy},
+      {"winding", s.winding}, {"max_eps", {s.max_eps}}, {"steps_per_period", {s.steps_per_period}}};
+  // Decoded by the list alone: the layout number, each non-scalar's count, their values, the scalars.
+  ASSERT_EQ(row.at(0), lub::orbit_seed_layout());
+  std::size_t counts = 1, at = 1;
+  for (const auto& f : lub::orbit_seed_fields()) at += f.shape != lub::SeedShape::scalar;
+  std::map<std::string, std::vector<double>> decoded;
+  for (const auto& f : lub::orbit_seed_fields()) {
+    if (f.shape == lub::SeedShape::scalar) continue;
+    const auto n = static_cast<std::size_t>(row.at(counts++));
+    decoded[std::string(f.name)].assign(row.begin() + static_cast<long>(at), row.begin() + static_cast<long>(at + n));
+    at += n;
+  }
+  for (const auto& f : lub::orbit_seed_fields())
+    if (f.shape == lub::SeedShape::scalar) decoded[std::string(f.name)] = {row.at(at++)};
+  EXPECT_EQ(at, row.size());
+  EXPECT_EQ(decoded, members);
+  for (const auto& f : lub::orbit_seed_fields()) {
+    EXPECT_EQ(f.integer, f.name == "modes" || f.name == "chart") << f.name;
+    EXPECT_EQ(f.shape == lub::SeedShape::square_matrix, f.name == "monodromy") << f.name;
+    EXPECT_FALSE(f.unit.empty() || f.long_name.empty()) << f.name;
+  }
+  // Layout 1, as study files hold it.
+  EXPECT_EQ(std::vector<double>(row.begin(), row.begin() + 6), (std::vector<double>{1, 4, 1, 2, 16, 4}));
+  EXPECT_EQ(row.size(), 6u + 4 + 1 + 2 + 16 + 4 + 2);
+  const lub::OrbitSeed back = lub::unpack_seed(row);
+  EXPECT_EQ(lub::pack_seed(back), row);
+  EXPECT_FALSE(lub::unpack_seed({std::nan("")}).valid());
+  std::vector<double> other = row;
+  other[0] = 2.0;
+  EXPECT_THROW(lub::unpack_seed(other), std::invalid_argument);
+  EXPECT_THROW(lub::unpack_seed(std::vector<double>(row.begin(), row.end() - 1)), std::invalid_argument);
 }
 
 TEST(Continuation, ASceneContinuedFromItsOwnOrbitIsAtItsFixedPointAtOnce) {

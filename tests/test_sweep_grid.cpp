@@ -199,6 +199,32 @@ TEST(SweepGrid, LoadsTheShippedGrids) {
     EXPECT_NO_THROW(lub::sweep::load_grid(dir + f)) << f;
 }
 
+// simulation.steady has one default, the scene parser's: a grid that does not say it runs
+// each case as lubsim runs its scene (transient); a grid that wants steady cycles says auto,
+// and every shipped grid says which it wants, so what they compute does not hang on it.
+TEST(SweepGrid, SteadyMethodIsTheScenesUnlessTheGridSaysIt) {
+  const lub::SteadyMethod lubsim =
+      lub::parse_scene(lub::read_json_file(kScenes + "/slider_crank.json")).simulation.steady;
+  EXPECT_EQ(lubsim, lub::SimulationSpec().steady);
+  const Grid plain = parse(R"("axes": [{"name": "speed_rpm", "values": [5000, 500]}])");
+  for (const auto& c : plain.cases) {
+    EXPECT_FALSE(scene_of(plain, c.id)["simulation"].contains("steady")) << c.label;
+    EXPECT_EQ(c.steady, lubsim) << c.label;
+  }
+  const Grid asked = parse(R"("set": {"/simulation/steady": "auto"}, "axes": [{"name": "speed_rpm", "values": [500]}])");
+  EXPECT_EQ(scene_of(asked, 0)["simulation"]["steady"], "auto");
+  EXPECT_EQ(asked.cases[0].steady, lub::SteadyMethod::automatic);
+  const std::string dir = std::string(LUB_SOURCE_DIR) + "/configs/grids/";
+  for (const char* f : {"paper.json", "paper_clearance.json", "paper_viscosity.json", "paper_speed.json",
+                        "paper_force_law.json", "full_factorial.json", "full_factorial_long_transients.json",
+                        "cheap_4096.json", "accuracy_reference.json", "accuracy_hard_40cP.json",
+                        "accuracy_force_laws.json"}) {
+    const Grid g = lub::sweep::load_grid(dir + f);
+    for (const auto& c : g.cases)
+      ASSERT_TRUE(scene_of(g, c.id)["simulation"].contains("steady")) << f << ": " << c.label;
+  }
+}
+
 // The accuracy grids compare formulations by sub-grid name: each case must run the
 // formulation its sub-grid is named after, whatever the scenes' default is (partitioned
 // from issue 12, joint since issue 26; before, a sub-grid without a formulation axis silently ran it).
@@ -214,8 +240,8 @@ TEST(SweepGrid, AccuracyGridsRunTheFormulationTheirSubGridsName) {
         const bool projection = solver.value("projection", false);
         const std::string method = solver.value("method", std::string("cvode_bdf"));
         SCOPED_TRACE(std::string(f) + ", sub-grid " + b.name + ", case " + std::to_string(id));
-        // Four cycles from the centred start, not a steady stage (lubsweep's default is
-        // auto: shooting would integrate a hundred periods and more a case).
+        // Four cycles from the centred start, not a steady stage (auto, which the other
+        // shipped grids ask for, would integrate a hundred periods and more a case).
         EXPECT_EQ(scene_of(g, id)["simulation"].value("steady", std::string("(default)")), "transient");
         if (b.name == "baumgarte") {
           EXPECT_EQ(form, "baumgarte");

@@ -45,7 +45,7 @@ Grid two_cases() {
 CaseResult fake(int id) {
   CaseResult r;
   r.case_id = id;
-  r.status = "ok";
+  r.status = lub::sweep::CaseStatus::ok;
   r.revision = lub::build_revision();
   for (std::size_t i = 0; i < result_fields().size(); ++i) r.values.push_back(double(id + 1));
   return r;
@@ -112,7 +112,7 @@ TEST(InterruptSchedule, TheLoopLooksWhileACaseRuns) {
     const bool looked = cv.wait_for(l, std::chrono::seconds(60), [&] { return ticks_while_running >= 5; });
     CaseResult r;
     r.case_id = k.case_id;
-    r.status = looked ? "ok" : "error";
+    r.status = looked ? lub::sweep::CaseStatus::ok : lub::sweep::CaseStatus::error;
     return r;
   };
   s.tick = [&] {
@@ -125,7 +125,7 @@ TEST(InterruptSchedule, TheLoopLooksWhileACaseRuns) {
   int recorded = 0;
   s.record = [&](const CaseResult& r) {
     ++recorded;
-    EXPECT_EQ(r.status, "ok") << "the coordinator did not look while the case ran";
+    EXPECT_EQ(r.status, lub::sweep::CaseStatus::ok) << "the coordinator did not look while the case ran";
   };
   schedule(g, {0}, transport.coordinator(), s);
   EXPECT_EQ(recorded, 1);

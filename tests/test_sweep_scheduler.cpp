@@ -54,7 +54,7 @@ class FakeRunner {
     CaseResult r;
     r.case_id = case_id;
     r.rank = rank;
-    r.status = failing_.count(case_id) ? "solver_failure" : "ok";
+    r.status = failing_.count(case_id) ? CaseStatus::solver_failure : CaseStatus::ok;
     r.values = {static_cast<double>(case_id)};
     return r;
   }
@@ -204,7 +204,7 @@ TEST(SweepScheduler, TaskMessageRoundTrip) {
 TEST(SweepScheduler, MalformedResultMessageIsRefusedClearly) {
   CaseResult r;
   r.case_id = 2;
-  r.status = "ok";
+  r.status = CaseStatus::ok;
   r.values = {1.0, 2.0};
   const std::string bytes = encode(r);
   EXPECT_EQ(decode(bytes).values, r.values);
@@ -240,7 +240,7 @@ class ScriptedWorker final : public CoordinatorTransport {
     if (held_.empty()) return std::nullopt;
     CaseResult r;
     r.case_id = held_.front();
-    r.status = r.case_id == fail_ ? "solver_failure" : "ok";
+    r.status = r.case_id == fail_ ? CaseStatus::solver_failure : CaseStatus::ok;
     held_.pop_front();
     return WorkerMessage{1, r};
   }
@@ -322,7 +322,7 @@ TEST(SweepScheduler, AContinuedCaseStartsAfterItsParentFromItsNearestAncestorsOr
       CaseResult r;
       r.case_id = t.case_id;
       r.rank = rank;
-      r.status = "ok";
+      r.status = CaseStatus::ok;
       if (!no_orbit.count(t.case_id)) r.orbit_seed = {static_cast<double>(t.case_id)};
       std::lock_guard<std::mutex> l(m);
       done.insert(t.case_id);

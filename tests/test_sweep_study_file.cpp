@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -21,7 +22,9 @@
 #include <unistd.h>
 
 #include "lub/io/json_reader.hpp"
+#include "lub/run/orbit_seed_fields.hpp"
 #include "lub/sweep/case_result.hpp"
+#include "lub/sweep/continuation_tree.hpp"
 #include "lub/io/output_path.hpp"
 #include "fixtures/temp_dir_test.hpp"
 #include "lub/sweep/grid.hpp"
@@ -42,7 +45,7 @@ const std::string kScenes = std::string(LUB_SOURCE_DIR) + "/configs/scenes";
 Grid small_grid() {
   return parse_grid(R"({
       "scene": "slider_crank.json",
-      "set": {"/solver/rtol": 1e-6},
+      "set": {"/solver/rtol": 1e-6, "/simulation/steady": "auto"},
       "study": {"max_cycles": 2, "metric_cycles": 1, "channels": ["h_min"], "last_cycles": 1, "samples_per_cycle": 90},
       "grids": [{"name": "main", "axes": [{"name": "force_law", "values": ["ideal", "frene_short"]},
                                           {"name": "speed_rpm", "values": [5000, 500]}]},
@@ -51,12 +54,13 @@ Grid small_grid() {
 }
 
 /// A made-up result: distinct values per case, series for even ids.
-CaseResult fake(const Grid& g, int id, const std::string& status = "ok") {
+CaseResult fake(const Grid& g, int id, CaseStatus status = CaseStatus::ok) {
   CaseResult r;
   r.case_id = id;
   r.rank = id % 2;
   r.status = status;
-  r.message = status == "ok" ? "" : "it broke";
+  r.classification = case_class(status).value_or(CaseClass::periodic);
+  r.message = status == CaseStatus::ok ? "" : "it broke";
   r.revision = lub::build_revision();
   const auto fields = result_fields();
   for (std::size_t i = 0; i < fields.size(); ++i) r.values.push_back(fields[i].integer ? double(id + i) : 0.5 * id + 0.001 * i);
@@ -178,11 +182,95 @@ TEST_F(StudyFile, LayoutUnitsAndAttributes) {
   EXPECT_TRUE(f.open_dataset("series/case_0002/h_min").has_attribute("DIMENSION_LIST"));
 }
 
+// The file says what a reader in another language would otherwise restate (lubjoint.study
+// reads these): which classifications carry an orbit, how a row of orbit_seed is packed,
+// and the grid's lattice neighbours. Written with the header: the live file has them too.
+TEST_F(StudyFile, TheFileDescribesItsOwnLayout) {
+  const Grid g = small_grid();
+  for (const bool finalize : {false, true}) {
+    SCOPED_TRACE(finalize ? "finalized" : "live");
+    const std::string path = file(finalize ? "final.h5" : "live.h5");
+    write_study(path, g, {fake(g, 0), fake(g, 1)}, finalize);
+    const auto f = lub::h5::File::open(path);
+    const auto t = f.open_table("cases");
+    std::vector<std::string> orbit, no_orbit;
+    for (const auto& [c, name] : lub::NameTable<CaseClass>::entries) {
+      if (has_orbit(c)) orbit.emplace_back(name);
+      if (!has_orbit(c) && ran(c)) no_orbit.emplace_back(name);
+    }
+    EXPECT_EQ(t.attribute_strings("orbit_classifications"), (std::vector<std::string>{"periodic", "periodic_unstable"}));
+    EXPECT_EQ(t.attribute_strings("orbit_classifications"), orbit);
+    EXPECT_EQ(t.attribute_strings("no_orbit_classifications"),
+              (std::vector<std::string>{"drifting", "not_converged", "film_collapse", "solver_failure", "budget_exceeded"}));
+    EXPECT_EQ(t.attribute_strings("no_orbit_classifications"), no_orbit);
+
+    const auto seed = t.column("orbit_seed");
+    EXPECT_EQ(seed.attribute_int64("layout"), lub::orbit_seed_layout());
+    std::vector<std::string> names, shapes, types, units;
+    for (const auto& fld : lub::orbit_seed_fields()) {
+      names.emplace_back(fld.name);
+      shapes.emplace_back(lub::name_of(fld.shape));
+      types.emplace_back(fld.integer ? "int64" : "float64");
+      units.emplace_back(fld.unit);
+    }
+    EXPECT_EQ(seed.attribute_strings("fields"), names);
+    EXPECT_EQ(seed.attribute_strings("field_shapes"), shapes);
+    EXPECT_EQ(seed.attribute_strings("field_types"), types);
+    EXPECT_EQ(seed.attribute_strings("field_units"), units);
+    EXPECT_EQ(seed.attribute_strings("field_long_names").size(), names.size());
+    EXPECT_TRUE(seed.has_attribute("packing"));
+
+    const auto edges = lattice_edges(g);
+    ASSERT_FALSE(edges.empty());
+    const auto lower = f.open_dataset("lattice/case_a").read_int64s();
+    const auto upper = f.open_dataset("lattice/case_b").read_int64s();
+    const auto axis = f.open_dataset("lattice/axis").read_strings();
+    ASSERT_EQ(lower.size(), edges.size());
+    ASSERT_EQ(upper.size(), edges.size());
+    ASSERT_EQ(axis.size(), edges.size());
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+      EXPECT_EQ(lower[i], edges[i].lower);
+      EXPECT_EQ(upper[i], edges[i].upper);
+      EXPECT_EQ(axis[i], g.axes[static_cast<std::size_t>(edges[i].axis)].name);
+    }
+    EXPECT_TRUE(f.open_dataset("lattice/edge").is_scale());
+  }
+}
+
+// A file of format 5 written before the self-description (no orbit_classifications, no
+// orbit_seed packing) resumes as before: resume reads none of it, and the file it writes
+// has it.
+TEST_F(StudyFile, AFileWithoutItsSelfDescriptionResumes) {
+  const Grid g = small_grid();
+  const std::string path = file("older.h5");
+  write_study(path, g, {fake(g, 0), fake(g, 3, CaseStatus::film_collapse)}, true);
+  {
+    auto f = lub::h5::File::open(path, lub::h5::File::Mode::ReadWrite);
+    auto t = f.open_table("cases");
+    t.remove_attribute("orbit_classifications");
+    t.remove_attribute("no_orbit_classifications");
+    auto seed = t.column("orbit_seed");
+    for (const char* a : {"layout", "fields", "field_shapes", "field_types", "field_units", "field_long_names", "packing"})
+      seed.remove_attribute(a);
+  }
+  const ResumeState st = read_existing(path, g, false, lub::build_revision());
+  ASSERT_EQ(st.done.size(), 2u);
+  EXPECT_EQ(st.done.at(3).classification, CaseClass::film_collapse);
+  {
+    StudyWriter w(path, g, st.done, path);
+    w.finalize();
+  }
+  const auto t = lub::h5::File::open(path).open_table("cases");
+  EXPECT_EQ(t.rows(), 2u);
+  EXPECT_TRUE(t.has_attribute("orbit_classifications"));
+  EXPECT_TRUE(t.column("orbit_seed").has_attribute("fields"));
+}
+
 TEST_F(StudyFile, GridVariablesHoldNaNMetricsForCasesNotOkAndSayWhy) {
   const Grid g = small_grid();
   const std::string path = file("s.h5");
   // Cases 3 and 4 never run: an incomplete study.
-  write_study(path, g, {fake(g, 0), fake(g, 1, "film_collapse"), fake(g, 2)}, true);
+  write_study(path, g, {fake(g, 0), fake(g, 1, CaseStatus::film_collapse), fake(g, 2)}, true);
   const auto f = lub::h5::File::open(path);
   const auto h = f.open_dataset("grids/main/min_film_thickness_m").read_doubles();
   EXPECT_FALSE(std::isnan(h[0]));
@@ -260,8 +348,8 @@ TEST_F(StudyFile, SummarySaysWhereACaseWithoutAnOrbitGotTo) {
   const Grid g = small_grid();
   const std::string path = file("where.h5");
   CaseResult orbit = fake(g, 0), drifting = fake(g, 1);
-  orbit.classification = "periodic";
-  drifting.classification = "drifting";
+  orbit.classification = CaseClass::periodic;
+  drifting.classification = CaseClass::drifting;
   write_study(path, g, {orbit, drifting, fake(g, 2), fake(g, 3), fake(g, 4)}, true);
   std::FILE* out = std::tmpfile();
   ASSERT_NE(out, nullptr);
@@ -326,10 +414,12 @@ TEST_F(StudyFile, FinalFileIsInCaseIdOrderWhateverTheArrivalOrder) {
 TEST_F(StudyFile, ResumeFindsTheCasesByHash) {
   const Grid g = small_grid();
   const std::string path = file("r.h5");
-  write_study(path, g, {fake(g, 2), fake(g, 3, "film_collapse")}, false);  // the live file
+  write_study(path, g, {fake(g, 2), fake(g, 3, CaseStatus::film_collapse)}, false);  // the live file
   ResumeState st = read_existing(path, g, false, lub::build_revision());
   ASSERT_EQ(st.done.size(), 2u);
-  EXPECT_EQ(st.done.at(3).status, "film_collapse");
+  EXPECT_EQ(st.done.at(3).status, CaseStatus::film_collapse);
+  EXPECT_EQ(st.done.at(3).classification, CaseClass::film_collapse);
+  EXPECT_EQ(st.done.at(2).classification, CaseClass::periodic);
   EXPECT_EQ(st.done.at(3).message, "it broke");
   EXPECT_EQ(st.done.at(2).values, fake(g, 2).values);
   EXPECT_EQ(st.other_rows, 0u);
@@ -370,7 +460,7 @@ TEST_F(StudyFile, AFileOfAnotherGridIsRefusedNamingTheCasesAndAxes) {
   const auto before = fs::last_write_time(path);
   const Grid smaller = parse_grid(R"({
       "scene": "slider_crank.json",
-      "set": {"/solver/rtol": 1e-6},
+      "set": {"/solver/rtol": 1e-6, "/simulation/steady": "auto"},
       "study": {"max_cycles": 2, "metric_cycles": 1, "channels": ["h_min"], "last_cycles": 1, "samples_per_cycle": 90},
       "grids": [{"name": "main", "axes": [{"name": "force_law", "values": ["ideal", "frene_short"]},
                                           {"name": "speed_rpm", "values": [5000]}]},
@@ -437,7 +527,7 @@ TEST_F(StudyFile, ResumeIntoAnExtendedGridKeepsEachCaseItsOwnSeries) {
   write_study(path, g, {fake(g, 2)}, false);
   const Grid wider = parse_grid(R"({
       "scene": "slider_crank.json",
-      "set": {"/solver/rtol": 1e-6},
+      "set": {"/solver/rtol": 1e-6, "/simulation/steady": "auto"},
       "study": {"max_cycles": 2, "metric_cycles": 1, "channels": ["h_min"], "last_cycles": 1, "samples_per_cycle": 90},
       "grids": [{"name": "main", "axes": [{"name": "force_law", "values": ["frene_long", "ideal", "frene_short"]},
                                           {"name": "speed_rpm", "values": [5000, 500]}]},
@@ -526,14 +616,15 @@ TEST_F(StudyFile, ForeignOutputFileIsRefused) {
 TEST(SweepCase, RunsAScene) {
   const Grid g = small_grid();
   const CaseResult r = run_case(2, g.cases[2].scene, 7);  // frene_short, 5000 rpm, 2 cycles
-  EXPECT_EQ(r.status, "ok") << r.message;
+  EXPECT_EQ(r.status, CaseStatus::ok) << r.message;
   EXPECT_EQ(r.case_id, 2);
   EXPECT_EQ(r.rank, 7);
   ASSERT_EQ(r.values.size(), result_fields().size());
   // A study reports steady metrics only for a steady cycle (two cycles of Frêne short are
   // none); counts, the periodicity measure and the solver's statistics always.
-  const bool steady = r.classification == "periodic" || r.classification == "periodic_unstable";
-  EXPECT_TRUE(steady || r.classification == "drifting" || r.classification == "not_converged") << r.classification;
+  const bool steady = has_orbit(r.classification);
+  EXPECT_TRUE(steady || r.classification == CaseClass::drifting || r.classification == CaseClass::not_converged)
+      << r.classification;
   const std::set<std::string> always = {"periodicity", "steady", "cycles_run",
                                         "safe_film_thickness_m", "below_safe_film", "newton_iterations",
                                         "transient_cycles", "periods_integrated"};
@@ -550,7 +641,7 @@ TEST(SweepCase, RunsAScene) {
   // Unknown is NaN for every field, integers included (a writer of integers stores -1).
   std::size_t to_steady = 0;
   while (fields[to_steady].name != "cycles_to_steady") ++to_steady;
-  EXPECT_EQ(std::isnan(r.values[to_steady]), r.classification != "periodic") << r.values[to_steady];
+  EXPECT_EQ(std::isnan(r.values[to_steady]), r.classification != CaseClass::periodic) << r.values[to_steady];
   EXPECT_EQ(r.series.names, (std::vector<std::string>{"t", "h_min"}));
   // Only the last cycle is kept, sampled 90 times (both ends included).
   EXPECT_EQ(r.series.data[0].size(), 91u);
@@ -579,8 +670,8 @@ TEST(SweepCase, APeriodicCaseStoresItsPeriodicOrbitNotTheTransient) {
   doc["outputs"]["last_cycles"] = 2;
   doc["outputs"]["sample_interval_s"] = 0.012 / 120;  // 120 samples a cycle: one at every 3° of crank
   const CaseResult r = run_case(0, lub::parse_scene(doc), 0);
-  ASSERT_EQ(r.status, "ok") << r.message;
-  ASSERT_EQ(r.classification, "periodic") << r.message;
+  ASSERT_EQ(r.status, CaseStatus::ok) << r.message;
+  ASSERT_EQ(r.classification, CaseClass::periodic) << r.message;
   ASSERT_EQ(r.series.names, (std::vector<std::string>{"t", "e_x", "e_y"}));
   const std::vector<double>& t = r.series.data[0];
   const std::vector<double>& ex = r.series.data[1];
@@ -597,22 +688,61 @@ TEST(SweepCase, APeriodicCaseStoresItsPeriodicOrbitNotTheTransient) {
 
 TEST(SweepCase, FailuresAreValues) {
   const CaseResult bad = run_case(1, "{not json", 0);
-  EXPECT_EQ(bad.status, "error");
+  EXPECT_EQ(bad.status, CaseStatus::error);
+  EXPECT_EQ(bad.classification, CaseClass::error);
   EXPECT_FALSE(bad.message.empty());
   EXPECT_TRUE(std::isnan(bad.values[0]));
   const CaseResult invalid = run_case(1, R"({"bodies": []})", 0);
-  EXPECT_EQ(invalid.status, "invalid_scene");
+  EXPECT_EQ(invalid.status, CaseStatus::invalid_scene);
+  EXPECT_EQ(invalid.classification, CaseClass::invalid_scene);
   EXPECT_EQ(invalid.message.substr(0, 7), "bodies ");
+}
+
+// A case's status and classification are the core's names (RunStatus, SteadyClass) and
+// the sweep's own two, from one table each: what the study file holds and resume reads back.
+TEST(SweepCase, OutcomeNamesAreTheCoresAndTheSweepsTwo) {
+  std::vector<std::string> status = lub::names_of<lub::RunStatus>();
+  status.insert(status.end(), {"invalid_scene", "error"});
+  EXPECT_EQ(lub::names_of<CaseStatus>(), status);
+  std::vector<std::string> cls = lub::names_of<lub::SteadyClass>();
+  cls.insert(cls.end(), status.begin() + 1, status.end());  // ok has no classification of its own
+  EXPECT_EQ(lub::names_of<CaseClass>(), cls);
+  for (const auto& [k, name] : lub::NameTable<lub::SteadyClass>::entries) {
+    EXPECT_EQ(lub::name_of(case_class(k)), name);
+    EXPECT_EQ(has_orbit(case_class(k)), lub::has_orbit(k)) << name;
+  }
+  for (const auto& [s, name] : lub::NameTable<lub::RunStatus>::entries) EXPECT_EQ(lub::name_of(case_status(s)), name);
+  for (const auto& [s, name] : lub::NameTable<CaseStatus>::entries) {
+    if (s != CaseStatus::ok) {
+      EXPECT_EQ(lub::name_of(*case_class(s)), name);
+    }
+  }
+  EXPECT_FALSE(case_class(CaseStatus::ok));
+  EXPECT_TRUE(ran(CaseClass::budget_exceeded) && ran(CaseClass::drifting));
+  EXPECT_FALSE(ran(CaseClass::invalid_scene) || ran(CaseClass::error));
+  // A message naming no status is refused, not misread.
+  const Grid g = small_grid();
+  json m = json::from_msgpack(encode(fake(g, 1)));
+  m["status"] = "fine";
+  const std::vector<std::uint8_t> bytes = json::to_msgpack(m);
+  try {
+    decode(std::string(bytes.begin(), bytes.end()));
+    FAIL() << "an unknown status was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("\"status\" = \"fine\": not one of ok, film_collapse"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(SweepCase, EncodeDecodeRoundTrip) {
   const Grid g = small_grid();
-  CaseResult r = fake(g, 4, "solver_failure");
+  CaseResult r = fake(g, 4, CaseStatus::solver_failure);
   r.values[1] = std::nan("");
   const CaseResult d = decode(encode(r));
   EXPECT_EQ(d.case_id, 4);
   EXPECT_EQ(d.rank, r.rank);
   EXPECT_EQ(d.status, r.status);
+  EXPECT_EQ(d.classification, CaseClass::solver_failure);
   EXPECT_EQ(d.message, r.message);
   EXPECT_EQ(d.revision, r.revision);
   ASSERT_EQ(d.values.size(), r.values.size());
@@ -636,7 +766,7 @@ TEST(SweepProgress, LineAndEta) {
   EXPECT_NE(line.find("frene_short"), std::string::npos);
   EXPECT_NE(line.find("0 failed"), std::string::npos);
   EXPECT_NEAR(p.eta_s(2.0), 6.0, 1e-12);  // 3 left at 2 s per case
-  r.status = "film_collapse";
+  r.status = CaseStatus::film_collapse;
   line = p.record(g.cases[3], r, 4.0);
   EXPECT_NE(line.find("1 failed"), std::string::npos);
   EXPECT_EQ(format_duration(0.5), "0.50 s");

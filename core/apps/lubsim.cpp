@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "lub/io/output_path.hpp"
+#include "lub/run/orbit.hpp"
 #include "lub/run/run.hpp"
 #include "lub/run/run_io.hpp"
 #include "lub/scene/scene.hpp"
@@ -135,7 +136,7 @@ int main(int argc, char** argv) {
     std::printf("status   %s%s%s\n", lub::to_string(r.status).c_str(), r.message.empty() ? "" : ": ",
                 r.message.c_str());
     const std::string cls = lub::classification(r);
-    const bool orbit = r.status == lub::RunStatus::ok && lub::carries_orbit(r.steady.kind);
+    const bool orbit = r.status == lub::RunStatus::ok && lub::has_orbit(r.steady.kind);
     std::printf("steady   %s (%s)%s\n", cls.c_str(), std::string(lub::name_of(r.steady.method)).c_str(),
                 orbit ? ""
                     : ": the metrics below are a transient's, not a steady cycle's (docs/theory/steady-cycles.md)");

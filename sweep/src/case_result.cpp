@@ -25,7 +25,7 @@ namespace {
 using nlohmann::json;
 
 /// Runs the scene `scene()` gives. Never throws: an InputError (the scene refused) is the
-/// status "invalid_scene", any other exception "error"; values are NaN where not computed.
+/// status invalid_scene, any other exception error; values are NaN where not computed.
 template <class SceneOf, class Run>
 CaseResult run_guarded(int case_id, int rank, const SceneOf& scene, const Run& run) {
   CaseResult out;
@@ -36,11 +36,11 @@ CaseResult run_guarded(int case_id, int rank, const SceneOf& scene, const Run& r
   out.values.assign(fields.size(), std::numeric_limits<double>::quiet_NaN());
   try {
     RunResult r = run(scene());
-    out.status = to_string(r.status);
+    out.status = case_status(r.status);
     out.message = r.message;
-    out.classification = classification(r);
+    out.classification = r.status == RunStatus::ok ? case_class(r.steady.kind) : *case_class(out.status);
     // A study reports steady metrics of steady cycles only (docs/theory/steady-cycles.md).
-    const bool steady = out.classification == "periodic" || out.classification == "periodic_unstable";
+    const bool steady = has_orbit(out.classification);
     for (std::size_t i = 0; i < fields.size(); ++i)
       if (steady || !fields[i].steady_metric) out.values[i] = fields[i].get(r);
     // The channels of what the metrics describe: the periodic orbit shooting found (over
@@ -50,12 +50,12 @@ CaseResult run_guarded(int case_id, int rank, const SceneOf& scene, const Run& r
     out.series = steady && !r.orbit.names.empty() ? std::move(r.orbit) : std::move(r.series);
     if (r.orbit_seed.valid()) out.orbit_seed = pack_seed(r.orbit_seed);
   } catch (const InputError& e) {
-    out.status = "invalid_scene";
-    out.classification = out.status;
+    out.status = CaseStatus::invalid_scene;
+    out.classification = CaseClass::invalid_scene;
     out.message = e.what();
   } catch (const std::exception& e) {
-    out.status = "error";
-    out.classification = out.status;
+    out.status = CaseStatus::error;
+    out.classification = CaseClass::error;
     out.message = e.what();
   }
   return out;
@@ -124,6 +124,17 @@ T field(const json& m, const char* key, bool (json::*is)() const noexcept, const
   return it->template get<T>();
 }
 
+/// The enumerator a message names at `key` (NameTable<E>), refused if it names none.
+template <class E>
+E named(const json& m, const char* key) {
+  const std::string name = field<std::string>(m, key, &json::is_string, "a string");
+  const auto value = parse_name<E>(name);
+  if (!value)
+    throw std::runtime_error(std::string("malformed result message: \"") + key + "\" = \"" + name +
+                             "\": not one of " + names_list<E>());
+  return *value;
+}
+
 }  // namespace
 
 std::string encode(const CaseResult& r) {
@@ -134,8 +145,8 @@ std::string encode(const CaseResult& r) {
                       {"units", i < s.units.size() ? s.units[i] : std::string()},
                       {"data", i < s.data.size() ? s.data[i] : std::vector<double>()}});
   const json m = {{"format", kResultFormat}, {"case_id", r.case_id}, {"rank", r.rank},
-                  {"status", r.status},      {"message", r.message}, {"values", r.values},
-                  {"classification", r.classification},
+                  {"status", r.status.str()}, {"message", r.message}, {"values", r.values},
+                  {"classification", r.classification.str()},
                   {"revision", r.revision},  {"series", std::move(series)},
                   {"orbit_seed", r.orbit_seed}, {"continued_from", r.continued_from}};
   const std::vector<std::uint8_t> bytes = json::to_msgpack(m);
@@ -155,9 +166,9 @@ CaseResult decode(const std::string& bytes) {
     CaseResult r;
     r.case_id = field<int>(m, "case_id", &json::is_number_integer, "an integer");
     r.rank = field<int>(m, "rank", &json::is_number_integer, "an integer");
-    r.status = field<std::string>(m, "status", &json::is_string, "a string");
+    r.status = named<CaseStatus>(m, "status");
     r.message = field<std::string>(m, "message", &json::is_string, "a string");
-    r.classification = field<std::string>(m, "classification", &json::is_string, "a string");
+    r.classification = named<CaseClass>(m, "classification");
     r.values = field<std::vector<double>>(m, "values", &json::is_array, "an array");
     r.revision = field<std::string>(m, "revision", &json::is_string, "a string");
     r.orbit_seed = field<std::vector<double>>(m, "orbit_seed", &json::is_array, "an array");

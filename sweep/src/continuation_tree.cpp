@@ -15,11 +15,7 @@ namespace {
 
 using nlohmann::json;
 
-bool continues(const Case& c) {
-  const json scene = json::parse(c.scene);
-  const json::json_pointer steady("/simulation/steady");
-  return scene.contains(steady) && scene.at(steady) == "continuation";
-}
+bool continues(const Case& c) { return c.steady == SteadyMethod::continuation; }
 
 /// How an axis moves the Sommerfeld number μ ω (R/c)²: its exponent (0: unknown).
 double sommerfeld_exponent(const Axis& a) {
@@ -69,6 +65,15 @@ Lattice lattice_of(const Grid& g, const std::vector<bool>& in) {
   return l;
 }
 
+/// The case one level `dir` (±1) from case `c` along axis `k` in the same component, or -1.
+int neighbour(const Lattice& l, int c, std::size_t k, int dir) {
+  std::vector<int> idx = l.index[static_cast<std::size_t>(c)];
+  if (idx[k] < 0) return -1;
+  idx[k] += dir;
+  const auto it = l.at.find({l.component[static_cast<std::size_t>(c)], idx});
+  return it == l.at.end() ? -1 : it->second;
+}
+
 double sommerfeld_score(const Grid& g, const Case& c) {
   double s = 0.0;
   for (std::size_t k = 0; k < g.axes.size(); ++k) {
@@ -79,6 +84,15 @@ double sommerfeld_score(const Grid& g, const Case& c) {
 }
 
 }  // namespace
+
+std::vector<LatticeEdge> lattice_edges(const Grid& g) {
+  const Lattice l = lattice_of(g, std::vector<bool>(g.cases.size(), true));
+  std::vector<LatticeEdge> edges;
+  for (const Case& c : g.cases)
+    for (std::size_t k = 0; k < g.axes.size(); ++k)
+      if (const int up = neighbour(l, c.id, k, +1); up >= 0) edges.push_back({c.id, up, static_cast<int>(k)});
+  return edges;
+}
 
 std::vector<int> continuation_parents(const Grid& g) {
   const std::size_t n = g.cases.size();
@@ -102,17 +116,13 @@ std::vector<int> continuation_parents(const Grid& g) {
     while (!front.empty()) {
       const int c = front.front();
       front.pop_front();
-      const auto& comp = l.component[static_cast<std::size_t>(c)];
       for (std::size_t k = 0; k < g.axes.size(); ++k) {
         for (int dir : {-1, +1}) {
-          std::vector<int> idx = l.index[static_cast<std::size_t>(c)];
-          if (idx[k] < 0) continue;
-          idx[k] += dir;
-          const auto it = l.at.find({comp, idx});
-          if (it == l.at.end() || reached[static_cast<std::size_t>(it->second)]) continue;
-          reached[static_cast<std::size_t>(it->second)] = true;
-          parent[static_cast<std::size_t>(it->second)] = c;
-          front.push_back(it->second);
+          const int next = neighbour(l, c, k, dir);
+          if (next < 0 || reached[static_cast<std::size_t>(next)]) continue;
+          reached[static_cast<std::size_t>(next)] = true;
+          parent[static_cast<std::size_t>(next)] = c;
+          front.push_back(next);
         }
       }
     }

@@ -211,13 +211,12 @@ void apply_study(const json& study, Context& cx, FailurePolicy& policy) {
   s.finish();
 }
 
-/// grid.study applied to the base scene, which a study then runs to steady cycles.
+/// grid.study applied to the base scene. simulation.steady is whatever the scene, `set` or
+/// an axis says, and where none says, the scene parser's default, as lubsim runs the scene:
+/// a grid that asks for steady cycles says so ("set": {"/simulation/steady": "auto"}, as
+/// the grids in configs/grids do; docs/theory/steady-cycles.md).
 void apply_study_settings(ObjectReader& r, Context& cx, FailurePolicy& policy) {
   apply_study(r.has("study") ? r.raw("study") : json::object(), cx, policy);
-  // A study reports steady cycles: simulation.steady is "auto" unless the scene, `set` or
-  // an axis says otherwise (docs/theory/steady-cycles.md); a run of fixed duration has no cycle.
-  if (json& sim = cx.base["simulation"]; !sim.contains("steady") && !sim.contains("duration_s"))
-    sim["steady"] = "auto";
   parse_case(cx.base, r.child("study"), r.has("study") ? r.raw("study") : json::object());
 }
 

@@ -157,9 +157,11 @@ void Expander::explicit_cases(Block& b, const json& cases, const std::string& pa
 /// axis values as the grid wrote them (the case's columns for those axes). The case's
 /// scene is parsed here to validate it, and not kept: every rank, rank 0 included, parses
 /// the canonical JSON it runs (a parsed scene costs rank 0 ~5 kB a case: 0.5 GB for 10⁵).
+/// What the sweep itself asks of a case's scene is kept on the Case (Case::steady).
 int Expander::add_case(json scene, const std::string& label, const std::string& what, const std::vector<Given>& given) {
   bool valid = false;
   std::vector<std::string> warnings;  // the plausibility warnings of the scene that runs
+  SteadyMethod steady = SimulationSpec().steady;  // and its simulation.steady
   if (cx_.samples_per_cycle && cx_.stores_series) {
     // The sample interval follows the case's cycle period, which only the parsed scene
     // knows: when it sets one, the scene that runs is parsed again below.
@@ -169,6 +171,7 @@ int Expander::add_case(json scene, const std::string& label, const std::string& 
     else {
       valid = true;
       warnings = s.warnings;
+      steady = s.simulation.steady;
     }
   }
   Case c;
@@ -179,10 +182,15 @@ int Expander::add_case(json scene, const std::string& label, const std::string& 
     for (const Given& g : given) given_[static_cast<std::size_t>(found->second)].emplace(g.axis, g.value);
     return found->second;
   }
-  if (!valid) warnings = parse_or_blame(scene, what, given).warnings;
+  if (!valid) {
+    const Scene s = parse_or_blame(scene, what, given);
+    warnings = s.warnings;
+    steady = s.simulation.steady;
+  }
   if (g_.cases.size() >= kMaxCases) throw InputError(fmt::format("grid: more than {} cases", kMaxCases));
   c.id = static_cast<int>(g_.cases.size());
   c.label = label.empty() ? "base scene" : label;
+  c.steady = steady;
   by_hash_[c.hash] = c.id;
   std::map<int, json>& columns = given_.emplace_back();
   for (const Given& g : given) columns[g.axis] = g.value;  // two keys of one axis: the last, as applied

@@ -32,7 +32,7 @@ std::string Progress::record(const Case& c, const CaseResult& r, double elapsed_
     if (std::string(fields[i].name) == "wall_time_s") wall = r.values[i];
   const std::size_t width = fmt::formatted_size("{}", total_);
   std::string line = fmt::format("[{:>{}}/{}] {} {} {} rank {} | {} | {} failed", done_, width, total_, c.name,
-                                 r.status, format_duration(wall), r.rank, c.label, failed_);
+                                 r.status.str(), format_duration(wall), r.rank, c.label, failed_);
   line += done_ < total_ ? fmt::format(" | ETA {}", format_duration(eta_s(elapsed_s)))
                          : fmt::format(" | all done in {}", format_duration(elapsed_s));
   return line;

@@ -11,7 +11,9 @@
 
 #include "lub/common/constants.hpp"
 #include "lub/io/json_reader.hpp"
+#include "lub/run/orbit_seed_fields.hpp"
 #include "lub/run/run_io.hpp"
+#include "lub/sweep/continuation_tree.hpp"
 #include "study_parts.hpp"
 
 namespace lub::sweep {
@@ -24,6 +26,12 @@ constexpr const char* kClassificationLongName =
     "steady cycle: periodic (converged, stable), periodic_unstable (an orbit with a Floquet multiplier "
     "above 1), drifting (no periodic orbit inside the clearance), not_converged; for a case that is "
     "not ok its status";
+
+/// The status and classification of a sub-grid's point without a row (never a case's).
+constexpr const char* kNotRun = "not_run";
+
+/// The status columns' long_name: "outcome: " and every CaseStatus.
+std::string status_long_name() { return "outcome: " + names_list<CaseStatus>(); }
 
 h5::Cell axis_cell(const Axis& a, const json& v) {
   if (a.numeric) return v.is_number() ? v.get<double>() : std::nan("");
@@ -95,6 +103,45 @@ void declare_missing_values(h5::Table& t, const Grid& g) {
   }
 }
 
+/// Which classifications a reader must tell apart, from CaseClass's table and has_orbit
+/// (lubjoint.bifurcations reads them): those of a case with a periodic orbit, and those of a
+/// run that ended without one. The rest (invalid_scene, error; not_run in /grids) say
+/// nothing about the journal.
+void describe_classifications(h5::Table& t) {
+  std::vector<std::string> orbit, no_orbit;
+  for (const auto& [c, name] : NameTable<CaseClass>::entries) {
+    if (has_orbit(c))
+      orbit.emplace_back(name);
+    else if (ran(c))
+      no_orbit.emplace_back(name);
+  }
+  t.set_attribute("orbit_classifications", orbit);
+  t.set_attribute("no_orbit_classifications", no_orbit);
+}
+
+/// How a row of the orbit_seed column is packed, field by field, from lub::orbit_seed_fields()
+/// (the list pack_seed walks): a reader decodes it by these names (lubjoint.study.orbit_seed).
+void describe_orbit_seed(h5::Dataset d) {
+  std::vector<std::string> names, shapes, types, units, long_names;
+  for (const OrbitSeedField& f : orbit_seed_fields()) {
+    names.emplace_back(f.name);
+    shapes.emplace_back(name_of(f.shape));
+    types.emplace_back(f.integer ? "int64" : "float64");
+    units.emplace_back(f.unit);
+    long_names.emplace_back(f.long_name);
+  }
+  d.set_attribute("layout", static_cast<std::int64_t>(orbit_seed_layout()));
+  d.set_attribute("fields", names);
+  d.set_attribute("field_shapes", shapes);
+  d.set_attribute("field_types", types);
+  d.set_attribute("field_units", units);
+  d.set_attribute("field_long_names", long_names);
+  d.set_attribute("packing",
+                  "a JSON array of numbers: `layout`, then the count of each field whose shape is not scalar, in "
+                  "field order, then those fields' values, in field order, then each scalar field; a "
+                  "square_matrix_column_major of count n*n is n x n, column by column; int64 fields hold integers");
+}
+
 /// The empty /cases table, its columns and the attributes that group them.
 void create_cases_table(h5::File& f, const Grid& g) {
   h5::Table t = f.create_table("cases", case_columns(g));
@@ -107,6 +154,36 @@ void create_cases_table(h5::File& f, const Grid& g) {
   t.set_attribute("solver", solver);
   for (const Axis& a : g.axes) t.column(a.name).set_attribute("pointer", a.pointer);
   declare_missing_values(t, g);
+  describe_classifications(t);
+  describe_orbit_seed(t.column("orbit_seed"));
+}
+
+/// /lattice: the grid's lattice neighbours (lattice_edges, the lattice the continuation
+/// tree walks), one edge per entry of the dimension `edge`: case_a at the lower value of
+/// `axis`, case_b one level up. What lubjoint.bifurcations reads as the grid's edges.
+void write_lattice(h5::File& f, const Grid& g) {
+  std::vector<std::int64_t> number, lower, upper;
+  std::vector<std::string> axis;
+  for (const LatticeEdge& e : lattice_edges(g)) {
+    number.push_back(static_cast<std::int64_t>(number.size()));
+    lower.push_back(e.lower);
+    upper.push_back(e.upper);
+    axis.push_back(g.axes.at(static_cast<std::size_t>(e.axis)).name);
+  }
+  h5::Group lg = f.require_group("lattice");
+  lg.set_attribute("long_name",
+                   "lattice neighbours: two cases with equal non-numeric axes that differ on one numeric axis by one "
+                   "step of its sorted values over the grid (docs/theory/continuation.md)");
+  h5::Dataset edge = lg.write_dataset("edge", number, "1");
+  edge.set_attribute("long_name", "edge number");
+  edge.make_scale("edge");
+  const auto on_edge = [&](h5::Dataset d, const char* long_name) {
+    d.set_attribute("long_name", long_name);
+    d.attach_scale(edge, 0);
+  };
+  on_edge(lg.write_dataset("case_a", lower, "1"), "case id (the coordinate of /cases) at the lower value of axis");
+  on_edge(lg.write_dataset("case_b", upper, "1"), "case id one step of axis above case_a");
+  on_edge(lg.write_strings("axis", axis), "the numeric axis (a /cases column) case_a and case_b differ on");
 }
 
 /// /scene_patches on the root's own `scene` dimension (the case ids of the grid), so the
@@ -165,6 +242,7 @@ void write_header(h5::File& f, const Grid& g, const std::vector<std::string>& pa
   write_root_attributes(f, g, complete);
   create_cases_table(f, g);
   write_scene_patches(f, g, patches);
+  write_lattice(f, g);
   h5::Group grids = f.require_group("grids");
   for (const Block& b : g.blocks) write_block_index(grids, g, b);
 }
@@ -212,16 +290,15 @@ void write_grid_results(h5::File& f, const Grid& g, const std::map<int, CaseResu
     }
     std::vector<std::string> status, message, cls;
     for (const CaseResult* r : rs) {
-      status.push_back(r ? r->status : "not_run");
+      status.push_back(r ? r->status.str() : std::string(kNotRun));
       message.push_back(r ? r->message : "");
-      cls.push_back(r ? r->classification : "not_run");
+      cls.push_back(r ? r->classification.str() : std::string(kNotRun));
     }
     h5::Dataset cl = bg.write_strings("classification", cls, shape);
     cl.set_attribute("long_name", std::string(kClassificationLongName));
     attach_like_index(bg, b, g, cl);
     h5::Dataset st = bg.write_strings("status", status, shape);
-    st.set_attribute("long_name",
-                     "outcome: ok, film_collapse, solver_failure, budget_exceeded, invalid_scene, error, or not_run");
+    st.set_attribute("long_name", status_long_name() + ", or " + kNotRun);
     attach_like_index(bg, b, g, st);
     h5::Dataset msg = bg.write_strings("message", message, shape);
     msg.set_attribute("long_name", "why a case is not ok");
@@ -270,8 +347,7 @@ std::vector<h5::Column> case_columns(const Grid& g) {
   for (const Axis& a : g.axes)
     c.push_back({a.name, a.numeric ? ColumnType::Float64 : ColumnType::String, a.numeric ? a.units : "",
                  axis_long_name(a)});
-  c.push_back({"status", ColumnType::String, "",
-               "outcome: ok, film_collapse, solver_failure, budget_exceeded, invalid_scene, error"});
+  c.push_back({"status", ColumnType::String, "", status_long_name()});
   c.push_back({"message", ColumnType::String, "", "why a case is not ok"});
   c.push_back({"classification", ColumnType::String, "", kClassificationLongName});
   for (const auto& f : result_fields())
@@ -290,9 +366,9 @@ h5::Row case_row(const Grid& g, const CaseResult& r) {
   const Case& c = g.cases.at(static_cast<std::size_t>(r.case_id));
   h5::Row row = {static_cast<std::int64_t>(c.id), c.name, c.hash};
   for (std::size_t i = 0; i < g.axes.size(); ++i) row.push_back(axis_cell(g.axes[i], c.axis_values[i]));
-  row.push_back(r.status);
+  row.push_back(r.status.str());
   row.push_back(r.message);
-  row.push_back(r.classification);
+  row.push_back(r.classification.str());
   const auto fields = result_fields();
   for (std::size_t i = 0; i < fields.size(); ++i) {
     const double v = i < r.values.size() ? r.values[i] : std::nan("");

@@ -102,13 +102,29 @@ InputError other_cases_error(const std::string& path, const h5::Table& t, const 
   return InputError(msg + kDropHint);
 }
 
+/// Each name of a string column as the enumerator it names (NameTable<E>); throws
+/// lub::InputError naming the row and the value where it names none.
+template <class E>
+std::vector<E> named_column(const h5::Table& t, const char* column, const std::string& path) {
+  std::vector<E> out;
+  const std::vector<std::string> names = t.read_strings(column);
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const auto value = parse_name<E>(names[i]);
+    if (!value)
+      throw InputError("-o " + path + ": /cases row " + std::to_string(i) + ": " + column + " = \"" + names[i] +
+                       "\" is not one of " + names_list<E>() + kResumeHint);
+    out.push_back(*value);
+  }
+  return out;
+}
+
 /// The columns of /cases a resumed row is made of.
 struct EarlierRows {
-  explicit EarlierRows(const h5::Table& t)
+  EarlierRows(const h5::Table& t, const std::string& path)
       : hashes(t.read_strings("hash")),
-        status(t.read_strings("status")),
+        status(named_column<CaseStatus>(t, "status", path)),
         message(t.read_strings("message")),
-        classification(t.read_strings("classification")),
+        classification(named_column<CaseClass>(t, "classification", path)),
         revision(t.read_strings("revision")),
         rank(t.read_int64s("rank")) {
     // Files of an earlier format have no orbits: their cases are continued from by none.
@@ -138,7 +154,11 @@ struct EarlierRows {
     return r;
   }
 
-  std::vector<std::string> hashes, status, message, classification, revision, orbit_seed;
+  std::vector<std::string> hashes;
+  std::vector<CaseStatus> status;
+  std::vector<std::string> message;
+  std::vector<CaseClass> classification;
+  std::vector<std::string> revision, orbit_seed;
   std::vector<std::int64_t> rank, continued_from;
   std::vector<std::vector<double>> values;  ///< per result field
 };
@@ -166,7 +186,7 @@ ResumeState read_existing(const std::string& path, const Grid& grid, bool retry_
     st.incompatible_rows = n;
     return st;
   }
-  const EarlierRows rows(t);
+  const EarlierRows rows(t, path);
   std::map<std::string, int> id_of;
   for (const Case& c : grid.cases) id_of[c.hash] = c.id;
   std::vector<std::size_t> other;
@@ -184,7 +204,7 @@ ResumeState read_existing(const std::string& path, const Grid& grid, bool retry_
       ++st.other_revision;
       continue;
     }
-    if (retry_failed && rows.status[i] != "ok") {
+    if (retry_failed && rows.status[i] != CaseStatus::ok) {
       ++st.retried;
       continue;
     }

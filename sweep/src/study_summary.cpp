@@ -22,6 +22,15 @@ struct SummaryColumn {
   std::vector<std::string> cells;
 };
 
+/// Whether a status read from the file is ok (CaseStatus's table).
+bool is_ok(const std::string& status) { return parse_name<CaseStatus>(status) == CaseStatus::ok; }
+
+/// Whether a classification read from the file is a periodic orbit (an unknown name: not).
+bool is_orbit(const std::string& cls) {
+  const auto c = parse_name<CaseClass>(cls);
+  return c && has_orbit(*c);
+}
+
 
 /// The columns of the table after `case`: the axes (numbers in {:g}, "-" where unset), status,
 /// classification (`cls`), then the key metrics that `t` has, each scaled and formatted.
@@ -48,7 +57,7 @@ void add_columns(const h5::Table& t, const std::vector<std::string>& status, con
     if (!t.has_column(name)) return;
     const std::vector<double> v = t.read_doubles(name);
     for (std::size_t i = 0; i < v.size(); ++i) {
-      const bool shown = !without_orbit || (cls[i] != "periodic" && cls[i] != "periodic_unstable" && v[i] != 0.0);
+      const bool shown = !without_orbit || (!is_orbit(cls[i]) && v[i] != 0.0);
       c.cells.push_back(shown && std::isfinite(v[i]) ? fmt::format(fmt::runtime(format), v[i] * scale) : "-");
     }
     cols.push_back(std::move(c));
@@ -75,7 +84,7 @@ void add_columns(const h5::Table& t, const std::vector<std::string>& status, con
 void print_counts(std::FILE* out, const std::string& path, std::size_t n, std::int64_t total,
                   const std::vector<std::string>& status, const std::vector<std::string>& cls) {
   std::size_t failed = 0;
-  for (const auto& s : status) failed += s != "ok";
+  for (const auto& s : status) failed += !is_ok(s);
   fmt::print(out, "{}: {} of {} cases, {} ok, {} not ok{}\n", path, n, total, n - failed, failed,
              static_cast<std::int64_t>(n) < total ? " (incomplete: re-run to resume)" : "");
   std::map<std::string, std::size_t> by_class;
@@ -140,7 +149,7 @@ void print_summary(const std::string& path, std::FILE* out) {
   print_counts(out, path, n, total, status, cls);
   print_table(out, cols, n);
   for (std::size_t i = 0; i < n; ++i)
-    if (status[i] != "ok") fmt::print(out, "{}: {}: {}\n", names[i], status[i], message[i]);
+    if (!is_ok(status[i])) fmt::print(out, "{}: {}: {}\n", names[i], status[i], message[i]);
 }
 
 }  // namespace lub::sweep

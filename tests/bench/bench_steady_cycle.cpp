@@ -1,5 +1,5 @@
 // What a steady cycle costs, and what its accuracy costs (docs/validation/steady-cycles.md):
-// `simulation.steady = auto` (the study default) on four cells of the full factorial, at
+// `simulation.steady = auto` (the study grids' choice) on four cells of the full factorial, at
 // the scene's rtol 1e-8 and ten and a hundred times tighter, against the 40-cycle
 // transient alone. For each: the label, h_min and its error bar (the orbit re-solved at
 // rtol/100), orbit_error (how far that re-solve moves the orbit, clearances), the periods
@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "lub/io/json_reader.hpp"
+#include "lub/run/orbit.hpp"
 #include "lub/run/run.hpp"
 #include "lub/scene/scene.hpp"
 
@@ -114,7 +115,7 @@ int main(int argc, char** argv) {
       double t_auto = 0, t_tr = 0;
       const lub::RunResult r = timed(scene(c, rtol, "auto"), repeats, t_auto);
       timed(scene(c, rtol, "transient"), repeats, t_tr);
-      const bool orbit = r.steady.kind == lub::SteadyClass::periodic || r.steady.kind == lub::SteadyClass::periodic_unstable;
+      const bool orbit = lub::has_orbit(r.steady.kind);
       const double h = orbit ? r.metrics.min_film_thickness_m : r.steady.last_cycle_min_film_m;
       std::printf("%-27s %6.0e %-18s %10.4f %9.3g %9.2g %7lld %8.3f %7.1f\n", c.name, rtol,
                   lub::classification(r).c_str(), 1e6 * h, orbit ? 1e9 * r.metrics.min_film_thickness_m_error : NAN,

@@ -15,7 +15,7 @@
 #       output_path  lubsweep and lubsim refuse an output path that is a directory (or in
 #                 a missing directory) before any work: exit 2, message, no file created
 #       one_cycle a grid of one-cycle cases (cheap_4096.json in small) costs one period a
-#                 case in the study's default steady method and in continuation; exit 77
+#                 case in the study grids' steady method (auto) and in continuation; exit 77
 #                 (skipped) without Debian's h5py
 #       tools     the Python tools on a small study (compare.py study finds a regression,
 #                 plot/paper.py and plot/sweep_map.py draw); exit 77 (skipped) without Debian's

@@ -20,6 +20,10 @@ NAN = float("nan")
 AXES = ["clearance_m", "viscosity_Pa_s", "speed_rpm", "force_law"]
 UNITS = {"clearance_m": "m", "viscosity_Pa_s": "Pa s", "speed_rpm": "min-1", "force_law": ""}
 BASE = dict(clearance_m=2e-4, viscosity_Pa_s=0.4, speed_rpm=5000.0, force_law="pinkus_sternlicht")
+# What a study file lubsweep writes says of its classifications (the /cases attributes; the
+# test of the file itself: StudyFile.TheFileDescribesItsOwnLayout, test_lubjoint.py).
+ORBIT = ["periodic", "periodic_unstable"]
+NO_ORBIT = ["drifting", "not_converged", "film_collapse", "solver_failure", "budget_exceeded"]
 
 
 def mult(m1, a1, m2=NAN, a2=NAN):
@@ -28,15 +32,26 @@ def mult(m1, a1, m2=NAN, a2=NAN):
                 multiplier_2_angle_rad=a2)
 
 
+def as_lattice(edges):
+    """Edges (a, b, axis) as lubjoint.study.cases puts the file's /lattice in attrs["lattice"]."""
+    edges = sorted(edges)
+    return {"case_a": np.array([e[0] for e in edges], dtype=np.int64),
+            "case_b": np.array([e[1] for e in edges], dtype=np.int64), "axis": np.array([e[2] for e in edges], dtype=str)}
+
+
 def table(*rows, multipliers=True):
-    """A /cases table as lubjoint.study.cases gives it: index case id, attrs axes and units."""
+    """A /cases table as lubjoint.study.cases gives it: index case id, attrs axes, units, the
+    classifications with and without an orbit, and the lattice (here by the definition, as
+    lubsweep writes it: every numeric column of the rows that is an axis, offset_m too)."""
     full = []
     for r in rows:
         cls = r.get("classification", "periodic" if r.get("multiplier_1_modulus", 0.0) < 1.0 else "periodic_unstable")
         full.append({**BASE, **(mult(NAN, NAN) if multipliers else {}), **r, "classification": cls})
     df = pd.DataFrame(full)
     df.index.name = "case"
-    df.attrs = {"axes": np.array(AXES), "units": dict(UNITS)}
+    lattice = brute_force_neighbours(df, AXES + [a for a in ("offset_m",) if a in df])
+    df.attrs = {"axes": np.array(AXES), "units": dict(UNITS), "orbit_classifications": np.array(ORBIT),
+                "no_orbit_classifications": np.array(NO_ORBIT), "lattice": as_lattice(lattice)}
     return df
 
 
@@ -143,17 +158,38 @@ def brute_force_neighbours(df, axes):
     return out
 
 
-def test_the_lattice_of_a_full_factorial_equals_the_pairwise_definition():
-    rows = [dict(clearance_m=c, viscosity_Pa_s=v, speed_rpm=s, force_law=f)
-            for c in (5e-5, 1e-4, 2e-4) for v in (0.04, 0.4) for s in (50.0, 500.0, 5000.0)
-            for f in ("pinkus_sternlicht", "frene_long")]
-    rows.append(dict(clearance_m=NAN, viscosity_Pa_s=0.4, speed_rpm=500.0, force_law="ideal"))
-    rows.append(dict(clearance_m=NAN, viscosity_Pa_s=0.4, speed_rpm=5000.0, force_law="ideal"))
-    df = table(*rows)
-    got = set(lattice_edges(df, AXES))
-    assert got == brute_force_neighbours(df, AXES)
-    # 2 laws x (2*2*3 + 3*1*3 + 3*2*2) + the ideal pair along the speed.
-    assert len(got) == 2 * (12 + 9 + 12) + 1
+def test_the_neighbours_are_the_files_lattice_along_the_axes_asked_of_the_cases_present():
+    # The lattice is lubsweep's (/lattice; its definition is tested in C++,
+    # ContinuationTree.TheLatticeOfAFullFactorialEqualsThePairwiseDefinition): read, not
+    # recomputed. Here the file's word is obeyed even where it is not the definition.
+    df = table({"viscosity_Pa_s": 0.1, **mult(0.9, 0.0)}, {"viscosity_Pa_s": 0.2, **mult(0.95, 0.0)},
+               {"viscosity_Pa_s": 0.4, **mult(1.1, 0.0)})
+    assert lattice_edges(df, AXES) == [(0, 1, "viscosity_Pa_s"), (1, 2, "viscosity_Pa_s")]
+    df.attrs["lattice"] = as_lattice([(0, 2, "viscosity_Pa_s"), (2, 7, "viscosity_Pa_s"), (1, 2, "speed_rpm")])
+    assert lattice_edges(df, AXES) == [(0, 2, "viscosity_Pa_s"), (1, 2, "speed_rpm")]  # case 7 is not a row
+    assert lattice_edges(df, ["viscosity_Pa_s"]) == [(0, 2, "viscosity_Pa_s")]
+    e = only_edge(df.loc[[0, 2]])  # a subset keeps its attrs: the file's edges between its rows
+    assert (e.case_a, e.case_b, e.kind) == (0, 2, "fold")
+
+
+def test_which_classifications_carry_an_orbit_is_the_files_word():
+    # An orbit at one end and none at the other is an orbit_lost edge by the file's lists:
+    # told that periodic_unstable is no orbit, a periodic/periodic_unstable pair is one.
+    pair = lambda: table({"speed_rpm": 50.0, "classification": "periodic_unstable"},
+                         {"speed_rpm": 500.0, "classification": "periodic"}, multipliers=False)
+    assert study.bifurcation_edges(pair()).empty
+    df = pair()
+    df.attrs["orbit_classifications"] = np.array(["periodic"])
+    df.attrs["no_orbit_classifications"] = np.array(["periodic_unstable"])
+    assert list(study.bifurcation_edges(df).kind) == ["orbit_lost"]
+    assert study.orbit_classifications(df) == ("periodic",)
+    # A table without the file's word (a study file written before lubsweep wrote it) is
+    # refused, naming what is missing and what to do.
+    for name in ("orbit_classifications", "no_orbit_classifications", "lattice"):
+        df = pair()
+        del df.attrs[name]
+        with pytest.raises(study.StudyFormatError, match=f"{name}.*re-run the sweep"):
+            study.bifurcation_edges(df)
 
 
 def test_a_non_positive_axis_value_is_interpolated_linearly():

@@ -8,18 +8,23 @@ import sys
 from lubjoint import study
 from test_bifurcations import brute_force_neighbours
 
-ORBIT = ("periodic", "periodic_unstable")
 DID_NOT_RUN = {"not_run", "invalid_scene", "error"}  # says nothing about the journal
 
 
 def test_every_edge_of_the_paper_study_follows_the_rule(paper_study):
     cases = study.cases(paper_study)
     axes = [str(a) for a in cases.attrs["axes"]]
-    edges = study.bifurcation_edges(cases)
+    # What the file says of itself: the classifications with an orbit, those of a run without
+    # one (every other the cases that did not run), and its lattice, the pairwise definition.
+    orbit, no_orbit = study.orbit_classifications(cases), study.no_orbit_classifications(cases)
+    assert orbit == ("periodic", "periodic_unstable")
+    assert not set(orbit) & set(no_orbit) and not (set(orbit) | set(no_orbit)) & DID_NOT_RUN
     neighbours = brute_force_neighbours(cases, axes)
+    assert set(study.lattice_edges(cases)) == neighbours
+    edges = study.bifurcation_edges(cases)
     assert {(r.case_a, r.case_b, r.axis) for r in edges.itertuples()} <= neighbours
     expected_lost = {(a, b, ax) for a, b, ax in neighbours
-                     if (cases.at[a, "classification"] in ORBIT) != (cases.at[b, "classification"] in ORBIT)
+                     if (cases.at[a, "classification"] in orbit) != (cases.at[b, "classification"] in orbit)
                      and not {cases.at[a, "classification"], cases.at[b, "classification"]} & DID_NOT_RUN}
     assert {(r.case_a, r.case_b, r.axis) for r in edges.itertuples() if r.kind == "orbit_lost"} == expected_lost
     # The paper grid loses its orbit on its lines (the baseline: drifting at 50 rpm,

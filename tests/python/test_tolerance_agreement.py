@@ -18,6 +18,7 @@ def cases(rows):
     """A /cases table over the axes (clearance_m, force_law) as lubjoint.study.cases gives it."""
     df = pd.DataFrame(rows)
     df.attrs["axes"] = ["clearance_m", "force_law"]
+    df.attrs["orbit_classifications"] = ["periodic", "periodic_unstable"]  # as the study file says
     return df
 
 

@@ -30,7 +30,6 @@ import numpy as np
 
 from lubjoint import study as study_reader  # (PYTHONPATH=build/python: docs/guide/post-processing.md)
 
-ORBITS = ("periodic", "periodic_unstable")
 # The metrics with error bars (<metric>_error in /cases); those in rad are angles.
 BARRED = ("min_film_thickness_m", "max_eps", "peak_reaction_N", "peak_acceleration_m_s2",
           "crank_angle_at_min_film_rad", "crank_angle_at_peak_reaction_rad")
@@ -62,12 +61,14 @@ def agreement(default, tight):
     if axes != axes_b:
         raise ValueError(f"the two studies have different axes: {axes} and {axes_b}")
     both = [k for k in a.index if k in b.index]
+    # The classifications with an orbit, as each file says (/cases orbit_classifications).
+    orbit_a, orbit_b = study_reader.orbit_classifications(default), study_reader.orbit_classifications(tight)
     labels = {}
     for k in both:
         t = (str(a.at[k, "classification"]), str(b.at[k, "classification"]))
         labels[t] = labels.get(t, 0) + 1
     orbits = [k for k in both
-              if str(a.at[k, "classification"]) in ORBITS and str(b.at[k, "classification"]) in ORBITS]
+              if str(a.at[k, "classification"]) in orbit_a and str(b.at[k, "classification"]) in orbit_b]
     metrics = {}
     for m in BARRED:
         if m not in a.columns or m + "_error" not in a.columns:

@@ -34,9 +34,6 @@ from lubjoint import study as study_reader  # noqa: E402  (PYTHONPATH=build/pyth
 
 # Paper figure numbers of the four studies (reaction, orbit, film, phase).
 FIRST_FIGURE = {"clearance": 6, "viscosity": 10, "speed": 14, "force_law": 18}
-# Classifications whose stored channels are a steady cycle (the periodic orbit shooting found,
-# or a transient the period map confirmed); the others' are a transient's last cycles.
-STEADY = ("periodic", "periodic_unstable")
 # Channels each panel needs (configs/grids/paper.json stores them all).
 NEEDS = {"reaction": ["reaction_force"], "orbit": ["e_x", "e_y"], "film": ["h_min"], "phase": ["eps", "eps_dot"]}
 AXIS_WORDS = {"clearance_m": "clearance sizes", "viscosity_Pa_s": "lubricant viscosities",
@@ -79,6 +76,10 @@ class Figures:
     def __init__(self, path, outdir):
         self.path, self.out, self.written = path, outdir, []
         self.c = study_reader.cases(path)
+        # Classifications whose stored channels are a steady cycle (the periodic orbit shooting
+        # found, or a transient the period map confirmed), as the file says; the others' are a
+        # transient's last cycles.
+        self.steady = study_reader.orbit_classifications(self.c)
         self.ideal_by_speed = {}
         if "force_law" in self.c.columns:
             ideal = self.c[(self.c["force_law"] == "ideal") & (self.c["status"] == "ok")]
@@ -157,7 +158,7 @@ class Figures:
         getattr(self, what)(ax, cid, s)
         if self.value("status", cid) != "ok":
             ax.text(0.02, 0.02, self.value("status", cid), transform=ax.transAxes, fontsize=7, color="firebrick")
-        elif "classification" in self.c.columns and self.value("classification", cid) not in STEADY:
+        elif "classification" in self.c.columns and self.value("classification", cid) not in self.steady:
             # No steady cycle: the stored channels are the run's last cycles, a transient, or
             # where its slow flow got to (docs/theory/steady-cycles.md, slow flow).
             flow = self.value("slow_flow_cycles", cid) if "slow_flow_cycles" in self.c.columns else 0.0

@@ -200,7 +200,7 @@ def main():
     # One scale for every panel: |mu|max in [0, 1] (a stable orbit), above 1 red (unstable);
     # only where an orbit was found and located (a not-located fixed point has multipliers too).
     from matplotlib.colors import Normalize
-    orbit = ("periodic", "periodic_unstable")
+    orbit = study_reader.orbit_classifications(cases)  # as the file says
     grid_panels(cases, lambda r: r["multiplier_1_modulus"] if r["classification"] in orbit else np.nan,
                 "dominant Floquet multiplier |mu|max of the periodic orbits (blank: no orbit)",
                 os.path.join(a.outdir, "steady_multiplier.png"),

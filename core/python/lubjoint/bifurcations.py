@@ -5,8 +5,11 @@ Pure Python (NumPy, pandas), re-exported by ``lubjoint.study``::
     from lubjoint import study
     edges = study.bifurcation_edges(study.cases("out/study.h5"))
 
-Reads only the /cases columns every study has (its axes, ``classification``, the Floquet
-multipliers ``multiplier_k_modulus`` / ``multiplier_k_angle_rad``); the continuation columns
+Reads the /cases columns every study has (its axes, ``classification``, the Floquet
+multipliers ``multiplier_k_modulus`` / ``multiplier_k_angle_rad``), and what the study file
+says of itself, as ``lubjoint.study.cases`` puts it in the table's ``attrs``: which
+classifications carry an orbit (``orbit_classifications``, ``no_orbit_classifications``)
+and the grid's lattice neighbours (``/lattice``). The continuation columns
 (``continued_from``, ``orbit_seed``) are not needed, so a study with
 ``simulation.steady = auto`` has edges too. docs/theory/continuation.md, "Bifurcations
 between cells".
@@ -14,11 +17,6 @@ between cells".
 
 import math
 
-#: Classifications with a periodic orbit (the multipliers are those of that orbit).
-ORBIT = ("periodic", "periodic_unstable")
-#: Classifications of a run that ended without an orbit. ``not_run``, ``invalid_scene`` and
-#: ``error`` are not on the list: they say nothing about the journal.
-NO_ORBIT = ("drifting", "not_converged", "film_collapse", "solver_failure", "budget_exceeded")
 #: The kinds of edge, with the letter the classification map draws.
 KINDS = {"fold": "F", "period_doubling": "PD", "neimark_sacker": "NS", "unclassified": "?", "orbit_lost": "X"}
 COLUMNS = ["case_a", "case_b", "axis", "axis_unit", "value_a", "value_b", "kind", "crossing_value", "mu_a",
@@ -28,36 +26,17 @@ UNITS = {"case_a": "1", "case_b": "1", "axis": "", "axis_unit": "", "value_a": "
          "class_b": "", "both_ends_agree": ""}
 
 
-def _is_numeric(col):
-    return col.dtype.kind in "fiu"
-
-
 def lattice_edges(cases, axes):
-    """Pairs of lattice neighbours ``(a, b, axis)``, ``a`` at the lower value of ``axis``.
-
-    As lubsweep's continuation tree (sweep/src/continuation_tree.cpp): the cases with equal
-    values of the non-numeric axes (and the same numeric axes unset, NaN) form a lattice over
-    the numeric axes, whose levels are each axis's sorted distinct values over the whole
-    study; neighbours differ on one numeric axis by one level and agree on every other.
+    """Pairs of lattice neighbours ``(a, b, axis)``, ``a`` at the lower value of ``axis``, as
+    the study file lists them (/lattice, written by lubsweep from the lattice its
+    continuation tree walks: the cases with equal non-numeric axes, one step apart on one
+    numeric axis's sorted values over the grid): those along ``axes`` whose two cases are
+    both rows of ``cases``. ``StudyFormatError`` for a table without ``attrs["lattice"]``.
     """
-    numeric = [a for a in axes if _is_numeric(cases[a])]
-    levels = {a: sorted(set(float(v) for v in cases[a] if math.isfinite(v))) for a in numeric}
-    at, where = {}, {}
-    for cid, row in cases.iterrows():
-        comp = tuple(str(row[a]) for a in axes if a not in numeric or not math.isfinite(row[a]))
-        idx = tuple(levels[a].index(float(row[a])) if math.isfinite(row[a]) else -1 for a in numeric)
-        at[(comp, idx)] = cid
-        where[cid] = (comp, idx)
-    out = []
-    for cid, (comp, idx) in where.items():
-        for k, a in enumerate(numeric):
-            if idx[k] < 0:
-                continue
-            up = idx[:k] + (idx[k] + 1,) + idx[k + 1:]
-            other = at.get((comp, up))
-            if other is not None:
-                out.append((cid, other, a))
-    return out
+    from .study import lattice_edges as listed
+
+    rows, axes = set(cases.index), set(axes)
+    return [(a, b, axis) for a, b, axis in listed(cases) if axis in axes and a in rows and b in rows]
 
 
 def _kind_of(m1, a1, m2, a2, angle_tol, modulus_rtol):
@@ -85,15 +64,16 @@ def _get(row, name):
     return float(v) if v is not None else float("nan")
 
 
-def _edge(cases, a, b, axis, angle_tol, modulus_rtol):
-    """One edge's row, or None when its ends do not differ in an orbit's stability or existence."""
+def _edge(cases, a, b, axis, angle_tol, modulus_rtol, orbit, no_orbit):
+    """One edge's row, or None when its ends do not differ in an orbit's stability or existence
+    (``orbit``, ``no_orbit``: the classifications with an orbit, and of a run without one)."""
     ra, rb = cases.loc[a], cases.loc[b]
     ca, cb = str(ra.get("classification", "")), str(rb.get("classification", ""))
     mu_a, mu_b = _get(ra, "multiplier_1_modulus"), _get(rb, "multiplier_1_modulus")
     row = dict(case_a=a, case_b=b, axis=axis, value_a=float(ra[axis]), value_b=float(rb[axis]), mu_a=mu_a,
                mu_b=mu_b, class_a=ca, class_b=cb, angle_rad=float("nan"), crossing_value=float("nan"),
                both_ends_agree=False)
-    if (ca in ORBIT and cb in NO_ORBIT) or (cb in ORBIT and ca in NO_ORBIT):
+    if (ca in orbit and cb in no_orbit) or (cb in orbit and ca in no_orbit):
         return dict(row, kind="orbit_lost")
     if not (math.isfinite(mu_a) and math.isfinite(mu_b)) or (mu_a < 1.0) == (mu_b < 1.0) or 1.0 in (mu_a, mu_b):
         return None
@@ -123,7 +103,8 @@ def bifurcation_edges(cases, axes=None, angle_tol_rad=1e-3, modulus_rtol=1e-6):
       through +1) ``fold``; of pi (through -1) ``period_doubling``; else, when multiplier 2
       is its conjugate (same modulus within ``modulus_rtol``, opposite angle),
       ``neimark_sacker``; otherwise ``unclassified``. Where one end has an orbit
-      (``ORBIT``) and the other ended without one (``NO_ORBIT``): ``orbit_lost``;
+      (its classification in ``orbit_classifications``) and the other ended without one (in
+      ``no_orbit_classifications``): ``orbit_lost``;
     - ``crossing_value``: the axis value where |mu|max = 1, by linear interpolation of
       |mu|max - 1 in the logarithm of the axis value (in the value if one is not
       positive); NaN for ``orbit_lost``;
@@ -131,6 +112,11 @@ def bifurcation_edges(cases, axes=None, angle_tol_rad=1e-3, modulus_rtol=1e-6):
       angle; ``class_a``, ``class_b``: the ends' classifications; ``both_ends_agree``: the
       stable end's dominant multiplier is of the same kind (real near +1, real near -1,
       complex pair).
+
+    Which classifications carry an orbit (the /cases attributes ``orbit_classifications``,
+    ``no_orbit_classifications``) and which cases are neighbours (/lattice) are the study
+    file's word, read from ``cases.attrs`` (``lubjoint.study.cases`` puts them there); a table
+    without them raises ``StudyFormatError`` (a ``ValueError``) saying what to do.
 
     Limits: an edge says that something happened between two grid points, not what. The
     crossing value is an estimate from two coarse points (|mu| is not linear in the
@@ -158,10 +144,13 @@ def bifurcation_edges(cases, axes=None, angle_tol_rad=1e-3, modulus_rtol=1e-6):
     missing = [a for a in axes if a not in cases.columns]
     if missing:
         raise ValueError(f"bifurcation_edges: axes {missing} are not columns of the cases table")
+    from .study import no_orbit_classifications, orbit_classifications
+
+    orbit, no_orbit = orbit_classifications(cases), no_orbit_classifications(cases)
     units = cases.attrs.get("units", {})
     rows = []
     for a, b, axis in lattice_edges(cases, axes):
-        r = _edge(cases, a, b, axis, angle_tol_rad, modulus_rtol)
+        r = _edge(cases, a, b, axis, angle_tol_rad, modulus_rtol, orbit, no_orbit)
         if r is not None:
             rows.append(dict(r, axis_unit=units.get(axis, "")))
     df = pd.DataFrame(rows, columns=COLUMNS)

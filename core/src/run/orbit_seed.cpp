@@ -1,10 +1,15 @@
 #include "run/orbit_seed.hpp"
 
+#include <array>
 #include <cmath>
 #include <stdexcept>
+#include <string_view>
+#include <type_traits>
+#include <variant>
 
 #include "lub/common/constants.hpp"
 #include "lub/mechanism/builder.hpp"
+#include "lub/run/orbit_seed_fields.hpp"
 #include "run/integration_plan.hpp"
 
 namespace lub {
@@ -13,50 +18,109 @@ namespace {
 /// Bumped when the packed layout changes: a row of another layout is refused.
 constexpr double kSeedLayout = 1.0;
 
+/// A field of OrbitSeed: its description and its member.
+using SeedMember = std::variant<std::vector<double> OrbitSeed::*, std::vector<int> OrbitSeed::*, double OrbitSeed::*>;
+struct SeedEntry {
+  std::string_view name;
+  SeedShape shape;
+  std::string_view unit;
+  std::string_view long_name;
+  SeedMember member;
+};
+
+/// The fields in packing order, every field that is not a scalar first: the one list behind
+/// pack_seed, unpack_seed and orbit_seed_fields() (the study file's description of them).
+const std::array<SeedEntry, 7>& seed_entries() {
+  static const std::array<SeedEntry, 7> entries{{
+      {"deviation", SeedShape::vector, "1",
+       "the orbit's state (q, v) at crank angle 0 minus the scene's initial state, each coordinate in its own unit "
+       "(lengths in clearances, angles in clearances over the body's size, rates those times the driver's speed)",
+       &OrbitSeed::deviation},
+      {"modes", SeedShape::vector, "1", "each film's mode (FilmMode) at crank angle 0", &OrbitSeed::modes},
+      {"chart", SeedShape::vector, "1", "the shooting chart's independent coordinates (indices of q)", &OrbitSeed::chart},
+      {"monodromy", SeedShape::square_matrix, "1",
+       "the monodromy dP/dz over the chart's coordinates and their velocities, in the same units; empty: none",
+       &OrbitSeed::monodromy},
+      {"winding", SeedShape::vector, "rad", "how far each coordinate turns in a period (0 for a length)",
+       &OrbitSeed::winding},
+      {"max_eps", SeedShape::scalar, "1", "the largest eccentricity ratio on the orbit", &OrbitSeed::max_eps},
+      {"steps_per_period", SeedShape::scalar, "1", "the integrator's steps per period on the orbit",
+       &OrbitSeed::steps_per_period},
+  }};
+  return entries;
+}
+
+bool is_scalar(const SeedEntry& e) { return std::holds_alternative<double OrbitSeed::*>(e.member); }
+
+/// The number of fields that are not scalars: the counts after the layout number.
+std::size_t sized_fields() {
+  std::size_t n = 0;
+  for (const SeedEntry& e : seed_entries()) n += !is_scalar(e);
+  return n;
+}
+
 template <class T>
 void put(std::vector<double>& out, const std::vector<T>& v) {
   for (const T& x : v) out.push_back(static_cast<double>(x));
 }
 }  // namespace
 
+int orbit_seed_layout() { return static_cast<int>(kSeedLayout); }
+
+const std::vector<OrbitSeedField>& orbit_seed_fields() {
+  static const std::vector<OrbitSeedField> fields = [] {
+    std::vector<OrbitSeedField> out;
+    for (const SeedEntry& e : seed_entries())
+      out.push_back({e.name, e.shape, std::holds_alternative<std::vector<int> OrbitSeed::*>(e.member), e.unit,
+                     e.long_name});
+    return out;
+  }();
+  return fields;
+}
+
 std::vector<double> pack_seed(const OrbitSeed& s) {
-  std::vector<double> out{kSeedLayout,
-                          static_cast<double>(s.deviation.size()),
-                          static_cast<double>(s.modes.size()),
-                          static_cast<double>(s.chart.size()),
-                          static_cast<double>(s.monodromy.size()),
-                          static_cast<double>(s.winding.size())};
-  put(out, s.deviation);
-  put(out, s.modes);
-  put(out, s.chart);
-  put(out, s.monodromy);
-  put(out, s.winding);
-  out.push_back(s.max_eps);
-  out.push_back(s.steps_per_period);
+  std::vector<double> out{kSeedLayout};
+  for (const SeedEntry& e : seed_entries())
+    std::visit(
+        [&](auto m) {
+          if constexpr (!std::is_same_v<decltype(m), double OrbitSeed::*>) out.push_back(static_cast<double>((s.*m).size()));
+        },
+        e.member);
+  for (const SeedEntry& e : seed_entries())
+    std::visit(
+        [&](auto m) {
+          if constexpr (!std::is_same_v<decltype(m), double OrbitSeed::*>) put(out, s.*m);
+        },
+        e.member);
+  for (const SeedEntry& e : seed_entries())
+    if (is_scalar(e)) out.push_back(s.*std::get<double OrbitSeed::*>(e.member));
   return out;
 }
 
 OrbitSeed unpack_seed(const std::vector<double>& row) {
   OrbitSeed s;
   if (row.empty() || std::isnan(row[0])) return s;
-  if (row.size() < 6 || row[0] != kSeedLayout)
+  const std::size_t header = 1 + sized_fields();
+  if (row.size() < header || row[0] != kSeedLayout)
     throw std::invalid_argument("orbit seed: not a seed of layout " + std::to_string(kSeedLayout));
-  size_t at = 6;
-  auto take = [&](auto& v, double count) {
-    if (!(count >= 0) || at + static_cast<size_t>(count) > row.size())
-      throw std::invalid_argument("orbit seed: truncated row");
-    using T = typename std::decay_t<decltype(v)>::value_type;
-    for (size_t i = 0; i < static_cast<size_t>(count); ++i) v.push_back(static_cast<T>(row[at + i]));
-    at += static_cast<size_t>(count);
-  };
-  take(s.deviation, row[1]);
-  take(s.modes, row[2]);
-  take(s.chart, row[3]);
-  take(s.monodromy, row[4]);
-  take(s.winding, row[5]);
-  if (at + 2 > row.size()) throw std::invalid_argument("orbit seed: truncated row");
-  s.max_eps = row[at];
-  s.steps_per_period = row[at + 1];
+  size_t at = header, count = 1;
+  for (const SeedEntry& e : seed_entries())
+    std::visit(
+        [&](auto m) {
+          if constexpr (!std::is_same_v<decltype(m), double OrbitSeed::*>) {
+            const double n = row[count++];
+            if (!(n >= 0) || at + static_cast<size_t>(n) > row.size())
+              throw std::invalid_argument("orbit seed: truncated row");
+            auto& v = s.*m;
+            using T = typename std::decay_t<decltype(v)>::value_type;
+            for (size_t i = 0; i < static_cast<size_t>(n); ++i) v.push_back(static_cast<T>(row[at + i]));
+            at += static_cast<size_t>(n);
+          }
+        },
+        e.member);
+  if (at + (seed_entries().size() - sized_fields()) > row.size()) throw std::invalid_argument("orbit seed: truncated row");
+  for (const SeedEntry& e : seed_entries())
+    if (is_scalar(e)) s.*std::get<double OrbitSeed::*>(e.member) = row[at++];
   return s;
 }
 

@@ -3,6 +3,8 @@
 // later stage decides, the earlier stages' reasons after it.
 #include "run/verdict.hpp"
 
+#include "lub/run/orbit.hpp"
+
 #include <cmath>
 #include <sstream>
 
@@ -49,7 +51,7 @@ void no_orbit(RunResult& res, const OrbitEvidence& ev) {
 
 }  // namespace
 
-bool is_orbit(SteadyClass k) { return carries_orbit(k); }
+bool is_orbit(SteadyClass k) { return has_orbit(k); }
 
 void leg(RunResult& res, const TransientLeg& leg) {
   if (leg.message) res.message = *leg.message;

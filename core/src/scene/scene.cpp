@@ -287,7 +287,7 @@ SimulationSpec parse_simulation(const json& j) {
   s.steady_tolerance = r.number_or("steady_tolerance", s.steady_tolerance, positive, "must be > 0");
   const bool metric_cycles_given = r.has("metric_cycles");
   s.metric_cycles = static_cast<int>(r.integer_or("metric_cycles", s.metric_cycles, 1, 1'000'000));
-  s.steady = r.choice_of<SteadyMethod>("steady", SteadyMethod::transient);
+  s.steady = r.choice_of<SteadyMethod>("steady", s.steady);
   const bool transient_cycles_given = r.has("transient_cycles");
   s.transient_cycles = static_cast<int>(r.integer_or("transient_cycles", s.transient_cycles, 1, 1'000'000));
   s.shooting_tolerance = r.number_or("shooting_tolerance", s.shooting_tolerance,

@@ -50,8 +50,8 @@ CaseResult stand_in(int case_id, int rank, double case_us) {
   CaseResult r;
   r.case_id = case_id;
   r.rank = rank;
-  r.status = "ok";
-  r.classification = "not_converged";
+  r.status = lub::sweep::CaseStatus::ok;
+  r.classification = lub::sweep::CaseClass::not_converged;
   r.revision = lub::build_revision();
   r.values.assign(result_fields().size(), std::numeric_limits<double>::quiet_NaN());
   return r;

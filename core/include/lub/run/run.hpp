@@ -108,12 +108,6 @@ struct NameTable<SteadyClass> {
   }};
 };
 
-/// Whether a steady cycle of this label is a periodic orbit (stable or not): the one
-/// definition behind the sweep's continuation seeds, the study file and Python.
-constexpr bool carries_orbit(SteadyClass k) {
-  return k == SteadyClass::periodic || k == SteadyClass::periodic_unstable;
-}
-
 /// What a run's steady-cycle metrics come from.
 enum class SteadyCycleMethod {
   transient,     ///< the transient's last cycles

@@ -176,8 +176,9 @@ struct SimulationSpec {
   bool stop_when_steady = false;     ///< stop once `metric_cycles` cycles repeat
   double steady_tolerance = 1e-3;    ///< periodicity (orbit distance / c) below which a cycle repeats
   int metric_cycles = 2;             ///< metrics over this many last cycles
-  /// simulation.steady: transient (lubsim's default), shooting, or auto (lubsweep's
-  /// default: a study reports steady cycles).
+  /// simulation.steady: transient, shooting, auto or continuation. The one default of an
+  /// absent key, for lubsim and lubsweep alike: transient (a grid that wants steady cycles
+  /// says auto, as the grids in configs/grids do).
   SteadyMethod steady = SteadyMethod::transient;
   /// Transient cycles before shooting (shooting), or before the contraction rate decides
   /// between more transient and shooting (auto). Default min(8, max_cycles).

@@ -6,6 +6,7 @@
 
 #include "lub/run/run.hpp"
 #include "lub/run/run_io.hpp"
+#include "lub/sweep/case_outcome.hpp"
 
 namespace lub::sweep {
 
@@ -20,11 +21,11 @@ struct Task;
 struct CaseResult {
   int case_id = -1;
   int rank = 0;                 ///< MPI rank that computed it
-  std::string status;           ///< RunStatus ("ok", "film_collapse", ...), or "invalid_scene", "error"
+  Named<CaseStatus> status = CaseStatus::error;  ///< its run's RunStatus, or invalid_scene, error
   std::string message;
-  /// The steady cycle: periodic, periodic_unstable, drifting, not_converged; the status
+  /// The steady cycle (periodic, periodic_unstable, drifting, not_converged); the status
   /// for a case that is not ok.
-  std::string classification;
+  Named<CaseClass> classification = CaseClass::error;
   std::vector<double> values;
   std::string revision;         ///< build revision of the program that computed it
   /// The scene's channels ("t" first); empty if none. A periodic or periodic_unstable case
@@ -36,7 +37,7 @@ struct CaseResult {
   std::vector<double> orbit_seed;
   int continued_from = -1;      ///< the case whose orbit it started from (-1: none)
 
-  bool ok() const { return status == "ok"; }
+  bool ok() const { return status == CaseStatus::ok; }
 };
 
 /// Runs a case's parsed scene. Never throws: a scene the core refuses at run time

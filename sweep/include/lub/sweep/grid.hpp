@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "lub/common/name_table.hpp"
+#include "lub/scene/scene.hpp"
 
 namespace lub::sweep {
 
@@ -85,6 +86,9 @@ struct Case {
   std::string hash;                          ///< SHA-256 of `scene`: identity for resume
   std::vector<nlohmann::json> axis_values;   ///< per Grid::axes, read back from the scene (null: unset)
   std::string label;                         ///< "clearance_m=0.0001" (the values its grid varies)
+  /// Its parsed scene's simulation.steady (read where the case is built: what the sweep
+  /// asks of a case's scene, it asks the parsed scene, never the JSON text).
+  SteadyMethod steady = SimulationSpec().steady;
 };
 
 struct Grid {

@@ -8,8 +8,16 @@
 //                     scene of each case as a JSON Patch (RFC 6902) of the root attribute
 //                     reference_scene (case 0's scene, canonical JSON)
 //   /cases            a table of columns (lub::h5::Table) on the dimension `case` (the case
-//                     id): name, hash, <axes>, status, message, <metric fields>, <solver
-//                     fields>, rank, revision; each with units and long_name
+//                     id): name, hash, <axes>, status, message, classification, <metric
+//                     fields>, <solver fields>, continued_from, orbit_seed, rank, revision;
+//                     each with units and long_name. What a reader would otherwise restate,
+//                     the file says: attributes orbit_classifications (the classifications
+//                     with a periodic orbit) and no_orbit_classifications (of a run that
+//                     ended without one); on orbit_seed its packing, field by field
+//                     (layout, fields, field_shapes, field_types, field_units,
+//                     field_long_names, packing: lub::orbit_seed_fields())
+//   /lattice          the grid's lattice neighbours (lattice_edges): case_a, case_b, axis on
+//                     the dimension `edge`
 //   /grids/<name>     a sub-grid: its axes as dimension scales (values as listed), case_id,
 //                     and (written when the sweep ends) every result field, status and
 //                     message as N-d variables over them; NaN metrics where not ok. An explicit
@@ -38,7 +46,11 @@
 
 namespace lub::sweep {
 
-/// Version of the layout above, in the root attribute `format`.
+/// Version of the layout above, in the root attribute `format`. The self-description
+/// (orbit_classifications, no_orbit_classifications, orbit_seed's packing, /lattice) came
+/// within format 5: resume does not read it, and a reader that needs it and finds a file
+/// of 5 without it says so (lubjoint.study: re-run the sweep). The Python reader's
+/// STUDY_FORMAT is generated from this line (core/python/CMakeLists.txt).
 inline constexpr const char* kStudyFormat = "lubsweep-study-5";  // 5: NaN for unknown floats (4: -1 periodicity)
 
 /// Columns of /cases for a grid.
