@@ -189,7 +189,7 @@ int coordinate(const Options& o, const Grid& grid, const ResumeState& resume, bo
   };
   s.on_abort = [&](const CaseResult& r) {
     fmt::print(stderr, "lubsweep: {} failed ({}: {}); on_failure = abort: stopping\n",
-               grid.cases.at(static_cast<std::size_t>(r.case_id)).name, r.status, r.message);
+               grid.cases.at(static_cast<std::size_t>(r.case_id)).name, r.status.str(), r.message);
   };
   try {
     schedule(grid, queue, transport, s);
