@@ -68,7 +68,6 @@ SlowNewton newton_where_flow_stops(SteadyContext& cx, Chart& chart, const StartS
       cx.budget.stopped(cx.spent(), "no Newton where the slow flow stops");
       steady.slow_flow_cycles = way.cycles;
       ev.outcome = SlowFlowEvidence::Outcome::newton_refused;
-      ev.newton_tried = way.newton_tried;
       return SlowNewton::ended;
     }
     if (picard.outcome != steady::ShootingOutcome::converged || !near.expand(at.t, picard.z.data(), start.qv)) {
@@ -85,10 +84,6 @@ SlowNewton newton_where_flow_stops(SteadyContext& cx, Chart& chart, const StartS
     // An orbit, or one found but not measured, or the budget spent: its own verdict.
     steady.slow_flow_cycles = way.cycles;
     ev.outcome = SlowFlowEvidence::Outcome::newton;
-    ev.cycles = way.cycles;
-    ev.periods = way.maps;
-    ev.shooting = way.shooting;
-    ev.newton_tried = way.newton_tried;
     return SlowNewton::ended;
   }
   // No orbit, or a fixed point of the map's error (not located, near |μ| = 1): the flow at
@@ -98,6 +93,18 @@ SlowNewton newton_where_flow_stops(SteadyContext& cx, Chart& chart, const StartS
   steady.multipliers.clear();
   steady.orbit_error = kNaN;
   return SlowNewton::none;
+}
+
+/// The evidence with the way the flow went: its cycles and periods, its last leg's outcome,
+/// and what Newton said before and where it stopped.
+SlowFlowEvidence& take_way(const SlowFlowWay& way, SlowFlowEvidence& ev) {
+  ev.cycles = way.cycles;
+  ev.periods = way.maps;
+  ev.flow = way.flow.outcome;
+  ev.shooting = way.shooting;
+  ev.newton = way.newton;
+  ev.newton_tried = way.newton_tried;
+  return ev;
 }
 
 /// The metrics, channels, film and drift of the cycles measured where the flow got to.
@@ -137,12 +144,6 @@ void report_slow_flow(SteadyContext& cx, const RunResult& before, Chart& chart, 
   RunResult& res = cx.res;
   const steady::SlowManifoldResult& flow = way.flow;
   res.steady.slow_flow_cycles = way.cycles;
-  ev.cycles = way.cycles;
-  ev.periods = way.maps;
-  ev.flow = flow.outcome;
-  ev.shooting = way.shooting;
-  ev.newton = way.newton;
-  ev.newton_tried = way.newton_tried;
   StartState at = from;
   SegmentResult measured;
   if (flow.outcome != steady::SlowManifoldOutcome::failed && chart.expand(from.t, flow.z.data(), at.qv))
@@ -239,13 +240,13 @@ SlowFlowEvidence follow_slow_flow(SteadyContext& cx) {
       continue;
     }
     const SlowNewton tried = newton_where_flow_stops(cx, chart, from, winding, way, ev);
-    if (tried == SlowNewton::ended) return ev;
+    if (tried == SlowNewton::ended) return take_way(way, ev);
     if (tried == SlowNewton::unavailable) break;
     // Not close enough, or too close to the wall to trust an estimate: follow it further.
     o.hand_over = tried == SlowNewton::near_wall ? 0.0 : o.hand_over / 10.0;
   }
   report_slow_flow(cx, before, chart, from, way, *period, ev);
-  return ev;
+  return take_way(way, ev);
 }
 
 }  // namespace lub::detail
