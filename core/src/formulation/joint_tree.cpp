@@ -159,16 +159,21 @@ bool JointKinematics::holds(double t, const double* theta, const double* theta_d
 
 namespace {
 
-// The joint's coordinate, rate and (at θ̈ = 0) acceleration at t.
+// The joint's coordinate, rate and (at θ̈ = 0) acceleration at t, and the angle whose
+// cosine and sine a revolute's child takes: a driven joint's phase (whole turns off,
+// constraints.cpp), else the coordinate.
 void edge_motion(const Model& m, const TreeEdge& e, double t, const double* theta, const double* theta_dot,
-                 double& x, double& xd, double& xdd) {
+                 double& x, double& xd, double& xdd, double& trig) {
   x = xd = xdd = 0.0;
   if (e.driver >= 0) {
-    detail::driver_motion(m.constraints[static_cast<size_t>(e.driver)], t, x, xd, xdd);
-  } else if (e.dof >= 0) {
+    detail::driver_motion(m.constraints[static_cast<size_t>(e.driver)], t, x, xd, xdd, &trig);
+    return;
+  }
+  if (e.dof >= 0) {
     x = theta[e.dof];
     xd = theta_dot[e.dof];
   }
+  trig = x;
 }
 
 // A free body: its coordinates are its joint coordinates (J the identity on them, c = 0).
@@ -217,8 +222,8 @@ void forward_kinematics(const Model& m, const JointTree& tree, double t, const d
     const double sp = ground ? 0.0 : k.sphi[static_cast<size_t>(e.parent)];
     const Vector2d r_p = ground ? Vector2d(0, 0) : Vector2d(q[pc], q[pc + 1]);
     const Vector2d rd_p = ground ? Vector2d(0, 0) : Vector2d(v[pc], v[pc + 1]);
-    double x, xd, xdd;
-    edge_motion(m, e, t, theta, theta_dot, x, xd, xdd);
+    double x, xd, xdd, trig;
+    edge_motion(m, e, t, theta, theta_dot, x, xd, xdd, trig);
     const bool rev = e.kind == TreeEdge::Kind::revolute, slide = e.kind == TreeEdge::Kind::slide;
     // A revolute's coordinate is its child's angle (see the header): no parent term.
     const double phi_c = rev ? x : phi_p + e.dphi;
@@ -227,15 +232,18 @@ void forward_kinematics(const Model& m, const JointTree& tree, double t, const d
     // the same cos and sin (no trigonometric call).
     // A body whose angle has not changed since the last call (the driven crank in the
     // Jacobian's difference quotients, any body in a velocity's) keeps its entries.
+    // trig_phi holds the angle each body's cos and sin are of: a driven crank's phase, not
+    // its φ after thousands of turns (edge_motion).
     const size_t ch = static_cast<size_t>(e.child);
+    const double trig_c = rev ? trig : (ground ? 0.0 : k.trig_phi[static_cast<size_t>(e.parent)]) + e.dphi;
     if (!rev && e.dphi == 0.0) {
       k.cphi[ch] = cp;
       k.sphi[ch] = sp;
-    } else if (k.trig_phi[ch] != phi_c) {
-      k.cphi[ch] = std::cos(phi_c);
-      k.sphi[ch] = std::sin(phi_c);
+    } else if (k.trig_phi[ch] != trig_c) {
+      k.cphi[ch] = std::cos(trig_c);
+      k.sphi[ch] = std::sin(trig_c);
     }
-    k.trig_phi[ch] = phi_c;
+    k.trig_phi[ch] = trig_c;
     const double cc_ = k.cphi[ch], sc = k.sphi[ch];
     auto Ap = [&](const Vector2d& s) { return Vector2d(cp * s.x() - sp * s.y(), sp * s.x() + cp * s.y()); };
     const Vector2d u = Ap(e.u_p);

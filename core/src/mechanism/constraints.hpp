@@ -11,8 +11,9 @@
 
 namespace lub::detail {
 
-/// Driver angle f(t) and its derivatives.
-void driver_motion(const Constraint& c, double t, double& f, double& fd, double& fdd);
+/// Driver angle f(t) and its derivatives; `phase` (if given): f less whole turns, formed
+/// without φ0 + ωt, the argument for its cosine and sine.
+void driver_motion(const Constraint& c, double t, double& f, double& fd, double& fdd, double* phase = nullptr);
 
 /// Fills rows of Phi_q, Phi, Phi_dot, gamma (if given) for every constraint at (t, q, v)
 /// (v may be null: velocities 0); cphi, sphi: body_trig().
