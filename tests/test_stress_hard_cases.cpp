@@ -295,7 +295,11 @@ const std::vector<HardCase>& hard_cases() {
       // convergence check; it is compared with the event-switching answer instead
       // (SwitchingNoneAtLooseToleranceReachesTheEventAnswer).
       {"law_pinkus_sternlicht_no_events", RunStatus::ok, 0.0},
-      {"speed_50rpm", RunStatus::ok, 1e-9},
+      // The printed law at 50 rpm, sinking by squeeze (ε 0.968 in the last cycles): its max ε
+      // at rtol 1e-8 × (1, 1 ± 1e-8, 1 ± 1e-2) is 0.5e-6–4.7e-5 from rtol 1e-11's, the 4.7e-5
+      // at rtol 1e-8 itself (a change of the driver's round-off moved it from 4e-6). Bound 3x
+      // the largest (lubsim configs/scenes/hard/speed_50rpm.json --set /solver/rtol=R).
+      {"speed_50rpm", RunStatus::ok, 1e-9, 1.5e-4},
       {"reversing_driver", RunStatus::ok, 1e-9},
       {"gravity_settling", RunStatus::ok, 1e-9},
   };
