@@ -35,9 +35,16 @@ SlowNewton newton_where_flow_stops(SteadyContext& cx, Chart& chart, const StartS
   const SteadyTuning& t = cx.tuning;
   SteadyCycle& steady = cx.res.steady;
   StartState at = from;
-  if (!chart.expand(from.t, way.flow.z.data(), at.qv)) return SlowNewton::unavailable;
+  // Where the flow's state cannot be had or integrated, Newton is not run, and says why.
+  if (!chart.expand(from.t, way.flow.z.data(), at.qv)) {
+    way.newton = "not run: the flow's state lies outside the coordinates' chart";
+    return SlowNewton::unavailable;
+  }
   const SegmentResult one = cx.measure(at, 1.0, false, 1);
-  if (one.res.status != RunStatus::ok || one.res.cycles.empty()) return SlowNewton::unavailable;
+  if (one.res.status != RunStatus::ok || one.res.cycles.empty()) {
+    way.newton = "not run: a cycle from there failed: " + one.res.message;
+    return SlowNewton::unavailable;
+  }
   // Near the wall an estimate of the distance to an orbit is no evidence that the journal
   // gets there: Newton converges there to "stable" orbits the transient from rest passes
   // on its way into the wall. Only a flow that has stopped is.

@@ -24,6 +24,11 @@ SegmentResult SteadyContext::measure(const StartState& s, double factor, bool se
   }
   o.rtol_factor = factor;
   o.series = series;
+  // Bounded like a period map once a transient has set the pace: a measurement that crawls
+  // near the wall (the printed law's kink where ε̇ and the wedge speed vanish: 2e7 steps in
+  // one measurement, twice, on the full factorial) ends with the segment's budget instead.
+  if (!res.cycles.empty())
+    o.max_steps = transient_step_budget() * o.cycles * (factor < 1.0 ? tuning.tight_step_factor : 1);
   SegmentResult seg = run_segment(rm, o);
   accumulate(res.stats, seg.res.stats);
   res.steady.periods_integrated += o.cycles;

@@ -174,6 +174,7 @@ bool orbit(RunResult& res, const OrbitEvidence& ev) {
   steady.method = SteadyCycleMethod::shooting;
   if (ev.outside_chart) {
     steady.kind = SteadyClass::not_converged;
+    res.message = "the orbit Newton found lies outside the coordinates' chart (no consistent state there)";
     return false;
   }
   if (!ev.measured) {
