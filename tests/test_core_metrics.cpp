@@ -6,9 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <tuple>
 #include <vector>
 
+#include "lub/run/orbit.hpp"
 #include "run/metrics.hpp"
 
 namespace {
@@ -160,6 +162,24 @@ TEST(SteadyCycleMetrics, NoFilmWithoutALubricatedMetricJoint) {
   const Metrics none = steady_cycle_metrics(metric_scene(1, 2), {}, 0);
   EXPECT_EQ(none.min_film_thickness_m, 0.0);
   EXPECT_EQ(none.periodicity, -1.0);
+}
+
+// How well posed an orbit is, from its multipliers (lub/run/orbit.hpp), against values
+// worked by hand. A real slow multiplier 0.9999 with the squeeze film's near 0: κ = 1e4 and
+// an e-folding time of 1/(−ln 0.9999) = 9999.5 cycles. A complex pair just outside the unit
+// circle at 0.94 rad grows as slowly (1/ln 1.0001 = 10000.5 cycles) but its place is well
+// posed: |1 − μ| = sqrt(1 − 2 r cos θ + r²) = 0.906, κ = 1.10 (1 − |μ| would say 1e4).
+TEST(OrbitConditioning, IsSetByTheMultiplierNearestOneNotTheLargest) {
+  const std::vector<std::complex<double>> real{{0.9999, 0.0}, {0.5, 0.0}, {1e-9, 0.0}};
+  EXPECT_NEAR(lub::orbit_conditioning(real), 1e4, 1e4 * 1e-9);
+  EXPECT_NEAR(lub::slowest_mode_cycles(real), 1.0 / -std::log(0.9999), 1e-6);
+  const double r = 1.0001, a = 0.94;
+  const std::vector<std::complex<double>> pair{std::polar(r, a), std::polar(r, -a), {1e-9, 0.0}};
+  EXPECT_NEAR(lub::orbit_conditioning(pair), 1.0 / std::sqrt(1.0 - 2.0 * r * std::cos(a) + r * r), 1e-12);
+  EXPECT_LT(lub::orbit_conditioning(pair), 1.2);
+  EXPECT_NEAR(lub::slowest_mode_cycles(pair), 1.0 / std::log(r), 1e-6);
+  EXPECT_TRUE(std::isnan(lub::orbit_conditioning({})));
+  EXPECT_TRUE(std::isnan(lub::slowest_mode_cycles({})));
 }
 
 }  // namespace

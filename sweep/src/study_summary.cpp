@@ -68,6 +68,10 @@ void add_columns(const h5::Table& t, const std::vector<std::string>& status, con
   numeric("peak_a[m/s2]", "peak_acceleration_m_s2", "{:.4g}", 1.0);
   numeric("periodicity", "periodicity", "{:.2e}", 1.0);
   numeric("|mu|max", "multiplier_1_modulus", "{:.4f}", 1.0);
+  // How well posed the orbit is: kappa = 1/min|1 - mu| and its slowest mode's e-folding
+  // time in cycles (lub/run/orbit.hpp).
+  numeric("kappa", "orbit_conditioning", "{:.3g}", 1.0);
+  numeric("e-fold[cycles]", "slowest_mode_cycles", "{:.3g}", 1.0);
   // Where a case without a steady cycle got to: the last cycle's film, how fast it changes,
   // and how many cycles after the transient its slow flow followed it (docs/theory/
   // steady-cycles.md, slow flow).

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lub/common/constants.hpp"
+#include "lub/run/orbit.hpp"
 
 #ifndef LUB_VERSION
 #define LUB_VERSION "unknown"
@@ -24,6 +25,11 @@ namespace {
 /// A value whose negative stands for "unknown" in the run's structs (periodicity of the
 /// first cycle, cycles_to_steady of a run that never settled): NaN in every output.
 double known(double v) { return v < 0 ? kNaN : v; }
+
+// The crank period, from the last cycle the run measured (NaN: none).
+double cycle_period(const RunResult& r) {
+  return r.cycles.empty() ? kNaN : r.cycles.back().t_end_s - r.cycles.back().t_start_s;
+}
 
 // The k-th Floquet multiplier's modulus or angle (NaN when there is none).
 double multiplier(const RunResult& r, size_t k, bool angle) {
@@ -88,6 +94,13 @@ const std::vector<ResultField>& metric_fields() {
          "fourth Floquet multiplier's modulus"},
         {"multiplier_4_angle_rad", "rad", false, [](const RunResult& r) { return multiplier(r, 3, true); },
          "fourth Floquet multiplier's angle"},
+        {"orbit_conditioning", "1", false, [](const RunResult& r) { return orbit_conditioning(r.steady.multipliers); },
+         "kappa = 1/min|1 - mu| over the Floquet multipliers: how much the orbit's place amplifies its period map's error or a parameter's change (NaN: no multipliers)"},
+        {"slowest_mode_cycles", "1", false, [](const RunResult& r) { return slowest_mode_cycles(r.steady.multipliers); },
+         "e-folding time of the slowest Floquet mode, 1/min|ln|mu||, in crank cycles: how long a disturbance along it takes to decay or grow by e (NaN: no multipliers)"},
+        {"slowest_mode_s", "s", false,
+         [](const RunResult& r) { return slowest_mode_cycles(r.steady.multipliers) * cycle_period(r); },
+         "the same e-folding time in seconds (slowest_mode_cycles x the crank period)"},
         {"safe_film_thickness_m", "m", false, [](const RunResult& r) { return r.metrics.safe_film_thickness_m; },
          "safe minimum film thickness, 0.00015 mm per mm of bearing diameter (ESDU 84031)"},
         {"below_safe_film", "1", true, [](const RunResult& r) { return r.metrics.below_safe_film ? 1.0 : 0.0; },
