@@ -82,6 +82,48 @@ TEST(SlowFlow, FollowsASinkingJournalHundredsOfCyclesAndAgreesWithItsTransient) 
   EXPECT_LT(std::abs(r.steady.last_cycle_min_film_m - h_transient), std::abs(h_loose - h_transient));
 }
 
+/// Frêne's long-bearing law at 0.5 mm, 100 cP, 500 rpm (a cell of the full factorial): its
+/// flow ends some 300 cycles on within 10–30 nm of the wall, where the film barely moves.
+json at_the_wall(double rtol) {
+  json doc = sinking("auto", 40);
+  doc["joints"][3]["force_law"] = "frene_long";
+  doc["joints"][3]["journal_radius_m"] = 0.0095;
+  doc["drivers"][0]["speed_rpm"] = 500.0;
+  doc["solver"]["rtol"] = rtol;
+  return doc;
+}
+
+TEST(SlowFlow, ItsDriftCarriesItsMapsErrorAndADriftWithinItIsNoDirection) {
+  // Where the journal sinks (the cell above), the drift is some 20 times its map's error a
+  // cycle (−7.2e-9 m against 3.8e-10 m): a direction, `drifting`, the error in the message.
+  const RunResult r = run(sinking("auto", 40));
+  ASSERT_EQ(r.status, RunStatus::ok) << r.message;
+  const double drift = r.steady.min_film_drift_m_per_cycle, error = r.steady.min_film_drift_error_m_per_cycle;
+  ASSERT_TRUE(std::isfinite(error)) << r.message;
+  EXPECT_GT(error, 0.0);
+  EXPECT_LT(error, 0.2 * std::abs(drift)) << drift;
+  EXPECT_EQ(lub::classification(r), "drifting") << r.message;
+  EXPECT_NE(r.message.find("its period map's own error a cycle"), std::string::npos) << r.message;
+
+  // At the wall the film moves by less than its map's error a cycle: the flow's direction
+  // is the integrator's, `not_converged`, and the message says so.
+  const RunResult wall = run(at_the_wall(1e-8));
+  ASSERT_EQ(wall.status, RunStatus::ok) << wall.message;
+  const double d8 = wall.steady.min_film_drift_m_per_cycle, e8 = wall.steady.min_film_drift_error_m_per_cycle;
+  ASSERT_TRUE(std::isfinite(e8)) << wall.message;
+  EXPECT_LE(std::abs(d8), e8);
+  EXPECT_EQ(lub::classification(wall), "not_converged") << wall.message;
+  EXPECT_NE(wall.message.find("not resolved at this rtol"), std::string::npos) << wall.message;
+  // The independent route: the same cell at rtol/10. An integration error shrinks with
+  // the tolerance (measured 3.6e-8 m, 3.4e-9 m, 3.9e-10 m at 1e-8, 1e-9, 1e-10: first
+  // order, so at most half), and the tighter drift lies within the looser one's error bar
+  // (−8.7e-11 against −4.5e-10 ± 3.6e-8 m).
+  const RunResult tight = run(at_the_wall(1e-9));
+  ASSERT_EQ(tight.status, RunStatus::ok) << tight.message;
+  EXPECT_LT(tight.steady.min_film_drift_error_m_per_cycle, 0.5 * e8);
+  EXPECT_LE(std::abs(tight.steady.min_film_drift_m_per_cycle - d8), e8);
+}
+
 TEST(SlowFlow, TheRunsBudgetOfPeriodsBoundsItAndSaysSo) {
   // The sinking cell spends ~100 periods before its flow (the transient to cycle 8, Newton
   // from there, the transient to cycle 40: it contracts at 0.99, so no second Newton) and

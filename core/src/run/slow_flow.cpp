@@ -143,6 +143,30 @@ void take_slow_flow_metrics(SteadyContext& cx, SegmentResult& measured, Chart& c
   }
 }
 
+/// How much of the flow's drift a cycle may be its own period map's error [m/cycle]: from
+/// `at`, three periods by the flow's map (rtol × tighten_factor) and three by its rtol/100
+/// twin; d_k the metric film's eccentricity after k periods, apart, times its clearance.
+/// d_k ≈ f + k b: f the error the fast modes forget, b the bias the slow ones keep a
+/// period. Near the wall b is the method's (of one sign, not noise), and where it is as
+/// large as the drift the flow's direction is the integrator's. The larger of d_1 and the
+/// slope (d_3 − d_1)/2 (NaN: not measured).
+double drift_error(SteadyContext& cx, const StartState& at) {
+  constexpr int kPeriods = 3;
+  const double f = cx.tuning.tighten_factor;
+  const SegmentResult a = cx.measure(at, f, false, kPeriods);
+  if (a.res.status != RunStatus::ok || a.res.cycles.size() < kPeriods) return kNaN;
+  const SegmentResult b = cx.measure(at, f * cx.tuning.tight_factor, false, kPeriods);
+  if (b.res.status != RunStatus::ok || b.res.cycles.size() < kPeriods) return kNaN;
+  auto apart = [&](int k) {
+    const CycleMetrics& x = a.res.cycles[static_cast<size_t>(k)];
+    const CycleMetrics& y = b.res.cycles[static_cast<size_t>(k)];
+    return Eigen::Vector2d(x.end_eccentricity_x - y.end_eccentricity_x, x.end_eccentricity_y - y.end_eccentricity_y);
+  };
+  const double c = cx.scene.joints[cx.scene.metrics.joint].bearing.clearance_m();
+  const Eigen::Vector2d d1 = apart(0), d3 = apart(kPeriods - 1);
+  return c * std::max(d1.norm(), (d3 - d1).norm() / (kPeriods - 1));
+}
+
 /// Where the flow got to: measured, and what it says (or, off any slow manifold, the case
 /// as shooting left it: `before`).
 void report_slow_flow(SteadyContext& cx, const RunResult& before, Chart& chart, const StartState& from,
@@ -192,6 +216,10 @@ void report_slow_flow(SteadyContext& cx, const RunResult& before, Chart& chart, 
     ev.film_at_end = res.steady.last_cycle_min_film_m;
     take_slow_flow_metrics(cx, measured, chart, from, flow);
     ev.measured = true;
+    if (ev.outcome == Outcome::moving) {
+      res.steady.min_film_drift_error_m_per_cycle = drift_error(cx, at);
+      ev.flow_rtol = cx.scene.solver.rtol * cx.tuning.tighten_factor;
+    }
   }
 }
 

@@ -177,6 +177,7 @@ struct SlowFlowEvidence {
   double periodicity = 0.0;     ///< off_manifold: two cycles' distance there [clearances]
   bool measured = false;        ///< the cycles where it got to measured (metrics taken)
   double film_at_end = kNaN;    ///< the transient's last film [m] (before the flow's metrics)
+  double flow_rtol = kNaN;      ///< moving: the rtol its periods ran at (the drift's error bar's)
 };
 
 }  // namespace lub::detail

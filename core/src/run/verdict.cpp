@@ -299,6 +299,16 @@ void slow_flow(RunResult& res, const SlowFlowEvidence& ev) {
     steady.method = SteadyCycleMethod::slow_flow;
     msg << ": minimum film " << ev.film_at_end << " m at the transient's end, " << steady.last_cycle_min_film_m
         << " m there, changing by " << steady.min_film_drift_m_per_cycle << " m a cycle";
+    const double drift = steady.min_film_drift_m_per_cycle, error = steady.min_film_drift_error_m_per_cycle;
+    if (ev.outcome == Outcome::moving && std::isfinite(error)) {
+      msg << " (its period map's own error a cycle: " << error << " m at rtol " << ev.flow_rtol << ")";
+      // The drift is no larger than the error of the periods that gave it: which way the
+      // journal goes is the integrator's, not the film's (docs/theory/steady-cycles.md).
+      if (!(std::abs(drift) > error)) {
+        steady.kind = SteadyClass::not_converged;
+        msg << ", the drift within it: where it goes is not resolved at this rtol";
+      }
+    }
   }
   msg << " (" << ev.periods << " periods, " << name_of(ev.flow) << "); from the transient: " << ev.shooting;
   res.message = msg.str();

@@ -154,6 +154,10 @@ struct SteadyCycle {
   /// Change of the per-cycle minimum film thickness per cycle over the transient's last
   /// cycles [m/cycle], least squares: how a drifting case drifts.
   double min_film_drift_m_per_cycle = std::numeric_limits<double>::quiet_NaN();
+  /// Where the slow flow gave the drift: how much of it its own period map's error may be
+  /// [m/cycle], the metric film's eccentricity one period on by that map and by its
+  /// rtol/100 twin, apart, × c (NaN: not measured).
+  double min_film_drift_error_m_per_cycle = std::numeric_limits<double>::quiet_NaN();
   /// The last transient cycle's minimum film thickness [m] (where the slow flow was
   /// followed: at the state it reached)
   double last_cycle_min_film_m = std::numeric_limits<double>::quiet_NaN();
