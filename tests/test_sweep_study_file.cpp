@@ -343,8 +343,8 @@ TEST_F(StudyFile, SummaryOfAMissingOrForeignFileIsOneShortLine) {
 }
 
 TEST_F(StudyFile, SummarySaysWhereACaseWithoutAnOrbitGotTo) {
-  // A case without a steady cycle shows its last film, its drift a cycle and the cycles its
-  // slow flow followed; a case with an orbit shows "-" there (its metrics say it).
+  // A case without a steady cycle shows its last film, its drift a cycle, the drift's error
+  // bar and the cycles its slow flow followed; a case with an orbit shows "-" there (its metrics say it).
   const Grid g = small_grid();
   const std::string path = file("where.h5");
   CaseResult orbit = fake(g, 0), drifting = fake(g, 1);
@@ -368,6 +368,7 @@ TEST_F(StudyFile, SummarySaysWhereACaseWithoutAnOrbitGotTo) {
   const auto t = lub::h5::File::open(path).open_table("cases");
   for (const auto& [column, name, scale] : {std::tuple{"last_h[um]", "last_cycle_min_film_m", 1e6},
                                             std::tuple{"dh/cycle[nm]", "min_film_drift_m_per_cycle", 1e9},
+                                            std::tuple{"dh_error[nm]", "min_film_drift_m_per_cycle_error", 1e9},
                                             std::tuple{"flow[cycles]", "slow_flow_cycles", 1.0}}) {
     SCOPED_TRACE(column);
     const auto at = std::find(head.begin(), head.end(), std::string(column));
