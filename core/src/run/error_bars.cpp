@@ -5,6 +5,7 @@
 #include <limits>
 #include <sstream>
 
+#include "lub/run/orbit.hpp"
 #include "run/steady_strategies.hpp"
 
 namespace lub::detail {
@@ -49,6 +50,44 @@ steady::ShootingResult resolve_tight(const SteadyContext& cx, PeriodMap& tight_p
       resolved = std::move(again);
   }
   return resolved;
+}
+
+/// An ill-conditioned orbit's second refinement: re-solved from the rtol/100 orbit
+/// (`z_tight`, located at `z_located`) at rtol/1e4, or as fine as the integrator reaches
+/// (finest_rtol); sets the evidence's moves and bound. False: the budget refused it.
+bool refine(SteadyContext& cx, const PeriodMap& tight_period, const Eigen::VectorXd& z_tight,
+            const Eigen::VectorXd& z_located, const Eigen::MatrixXd& M_minus_I,
+            const Eigen::FullPivLU<Eigen::MatrixXd>& newton, const steady::ShootingOptions& options,
+            ErrorBarEvidence& ev) {
+  const SteadyTuning& t = cx.tuning;
+  const double tight_rtol = cx.scene.solver.rtol * tight_period.rtol_factor();
+  const double factor = std::max(t.tight_factor, t.finest_rtol / tight_rtol);
+  PeriodMap finer = tight_period.tighter(std::min(factor, 1.0), t.tight_step_factor);
+  steady::ShootingOptions o = options;
+  o.tolerance *= t.tight_factor;
+  steady::ShootingResult again;
+  ev.refine_rtol = tight_rtol * std::min(factor, 1.0);
+  if (factor <= 0.5) {
+    again = resolve_tight(cx, finer, z_tight, M_minus_I, o);
+  } else {
+    again.outcome = steady::ShootingOutcome::not_converged;
+    std::ostringstream why;
+    why << "rtol/100 is already " << tight_rtol << ", the finest the integrator reaches is " << t.finest_rtol;
+    again.message = why.str();
+  }
+  if (again.outcome == steady::ShootingOutcome::refused) return false;
+  ev.first_move = cx.res.steady.orbit_error;
+  ev.refine_bound = std::max(t.refine_ratio * ev.first_move, t.refine_floor * cx.sim.steady_tolerance);
+  if (again.Pz.size() == z_tight.size() && again.residual >= 0.0) {
+    const Eigen::VectorXd z_finer = again.z - newton.solve(again.Pz - again.z);
+    ev.refined_move = steady::scaled_distance(z_finer, z_located, options.residual_units());
+  } else {
+    // Not refined (its period failed, or no step taken): not shown to stop moving.
+    ev.refined_move = kInf;
+    ev.refine_failure = again.message;
+    if (!finer.last_failure().empty()) ev.refine_failure += ": " + finer.last_failure();
+  }
+  return true;
 }
 
 }  // namespace
@@ -104,6 +143,15 @@ ErrorBarEvidence orbit_error_bars(SteadyContext& cx, Chart& chart, const StartSt
   Eigen::VectorXd z_located = z_tight;
   if (resolved.Pz.size() == z.size()) z_located = resolved.z - newton.solve(resolved.Pz - resolved.z);
   cx.res.steady.orbit_error = steady::scaled_distance(z_located, z, options.residual_units());
+  // An ill-conditioned orbit once more, at rtol/1e4 from the rtol/100 one: an orbit stops
+  // moving under refinement, a fixed point of the map's error does not.
+  ev.conditioning = orbit_conditioning(steady::floquet_multipliers(monodromy));
+  if (ev.conditioning > cx.tuning.refine_conditioning && !(cx.res.steady.orbit_error > cx.sim.steady_tolerance) &&
+      !refine(cx, tight_period, z_tight, z_located, M_minus_I, newton, options, ev)) {
+    cx.budget.stopped(cx.spent(), "no error bars");
+    ev.outcome = Outcome::refused;
+    return ev;
+  }
   StartState tight_start = base;
   if (!chart.expand(base.t, z_tight.data(), tight_start.qv)) {
     ev.outcome = Outcome::failed;

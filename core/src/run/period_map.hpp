@@ -95,6 +95,16 @@ class PeriodMap final : public steady::CycleMap {
   void set_period_budget(long long n) { max_periods_ = n; }
   /// Whether the map refused for the budget.
   bool refused() const { return refused_; }
+  /// Its rtol over the scene's.
+  double rtol_factor() const { return rtol_factor_; }
+  /// The same map at `factor` times its rtol (and `step_factor` times its step budget),
+  /// sharing its run's costs and budget of periods.
+  PeriodMap tighter(double factor, long long step_factor) const {
+    PeriodMap twin(rm_, chart_, base_, winding_, rtol_factor_ * factor, stats_, periods_);
+    twin.max_steps_ = max_steps_ * step_factor;
+    twin.max_periods_ = max_periods_;
+    return twin;
+  }
 
  private:
   RunModel& rm_;

@@ -251,7 +251,7 @@ OrbitEvidence solve_orbit(SteadyContext& cx, Chart& chart, const StartState& bas
     ev.orbit_error = steady.orbit_error;
     // Located no better than the tolerance a cycle is steady by: near |μ| = 1 a fixed
     // point of the map's error.
-    if (ev.orbit_error > ev.steady_tolerance) return ev;
+    if (ev.orbit_error > ev.steady_tolerance || ev.bars.keeps_moving()) return ev;
   }
   StartState orbit = base;
   if (!chart.expand(base.t, found.z.data(), orbit.qv)) return ev;

@@ -86,7 +86,7 @@ SlowNewton newton_where_flow_stops(SteadyContext& cx, Chart& chart, const StartS
     }
   }
   ev.orbit = solve_orbit(cx, near, start, winding, cx.transient_step_budget(), options, true, OrbitSeed{});
-  const bool unlocated = steady.orbit_error > cx.sim.steady_tolerance;
+  const bool unlocated = steady.orbit_error > cx.sim.steady_tolerance || ev.orbit.bars.keeps_moving();
   if (verdict::accepted(ev.orbit) || (!steady.multipliers.empty() && !unlocated) || !cx.budget.note().empty()) {
     // An orbit, or one found but not measured, or the budget spent: its own verdict.
     steady.slow_flow_cycles = way.cycles;

@@ -6,6 +6,7 @@
 // steady cycle's label, method and the run's message.
 #pragma once
 
+#include <cmath>
 #include <functional>
 #include <optional>
 #include <string>
@@ -83,12 +84,17 @@ struct TransientConfirmation {
     period_failed, ///< a period from the transient's end failed (`failure`)
     unstable,      ///< |μ|max >= 1 there
     far,           ///< the orbit lies `distance` from the end, beyond steady_tolerance
+    ill_posed,     ///< κ amplifies the map's error a period to `shift`, beyond steady_tolerance
   };
   Outcome outcome = Outcome::too_short;
   std::string failure;
   double dominant = 0.0;  ///< |μ|max
   double distance = 0.0;  ///< |(I − M)⁻¹ (P(z) − z)| [clearances]
   double tolerance = 0.0; ///< steady_tolerance
+  double conditioning = kNaN;  ///< κ = 1/min|1 − μ| there
+  /// Where κ > refine_conditioning: |(I − M)⁻¹ (P − P_tight)(z)|, how far the map's error at
+  /// rtol moves the orbit [clearances] (NaN: not needed).
+  double shift = kNaN;
 };
 
 /// Error bars (error_bars.cpp).
@@ -104,6 +110,17 @@ struct ErrorBarEvidence {
   std::string note;
   std::string failure;
   bool budget = false;  ///< the failure is a budget the user set (the orbit keeps NaN bars)
+  /// An ill-conditioned orbit (κ > refine_conditioning) re-solved once more, at rtol/1e4
+  /// (or SteadyTuning::finest_rtol):
+  /// how far it moved from rtol/100 [clearances] (NaN: not refined), against the first move.
+  double refined_move = kNaN;  ///< +inf: not re-solved there (`refine_failure`)
+  double first_move = kNaN;
+  double refine_bound = kNaN;  ///< the largest second move of an orbit that stops moving
+  double conditioning = kNaN;  ///< κ of the orbit's monodromy
+  double refine_rtol = kNaN;   ///< the rtol it was refined at
+  std::string refine_failure;
+  /// Refined, and still moving (or not re-solved finer).
+  bool keeps_moving() const { return !std::isnan(refined_move) && !(refined_move <= refine_bound); }
 };
 
 /// Newton on the period map from a start, and the orbit's measurement (shooting.cpp).

@@ -53,6 +53,19 @@ struct SteadyTuning {
   /// to 1 % of its distance from the orbit at rtol) …
   int error_bar_iterations = 6;
   double error_bar_accuracy = 1e-2;
+  /// An orbit with κ = 1/min|1 − μ| above this is re-solved once more, at rtol/1e4: its map's
+  /// error is amplified κ-fold, and near the wall that error is a bias whose fixed points
+  /// move with rtol (docs/theory/steady-cycles.md). Well-conditioned orbits (κ ≤ 57 on the
+  /// full factorial) never pay for it …
+  double refine_conditioning = 100.0;
+  /// … and it is located only where the second move is below this fraction of the first
+  /// (an error of order rtol^q, q ≥ ½, shrinks 10–100-fold from one refinement to the next;
+  /// a fixed point of a bias moves about as far again) or below refine_floor × steady_tolerance.
+  double refine_ratio = 0.3;
+  double refine_floor = 0.1;
+  /// The finest rtol a refinement integrates at: below it the steps crawl at round-off
+  /// near the wall (300 cycles at 1e-13 take minutes where 1e-12 takes seconds).
+  double finest_rtol = 1e-12;
   /// … and chords that stall below this fraction of their first residual are enough (at
   /// the tight map's noise; no KINSOL line search on that noise after them).
   double error_bar_stall = 0.1;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "lub/run/orbit.hpp"
 #include "run/steady_strategies.hpp"
 
 namespace lub::detail {
@@ -219,10 +220,30 @@ TransientConfirmation confirm_transient(SteadyContext& cx) {
   out.tolerance = cx.sim.steady_tolerance;
   steady.remaining_distance = out.distance;
   out.dominant = steady.multipliers.empty() ? 0.0 : std::abs(steady.multipliers.front());
-  if (out.dominant >= 1.0)
+  out.conditioning = orbit_conditioning(steady.multipliers);
+  if (out.dominant >= 1.0) {
     out.outcome = Outcome::unstable;
-  else if (!(out.distance <= cx.sim.steady_tolerance))
+  } else if (!(out.distance <= cx.sim.steady_tolerance)) {
     out.outcome = Outcome::far;
+  } else if (out.conditioning > cx.tuning.refine_conditioning) {
+    // An ill-conditioned orbit near the end: the map's error at rtol moves it κ-fold. One
+    // period at rtol/100 says by how much; a stop it moves by more than steady_tolerance
+    // is no evidence (near the wall: a fixed point of the map's error).
+    Eigen::VectorXd Pt(chart.size());
+    if (tight.apply(z.data(), Pt.data()) != 0) {
+      if (tight.refused()) {
+        cx.budget.stopped(cx.spent(), "the transient's stop not confirmed by the period map");
+        out.outcome = Outcome::refused;
+      } else {
+        out.outcome = Outcome::period_failed;
+        out.failure = tight.last_failure();
+      }
+      return out;
+    }
+    out.shift = steady::scaled_distance(M_minus_I.fullPivLu().solve(end.Pz - Pt), Eigen::VectorXd::Zero(chart.size()),
+                                        chart.units());
+    if (!(out.shift <= cx.sim.steady_tolerance)) out.outcome = Outcome::ill_posed;
+  }
   return out;
 }
 

@@ -95,6 +95,11 @@ void transient(RunResult& res, bool converged, bool confirm, const TransientConf
         msg << "the transient's stop not confirmed by the period map: the orbit lies " << c.distance
             << " clearances from its end (|mu|max = " << c.dominant << "; steady_tolerance " << c.tolerance << ")";
         break;
+      case Outcome::ill_posed:
+        msg << "the transient's stop not confirmed by the period map: kappa " << c.conditioning
+            << " amplifies its error a period at rtol to " << c.shift << " clearances (steady_tolerance "
+            << c.tolerance << "), a stop there is the integrator's";
+        break;
       default:  // too short, or the budget's note says it
         break;
     }
@@ -147,7 +152,7 @@ bool accepted(const OrbitEvidence& ev) {
   if (ev.outcome != OrbitEvidence::Outcome::found) return false;
   if (!ev.final) return ev.seeded;
   const bool bars_failed = ev.bars.outcome == ErrorBarEvidence::Outcome::failed && !ev.bars.budget;
-  return ev.measured && !bars_failed && !(ev.orbit_error > ev.steady_tolerance);
+  return ev.measured && !bars_failed && !(ev.orbit_error > ev.steady_tolerance) && !ev.bars.keeps_moving();
 }
 
 bool orbit(RunResult& res, const OrbitEvidence& ev) {
@@ -191,6 +196,21 @@ bool orbit(RunResult& res, const OrbitEvidence& ev) {
     msg << "the orbit moves by " << ev.orbit_error
         << " clearances when its periods are integrated 100 times tighter (|mu|max " << ev.dominant
         << "; steady_tolerance " << ev.steady_tolerance << "): not located";
+    prepend(res.message, msg.str());
+    steady.kind = SteadyClass::not_converged;
+    return false;
+  }
+  if (ev.bars.keeps_moving()) {
+    // Ill-conditioned, and still moving as far when refined again: a fixed point of the map's
+    // error, whose place is the integrator's (docs/theory/steady-cycles.md).
+    std::ostringstream msg;
+    msg << "the orbit (kappa " << ev.bars.conditioning << ") moves by " << ev.bars.first_move
+        << " clearances from rtol to rtol/100 and ";
+    if (std::isinf(ev.bars.refined_move))
+      msg << "could not be re-solved at rtol " << ev.bars.refine_rtol << " (" << ev.bars.refine_failure << ")";
+    else
+      msg << "by " << ev.bars.refined_move << " more at rtol " << ev.bars.refine_rtol;
+    msg << ": it does not stop moving under refinement, not located";
     prepend(res.message, msg.str());
     steady.kind = SteadyClass::not_converged;
     return false;
