@@ -145,7 +145,7 @@ ErrorBarEvidence orbit_error_bars(SteadyContext& cx, Chart& chart, const StartSt
   cx.res.steady.orbit_error = steady::scaled_distance(z_located, z, options.residual_units());
   // An ill-conditioned orbit once more, at rtol/1e4 from the rtol/100 one: an orbit stops
   // moving under refinement, a fixed point of the map's error does not.
-  ev.conditioning = orbit_conditioning(steady::floquet_multipliers(monodromy));
+  ev.conditioning = orbit_conditioning(cx.res.steady.multipliers);  // the monodromy's, set by shooting
   if (ev.conditioning > cx.tuning.refine_conditioning && !(cx.res.steady.orbit_error > cx.sim.steady_tolerance) &&
       !refine(cx, tight_period, z_tight, z_located, M_minus_I, newton, options, ev)) {
     cx.budget.stopped(cx.spent(), "no error bars");

@@ -215,7 +215,8 @@ TransientConfirmation confirm_transient(SteadyContext& cx) {
   steady.multipliers = steady::floquet_multipliers(end.monodromy.M);
   steady.orbit_residual = steady::scaled_distance(end.Pz, z, chart.units());
   const Eigen::MatrixXd M_minus_I = end.monodromy.M - Eigen::MatrixXd::Identity(chart.size(), chart.size());
-  const Eigen::VectorXd orbit = z + M_minus_I.fullPivLu().solve(z - end.Pz);
+  const Eigen::FullPivLU<Eigen::MatrixXd> newton(M_minus_I);
+  const Eigen::VectorXd orbit = z + newton.solve(z - end.Pz);
   out.distance = steady::scaled_distance(orbit, z, chart.units());
   out.tolerance = cx.sim.steady_tolerance;
   steady.remaining_distance = out.distance;
@@ -240,8 +241,7 @@ TransientConfirmation confirm_transient(SteadyContext& cx) {
       }
       return out;
     }
-    out.shift = steady::scaled_distance(M_minus_I.fullPivLu().solve(end.Pz - Pt), Eigen::VectorXd::Zero(chart.size()),
-                                        chart.units());
+    out.shift = steady::scaled_distance(z + newton.solve(end.Pz - Pt), z, chart.units());
     if (!(out.shift <= cx.sim.steady_tolerance)) out.outcome = Outcome::ill_posed;
   }
   return out;
