@@ -164,23 +164,13 @@ TEST(Contact, RestitutionOfAFreeImpactAtTheReferenceSpeed) {
 
 // --- Scene and model wiring ---------------------------------------------------------------
 
-json bearing_scene(const std::string& law) {
-  json ground{{"name", "fix"}, {"type", "ground"}, {"body", "housing"}};
-  return scene_fixture::housing_and_shaft(json::array({ground, scene_fixture::paper_joint(law)}));
-}
+json bearing_scene(const std::string& law) { return scene_fixture::grounded_bearing(law); }
 
 json contact_block() {
   return json{{"stiffness_N_per_m_n", 1e10}, {"restitution", 0.9}, {"handover_eps", {0.97, 0.995}}};
 }
 
-std::string parse_error(const json& doc) {
-  try {
-    lub::parse_scene(doc);
-  } catch (const lub::InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using scene_fixture::parse_error;
 
 TEST(ContactScene, AbsentMeansNoContactCode) {
   const lub::Model m = lub::build_model(lub::parse_scene(bearing_scene("gumbel_short")));

@@ -51,11 +51,13 @@ void add_columns(const h5::Table& t, const std::vector<std::string>& status, con
   cols.push_back({"classification", cls});
   // A metric's column; `without_orbit`: shown only for the cases with no steady cycle (where
   // it got to), "-" for those with one (whose metrics say it) and where it is 0 (not followed).
+  // `if_used`: the column only if some case has a non-zero value (an effect's metric).
   auto numeric = [&](const std::string& head, const std::string& name, const char* format, double scale,
-                     bool without_orbit = false) {
+                     bool without_orbit = false, bool if_used = false) {
     SummaryColumn c{head, {}};
     if (!t.has_column(name)) return;
     const std::vector<double> v = t.read_doubles(name);
+    if (if_used && std::none_of(v.begin(), v.end(), [](double x) { return std::isfinite(x) && x != 0.0; })) return;
     for (std::size_t i = 0; i < v.size(); ++i) {
       const bool shown = !without_orbit || (!is_orbit(cls[i]) && v[i] != 0.0);
       c.cells.push_back(shown && std::isfinite(v[i]) ? fmt::format(fmt::runtime(format), v[i] * scale) : "-");
@@ -67,6 +69,10 @@ void add_columns(const h5::Table& t, const std::vector<std::string>& status, con
   numeric("peak_F[N]", "peak_reaction_N", "{:.4g}", 1.0);
   numeric("peak_a[m/s2]", "peak_acceleration_m_s2", "{:.4g}", 1.0);
   numeric("periodicity", "periodicity", "{:.2e}", 1.0);
+  // Mixed lubrication (effects.mixed_lubrication): the asperities' peak load and its ratio to
+  // the peak joint force; shown when a case has the effect and its asperities touch.
+  numeric("W_asp[N]", "peak_asperity_load_N", "{:.3g}", 1.0, false, true);
+  numeric("W_asp/F", "asperity_load_ratio", "{:.3g}", 1.0, false, true);
   numeric("|mu|max", "multiplier_1_modulus", "{:.4f}", 1.0);
   // How well posed the orbit is: kappa = 1/min|1 - mu| and its slowest mode's e-folding
   // time in cycles (lub/run/orbit.hpp).

@@ -6,7 +6,9 @@
 //    zero-multiplied term would cost), and with its lubricated joints as films or ideal
 //    (force_law "ideal": two constraint rows instead of a force law);
 //  - BM_Run: one crank cycle of the four-bar, recording every channel or none (metrics
-//    only), so the cost of series nobody asked for.
+//    only), so the cost of series nobody asked for;
+//  - BM_RhsMixed: one evaluation of the slider-crank (Frêne short) without and with mixed
+//    lubrication, its journal 100 µm or 1 µm from the wall (asperity band not reached, reached).
 //
 //   build/tests/bench/bench_effects
 #include <benchmark/benchmark.h>
@@ -41,20 +43,25 @@ json variant(int scene, Gravity g, bool films) {
   return doc;
 }
 
+// Times lub::evaluate of `m` at the scene's assembled initial state.
+void time_rhs(benchmark::State& state, const lub::Scene& s, const lub::Model& m, lub::Workspace& ws) {
+  Eigen::VectorXd q, v;
+  lub::assemble_initial_state(m, s, 0.0, q, v);
+  Eigen::VectorXd a(m.nq);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(lub::evaluate(m, ws, lub::stabilisation(s), 1e-3, q.data(), v.data(), a.data()));
+    benchmark::ClobberMemory();
+  }
+}
+
 void BM_Rhs(benchmark::State& state) {
   const int scene = static_cast<int>(state.range(0));
   const auto g = static_cast<Gravity>(state.range(1));
   const bool films = state.range(2) != 0;
   const lub::Scene s = lub::parse_scene(variant(scene, g, films));
   const lub::Model m = lub::build_model(s);
-  Eigen::VectorXd q, v;
-  lub::assemble_initial_state(m, s, 0.0, q, v);
-  Eigen::VectorXd a(m.nq);
   lub::Workspace ws(m);
-  for (auto _ : state) {
-    benchmark::DoNotOptimize(lub::evaluate(m, ws, lub::stabilisation(s), 1e-3, q.data(), v.data(), a.data()));
-    benchmark::ClobberMemory();
-  }
+  time_rhs(state, s, m, ws);
   const double n = static_cast<double>(ws.counters.rhs);
   state.counters["gravity_per_rhs"] = static_cast<double>(ws.counters.gravity) / n;
   state.counters["laws_per_rhs"] = static_cast<double>(ws.counters.film) / n;
@@ -84,6 +91,26 @@ void BM_Run(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_Run)->Arg(1)->Arg(0)->ArgNames({"channels"})->Unit(benchmark::kMillisecond);
+
+void BM_RhsMixed(benchmark::State& state) {
+  const bool mixed = state.range(0) != 0;
+  const double film_um = static_cast<double>(state.range(1));
+  json doc = load("slider_crank.json");
+  doc["joints"][3]["force_law"] = "frene_short";
+  const double e = 0.5e-3 - film_um * 1e-6;  // the scene's clearance less the film
+  doc["joints"][3]["initial_eccentricity_m"] = {-e, 0.0};
+  if (mixed)
+    doc["effects"]["mixed_lubrication"] = {{"roughness_m", 5e-7}, {"asperity_density_per_m2", 1.6e8},
+                                           {"asperity_radius_m", 5e-4}, {"composite_modulus_Pa", 8e10}};
+  const lub::Scene s = lub::parse_scene(doc);
+  const lub::Model m = lub::build_model(s);
+  lub::Workspace ws(m);
+  time_rhs(state, s, m, ws);
+  state.SetLabel(std::string("slider_crank frene_short, film ") + std::to_string(state.range(1)) + " um, " +
+                 (mixed ? "mixed lubrication" : "no asperities"));
+}
+// Arguments: mixed lubrication (1) or not (0), the film from the wall [µm].
+BENCHMARK(BM_RhsMixed)->ArgsProduct({{0, 1}, {100, 1}})->ArgNames({"mixed", "film_um"});
 
 }  // namespace
 

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Writes the scene format's reference page, docs/reference/scene.md, from the scene schema
 configs/scene.schema.json: one table per section (top level, bodies, each joint type,
-drivers, effects, contact, solver, simulation, metrics, outputs, channels) with each key's
+drivers, effects, contact, mixed lubrication, solver, simulation, metrics, outputs, channels) with each key's
 type, unit, default, rules and meaning.
 
     /usr/bin/python3 tools/docs/scene_reference.py            # (re)write docs/reference/scene.md
@@ -44,6 +44,7 @@ SECTIONS = [
     ("`effects`", "effects", "effects"),
     ("`effects.contact`", "effects.contact", "contact"),
     ("`effects.contact.materials.journal`, `.bearing`", "effects.contact.materials.*", "material"),
+    ("`effects.mixed_lubrication`", "effects.mixed_lubrication", "mixed_lubrication"),
     ("`solver`", "solver", "solver"),
     ("`simulation`", "simulation", "simulation"),
     ("`metrics`", "metrics", "metrics"),
@@ -93,7 +94,7 @@ def type_of(node):
         items = node.get("items", {})
         inner = items.get("$ref", "").rsplit("/", 1)[-1] or items.get("type", "")
         return f"array of {inner}" if inner else "array"
-    if t == "object" or ref in ("effects", "contact", "solver", "simulation", "metrics", "outputs"):
+    if t == "object" or ref in ("effects", "contact", "mixed_lubrication", "solver", "simulation", "metrics", "outputs"):
         return "object"
     return t or "–"
 

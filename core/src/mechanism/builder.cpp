@@ -79,6 +79,9 @@ FilmElement film_element(const Scene& scene, int jk, const JointSpec& s) {
   const auto& covered = scene.contact ? scene.contact->joints : std::vector<int>{};
   if (scene.contact && (covered.empty() || std::find(covered.begin(), covered.end(), jk) != covered.end()))
     f.contact = resolve_contact(*scene.contact, s.bearing);
+  const auto& mixed = scene.mixed_lubrication ? scene.mixed_lubrication->joints : std::vector<int>{};
+  if (scene.mixed_lubrication && (mixed.empty() || std::find(mixed.begin(), mixed.end(), jk) != mixed.end()))
+    f.asperity = resolve_asperity(*scene.mixed_lubrication);
   f.switching = s.law == ForceLaw::pinkus_sternlicht && scene.solver.switching == Switching::events;
   return f;
 }

@@ -90,8 +90,11 @@ FilmForce film_element_force(const Model& m, Workspace& ws, int k, const Bearing
     return law(at);
   };
   // With contact: film weighted over the hand-over band (not evaluated above it) plus the
-  // dry-contact force, whose damping sees the true ε̇.
-  return f.contact ? force_with_contact(*f.contact, f.clearance, state, film, &ws.contact_N[k]) : film(state);
+  // dry-contact force, whose damping sees the true ε̇. With mixed lubrication: plus the
+  // asperity load, radial, a function of ε alone.
+  FilmForce out = f.contact ? force_with_contact(*f.contact, f.clearance, state, film, &ws.contact_N[k]) : film(state);
+  if (f.asperity) out.radial_N -= asperity_load_N(*f.asperity, f.geometry, state.eps);
+  return out;
 }
 
 bool film_element_load(const Model& m, Workspace& ws, int k, const BodyState& bi, const BodyState& bj,

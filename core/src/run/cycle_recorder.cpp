@@ -99,6 +99,15 @@ void CycleRecorder::section(const double* qv) {
 void CycleRecorder::close(double t_end, std::vector<CycleMetrics>& cycles) {
   cur_.t_end_s = t_end;
   if (empty_) cur_.min_film_thickness_m = 0.0;
+  // The asperity load grows with ε alone: its peak is at the cycle's largest ε, which the
+  // film extremes above locate between observations (so it does not depend on the output rate).
+  if (const int mj = scene_.metrics.joint; mj >= 0 && !empty_) {
+    const int f = m_.joint_film[mj];
+    if (f >= 0 && m_.films[f].asperity) {
+      cur_.peak_asperity_load_N = asperity_load_N(*m_.films[f].asperity, m_.films[f].geometry, cur_.max_eps);
+      if (cur_.peak_reaction_N > 0.0) cur_.asperity_load_ratio = cur_.peak_asperity_load_N / cur_.peak_reaction_N;
+    }
+  }
   if (!cycles.empty() && phase_index_ == kPhasePoints) {
     double d = 0.0;
     const size_t nf = orbit_channels(m_);

@@ -9,8 +9,8 @@
 
 namespace lub {
 
-const std::array<SteadyMetric, 6>& steady_metrics() {
-  static const std::array<SteadyMetric, 6> table{{
+const std::array<SteadyMetric, 8>& steady_metrics() {
+  static const std::array<SteadyMetric, 8> table{{
       {"min_film_thickness_m", "m", "minimum film thickness h = c (1 - eps) over the metric cycles",
        "minimum film thickness in the cycle",
        ": change at a 100x tighter rtol (+ the transient's remaining change)", &Metrics::min_film_thickness_m,
@@ -30,6 +30,14 @@ const std::array<SteadyMetric, 6>& steady_metrics() {
       {"peak_acceleration_m_s2", "m s-2", "peak acceleration magnitude of the metric body",
        "peak acceleration of the metric body", "", &Metrics::peak_acceleration_m_s2,
        &Metrics::peak_acceleration_m_s2_error, &CycleMetrics::peak_acceleration_m_s2, false},
+      {"peak_asperity_load_N", "N",
+       "peak asperity (Greenwood-Tripp) load of the metric joint; 0 without mixed lubrication",
+       "asperity load of the metric joint at the cycle's largest eccentricity", "",
+       &Metrics::peak_asperity_load_N, &Metrics::peak_asperity_load_N_error, &CycleMetrics::peak_asperity_load_N,
+       false},
+      {"asperity_load_ratio", "1", "peak asperity load over the peak force of the metric joint",
+       "peak asperity load over the peak joint force in the cycle", "", &Metrics::asperity_load_ratio,
+       &Metrics::asperity_load_ratio_error, &CycleMetrics::asperity_load_ratio, false},
   }};
   return table;
 }
@@ -59,6 +67,8 @@ Metrics steady_cycle_metrics(const Scene& scene, const std::vector<CycleMetrics>
       mt.crank_angle_at_peak_reaction_rad = c.crank_angle_at_peak_reaction_rad;
     }
     mt.peak_acceleration_m_s2 = std::max(mt.peak_acceleration_m_s2, c.peak_acceleration_m_s2);
+    mt.peak_asperity_load_N = std::max(mt.peak_asperity_load_N, c.peak_asperity_load_N);
+    mt.asperity_load_ratio = std::max(mt.asperity_load_ratio, c.asperity_load_ratio);
     mt.periodicity = std::max(mt.periodicity, c.periodicity);
   }
   const int mj = scene.metrics.joint;

@@ -128,6 +128,28 @@ JointSpec parse_joint(const Scene& scene, const json& j, const std::string& path
   return s;
 }
 
+// The optional "joints" list of an effect: scene indices of the lubricated joints it covers
+// (empty: every film joint). Joints must already be parsed.
+std::vector<int> parse_film_joints(const Scene& scene, ObjectReader& r) {
+  std::vector<int> out;
+  const json* js = r.raw_optional("joints");
+  if (!js) return out;
+  require_array(*js, r.child("joints"));
+  for (size_t i = 0; i < js->size(); ++i) {
+    const std::string jp = r.child("joints") + "[" + std::to_string(i) + "]";
+    if (!(*js)[i].is_string()) fail(jp, (*js)[i], "must be a joint name");
+    const std::string name = (*js)[i].get<std::string>();
+    const int k = scene.joint_index(name);
+    if (k < 0) fail(jp, (*js)[i], "names no joint");
+    const JointSpec& jt = scene.joints[k];
+    if (jt.type != JointType::lubricated_revolute || jt.ideal)
+      fail(jp, (*js)[i], "must name a lubricated_revolute joint with a film force law (not ideal)");
+    out.push_back(k);
+  }
+  if (out.empty()) fail(r.child("joints"), *js, "must name at least one joint (omit it for all)");
+  return out;
+}
+
 // effects.contact (lub/bearing/contact.hpp). Joints must already be parsed.
 ContactSpec parse_contact(const Scene& scene, const json& j) {
   const std::string path = "effects.contact";
@@ -169,23 +191,23 @@ ContactSpec parse_contact(const Scene& scene, const json& j) {
   if (!(c.handover_start_eps > 0.0 && c.handover_start_eps < c.handover_end_eps &&
         c.handover_end_eps < 1.0))
     fail(r.child("handover_eps"), band, "must satisfy 0 < eps_start < eps_end < 1");
-  if (const json* js = r.raw_optional("joints")) {
-    require_array(*js, r.child("joints"));
-    for (size_t i = 0; i < js->size(); ++i) {
-      const std::string jp = r.child("joints") + "[" + std::to_string(i) + "]";
-      if (!(*js)[i].is_string()) fail(jp, (*js)[i], "must be a joint name");
-      const std::string name = (*js)[i].get<std::string>();
-      const int k = scene.joint_index(name);
-      if (k < 0) fail(jp, (*js)[i], "names no joint");
-      const JointSpec& jt = scene.joints[k];
-      if (jt.type != JointType::lubricated_revolute || jt.ideal)
-        fail(jp, (*js)[i], "must name a lubricated_revolute joint with a film force law (not ideal)");
-      c.joints.push_back(k);
-    }
-    if (c.joints.empty()) fail(r.child("joints"), *js, "must name at least one joint (omit it for all)");
-  }
+  c.joints = parse_film_joints(scene, r);
   r.finish();
   return c;
+}
+
+// effects.mixed_lubrication (lub/bearing/asperity.hpp). Joints must already be parsed.
+AsperitySpec parse_mixed_lubrication(const Scene& scene, const json& j) {
+  ObjectReader r(j, "effects.mixed_lubrication");
+  AsperitySpec a;
+  if (r.has("model")) a.model = r.choice_of<AsperityModel>("model");
+  a.roughness_m = r.number("roughness_m", positive, "must be > 0 m");
+  a.asperity_density_per_m2 = r.number("asperity_density_per_m2", positive, "must be > 0 1/m^2");
+  a.asperity_radius_m = r.number("asperity_radius_m", positive, "must be > 0 m");
+  a.composite_modulus_Pa = r.number("composite_modulus_Pa", positive, "must be > 0 Pa");
+  a.joints = parse_film_joints(scene, r);
+  r.finish();
+  return a;
 }
 
 DriverSpec parse_driver(const Scene& scene, const json& j, const std::string& path) {
@@ -556,6 +578,8 @@ Scene parse_scene(const json& doc) {
     ObjectReader r(*effects, "effects");
     if (r.has("gravity_m_s2")) scene.gravity_m_s2 = r.vec2("gravity_m_s2");
     if (const json* contact = r.raw_optional("contact")) scene.contact = parse_contact(scene, *contact);
+    if (const json* mixed = r.raw_optional("mixed_lubrication"))
+      scene.mixed_lubrication = parse_mixed_lubrication(scene, *mixed);
     r.finish();
   }
 

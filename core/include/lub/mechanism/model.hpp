@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "lub/bearing/asperity.hpp"
 #include "lub/bearing/contact.hpp"
 #include "lub/bearing/film_force.hpp"
 #include "lub/common/name_table.hpp"
@@ -59,6 +60,9 @@ struct FilmElement {
   /// The scene's contact effect covers this joint: the film hands over to dry contact in
   /// [ε_a, ε_b] and is never evaluated above ε_b (lub/bearing/contact.hpp). Absent: no contact code.
   std::optional<ContactLaw> contact;
+  /// The scene's mixed-lubrication effect covers this joint: the asperity load is added to
+  /// the film force (lub/bearing/asperity.hpp). Absent: no asperity code.
+  std::optional<AsperityLaw> asperity;
   /// The law jumps across ε̇ = 0 (the printed Pinkus–Sternlicht law) and the scene asks
   /// for event-driven switching: the run tracks a FilmMode for this film.
   bool switching = false;

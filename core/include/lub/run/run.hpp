@@ -80,6 +80,9 @@ struct CycleMetrics {
   double max_eps = 0.0;
   double peak_reaction_N = 0.0, crank_angle_at_peak_reaction_rad = 0.0;
   double peak_acceleration_m_s2 = 0.0;
+  /// Mixed lubrication: asperity load at the cycle's largest ε [N], and that over the peak
+  /// joint force (0 without the effect)
+  double peak_asperity_load_N = 0.0, asperity_load_ratio = 0.0;
   double periodicity = -1.0;  ///< max orbit distance to the previous cycle / c (-1: first cycle)
   /// The metric joint's state at the cycle's end (crank angle 0: a Poincaré section),
   /// e/c and ė/c; NaN without a film.
@@ -175,6 +178,8 @@ struct Metrics {
   double peak_reaction_N = 0.0;      ///< |force| transmitted by the metric joint
   double crank_angle_at_peak_reaction_rad = 0.0;
   double peak_acceleration_m_s2 = 0.0;  ///< |a| of the metric body
+  double peak_asperity_load_N = 0.0;    ///< Greenwood–Tripp load at the largest ε (mixed lubrication)
+  double asperity_load_ratio = 0.0;     ///< peak asperity load / peak joint force
   double periodicity = -1.0;         ///< the largest over the metric cycles (-1: unknown)
   // Error bars (simulation.error_bars; NaN: none): |metric − the same metric of the steady
   // cycle re-found and re-measured at a 100× tighter rtol| (+ a transient's remaining
@@ -185,6 +190,8 @@ struct Metrics {
   double peak_reaction_N_error = std::numeric_limits<double>::quiet_NaN();
   double crank_angle_at_peak_reaction_rad_error = std::numeric_limits<double>::quiet_NaN();
   double peak_acceleration_m_s2_error = std::numeric_limits<double>::quiet_NaN();
+  double peak_asperity_load_N_error = std::numeric_limits<double>::quiet_NaN();
+  double asperity_load_ratio_error = std::numeric_limits<double>::quiet_NaN();
   bool steady = false;
   int cycles_to_steady = -1;         ///< cycles run when the criterion first held
   int cycles_run = 0;
@@ -214,8 +221,8 @@ struct SteadyMetric {
   double CycleMetrics::*per_cycle;
   bool angle;
 };
-/// The six steady-cycle metrics, in column order.
-const std::array<SteadyMetric, 6>& steady_metrics();
+/// The eight steady-cycle metrics, in column order.
+const std::array<SteadyMetric, 8>& steady_metrics();
 /// |a − b|, or for an angle the distance on the circle (in [0, π]).
 double metric_distance(const SteadyMetric& metric, double a, double b);
 

@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include "lub/bearing/asperity.hpp"
 #include "lub/bearing/contact.hpp"
 #include "lub/bearing/force_laws.hpp"
 #include "lub/common/name_table.hpp"
@@ -308,6 +309,8 @@ struct Scene {
   std::vector<DriverSpec> drivers;
   std::optional<Eigen::Vector2d> gravity_m_s2;
   std::optional<ContactSpec> contact;  ///< effects.contact: dry contact when the film collapses
+  /// effects.mixed_lubrication: asperity contact where the film is a few roughnesses thin
+  std::optional<AsperitySpec> mixed_lubrication;
   SolverSpec solver;
   SimulationSpec simulation;
   OutputSpec output;
