@@ -195,6 +195,11 @@ TEST(SweepGrid, LoadsTheShippedGrids) {
   EXPECT_EQ(s["outputs"]["channels"].size(), 9u);
   EXPECT_EQ(s["outputs"]["last_cycles"], 2);
   EXPECT_EQ(lub::sweep::load_grid(dir + "full_factorial.json").cases.size(), 192u);
+  // The same grid with mixed lubrication named: every case's scene carries the effect.
+  const Grid mixed = lub::sweep::load_grid(dir + "full_factorial_mixed.json");
+  ASSERT_EQ(mixed.cases.size(), 192u);
+  for (const auto& c : mixed.cases)
+    EXPECT_EQ(json::parse(c.scene)["effects"]["mixed_lubrication"]["roughness_m"], 5e-7) << c.label;
   for (const char* f : {"paper_clearance.json", "paper_viscosity.json", "paper_speed.json", "paper_force_law.json"})
     EXPECT_NO_THROW(lub::sweep::load_grid(dir + f)) << f;
 }
@@ -217,6 +222,7 @@ TEST(SweepGrid, SteadyMethodIsTheScenesUnlessTheGridSaysIt) {
   const std::string dir = std::string(LUB_SOURCE_DIR) + "/configs/grids/";
   for (const char* f : {"paper.json", "paper_clearance.json", "paper_viscosity.json", "paper_speed.json",
                         "paper_force_law.json", "full_factorial.json", "full_factorial_long_transients.json",
+                        "full_factorial_mixed.json",
                         "cheap_4096.json", "accuracy_reference.json", "accuracy_hard_40cP.json",
                         "accuracy_force_laws.json"}) {
     const Grid g = lub::sweep::load_grid(dir + f);
