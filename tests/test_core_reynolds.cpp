@@ -235,6 +235,95 @@ TEST(FiniteBearing, MatchesRaimondiBoydFullBearingTable) {
               worst_s, worst_phi);
 }
 
+// The same table's friction and flow columns: friction variable (R/c) f, f = T_J/(R W); flow
+// variable Q/(R c N L); side-flow ratio Q_s/Q; load over peak pressure P/p_max, P = W/(L D).
+struct RBOutputRow {
+  double eps, friction, flow, side_ratio, p_ratio;
+};
+const RBOutputRow kRBOut1[] = {{0.1, 26.4, 3.37, 0.150, 0.540}, {0.2, 12.8, 3.59, 0.280, 0.529},
+                               {0.4, 5.79, 3.99, 0.497, 0.484},  {0.6, 3.22, 4.33, 0.680, 0.415},
+                               {0.8, 1.70, 4.62, 0.842, 0.313},  {0.9, 1.05, 4.74, 0.919, 0.247},
+                               {0.97, 0.514, 4.82, 0.973, 0.152}};
+const RBOutputRow kRBOut12[] = {{0.1, 85.6, 3.43, 0.173, 0.523}, {0.2, 40.9, 3.72, 0.318, 0.506},
+                                {0.4, 17.0, 4.29, 0.552, 0.441},  {0.6, 8.10, 4.85, 0.730, 0.365},
+                                {0.8, 3.26, 5.41, 0.874, 0.267},  {0.9, 1.60, 5.69, 0.939, 0.206},
+                                {0.97, 0.610, 5.88, 0.980, 0.126}};
+const RBOutputRow kRBOut14[] = {{0.1, 322.0, 3.45, 0.180, 0.515}, {0.2, 153.0, 3.76, 0.330, 0.489},
+                                {0.4, 61.1, 4.37, 0.567, 0.415},   {0.6, 26.7, 4.99, 0.746, 0.334},
+                                {0.8, 8.80, 5.60, 0.884, 0.240},   {0.9, 3.50, 5.91, 0.945, 0.180},
+                                {0.97, 0.922, 6.12, 0.984, 0.108}};
+
+TEST(FiniteBearing, FrictionFlowAndPeakPressureAgainstRaimondiBoyd) {
+  // The library's outputs at the tabulated ε (load from the film force, friction from
+  // film_friction_torques, flows and peak from the pressure field), grid 192 × 24, against the
+  // table's 3 significant figures, within the 3.5 % the S column is held to. Two exceptions,
+  // each with its measurement: the inflow converges at first order beside the groove (1.3–1.7 %
+  // low here; 3.326 / 3.350 on 192 / 384 cells at L/D = 1, ε = 0.1, Richardson 3.37); at ε = 0.97
+  // the table's peak pressure is the under-resolved one (ours is 0.1335 on 96 to 768 cells at
+  // L/D = 1/2, table 0.126), so P/p_max there within 7 %.
+  const struct {
+    double ld;
+    const RBOutputRow* rows;
+  } tables[] = {{1.0, kRBOut1}, {0.5, kRBOut12}, {0.25, kRBOut14}};
+  double worst[4] = {0, 0, 0, 0};
+  std::printf("[ measured ] Raimondi-Boyd (L/D, eps: (R/c)f, Q/(RcNL), Qs/Q, P/pmax ours / table):\n");
+  for (const auto& t : tables) {
+    const auto g = geometry(t.ld);
+    const double n_rev = 25.0, w = 2.0 * kPi * n_rev;
+    const double R = g.journal_radius_m, c = g.clearance_m(), L = g.length_m;
+    for (int k = 0; k < 7; ++k) {
+      const RBOutputRow& row = t.rows[k];
+      FiniteBearingOptions o;
+      o.cavitation = Cavitation::reynolds;
+      o.n_theta = 192;
+      o.n_z = 24;
+      o.groove_at_max_film = true;
+      FiniteBearingSolver solver(o);
+      const FilmForce f = solver.solve(g, kMu, state(row.eps, 0.0, w));
+      const lub::FilmOutputs out = solver.outputs(w);
+      const double W = std::hypot(f.radial_N, f.tangential_N);
+      const double ours[4] = {(R / c) * out.journal_friction_torque_Nm / (R * W),
+                              out.inflow_m3_s / (R * c * n_rev * L), out.side_flow_m3_s / out.inflow_m3_s,
+                              W / (L * 2.0 * R) / out.peak_pressure_Pa};
+      const double table[4] = {row.friction, row.flow, row.side_ratio, row.p_ratio};
+      std::printf("    L/D=%-4g eps=%-4g f %.4g / %.4g  Q %.4g / %.4g  Qs/Q %.4g / %.4g  P/pmax %.4g / %.4g\n", t.ld,
+                  row.eps, ours[0], table[0], ours[1], table[1], ours[2], table[2], ours[3], table[3]);
+      for (int q = 0; q < 4; ++q) {
+        const double tol = q == 3 && row.eps > 0.95 ? 0.07 : 0.035;
+        EXPECT_NEAR(ours[q] / table[q], 1.0, tol) << "L/D=" << t.ld << " eps=" << row.eps << " column " << q;
+        if (!(q == 3 && row.eps > 0.95)) worst[q] = std::max(worst[q], std::fabs(ours[q] / table[q] - 1.0));
+      }
+      // The peak sits in the converging film, before the minimum film at θ = π.
+      EXPECT_GT(out.peak_pressure_angle_rad, 0.5 * kPi);
+      EXPECT_LT(out.peak_pressure_angle_rad, kPi);
+    }
+  }
+  std::printf("[ measured ] worst relative deviation: friction %.3f, flow %.3f, side/flow %.3f, P/pmax %.3f\n",
+              worst[0], worst[1], worst[2], worst[3]);
+}
+
+TEST(FiniteBearing, PetroffTorqueOfANearlyCentredJournal) {
+  // Petroff: T = 2π μ ω R³ L/c at ε = 0. At ε = 1e-3 the film adds O(ε²) to the Couette part
+  // and (c ε/2) F_t = O(ε²) to the journal's torque: within 1e-5 of Petroff, for every
+  // cavitation condition (the done-when asks 0.1 %). A sliding speed other than the wedge
+  // speed (a rotating bearing): the torque follows ω_J − ω_B.
+  const auto g = geometry(1.0);
+  for (const Cavitation cav : {Cavitation::sommerfeld, Cavitation::gumbel, Cavitation::reynolds}) {
+    FiniteBearingOptions o;
+    o.cavitation = cav;
+    FiniteBearingSolver solver(o);
+    for (const double sliding : {100.0, -40.0}) {
+      solver.solve(g, kMu, state(1e-3, 0.0, 100.0));
+      const lub::FilmOutputs out = solver.outputs(sliding);
+      const double petroff = lub::petroff_torque_Nm(kMu, sliding, g.journal_radius_m, g.length_m, g.clearance_m());
+      EXPECT_NEAR(out.journal_friction_torque_Nm, petroff, 1e-5 * std::fabs(petroff));
+      EXPECT_NEAR(out.bearing_friction_torque_Nm, petroff, 1e-5 * std::fabs(petroff));
+    }
+  }
+  // By hand for this bearing: 2π · 0.4 Pa s · 100 rad/s · (0.01 m)³ · 0.02 m / 0.0005 m = 3.2e-3 π N m.
+  EXPECT_NEAR(lub::petroff_torque_Nm(kMu, 100.0, 0.010, 0.020, 0.0005), 3.2e-3 * kPi, 1e-16);
+}
+
 TEST(FiniteBearing, PeriodicFilmDiffersFromTheGroovedOneOnlyAtLowEccentricity) {
   // Without the supply groove the film may reform before θ = 0 and carry pressure there:
   // at ε = 0.1 (L/D = 1) the attitude angle rises by ~4°; at ε >= 0.8 the two agree to 1°.

@@ -156,6 +156,24 @@ TEST(SteadyBearing, FiniteBearingAgainstRaimondiBoydThroughTheSolver) {
   }
 }
 
+TEST(SteadyBearing, SommerfeldBearingsFrictionIsTheClassicalOne) {
+  // The full (Sommerfeld) long bearing's friction variable, from its pressure field alone:
+  // (R/c) f = (1 + 2ε²)/(3ε) (e.g. Hamrock, Fundamentals of Fluid Film Lubrication, ch. 10).
+  // Through the solver: load from the closed form at ε₀, friction from the film's torque.
+  // Petroff at small ε: T → 2π μ ω R³ L/c. Tolerance: the solver's ε to ~1e-12.
+  const auto g = geometry(0.100);
+  for (const double e : {0.05, 0.3, 0.6, 0.9}) {
+    const SteadyBearingResult r = solve(ForceLaw::frene_long, g, sommerfeld_full(g, e).load_N);
+    ASSERT_TRUE(r.converged) << r.message;
+    const double W = sommerfeld_full(g, e).load_N, c = g.clearance_m();
+    const double friction_variable = r.outputs.journal_friction_torque_Nm / (c * W);
+    EXPECT_NEAR(friction_variable, (1.0 + 2.0 * e * e) / (3.0 * e), 1e-9 * friction_variable) << e;
+    // The bearing's torque is the journal's less e F_t (the film's moment balance).
+    EXPECT_NEAR(r.outputs.journal_friction_torque_Nm - r.outputs.bearing_friction_torque_Nm,
+                c * r.eps * r.force.tangential_N, 1e-9 * r.outputs.journal_friction_torque_Nm);
+  }
+}
+
 TEST(SteadyBearing, ReportsLoadsOutsideTheFilmsRange) {
   const auto g = geometry(0.050);
   const SteadyBearingResult tiny = solve(ForceLaw::gumbel_short, g, 1e-12);

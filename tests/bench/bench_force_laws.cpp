@@ -95,6 +95,19 @@ BENCHMARK(BM_FiniteReynolds)
     ->ArgsProduct({{1, 2}, {32, 64, 96}, {4, 8, 12}, {0}})
     ->Unit(benchmark::kMicrosecond);
 
+// The friction, flows and peak pressure of the last solution (lub/bearing/film_outputs.hpp):
+// what they add to a solve, on the default grid, Reynolds cavitation.
+void BM_FiniteOutputs(benchmark::State& state) {
+  lub::FiniteBearingOptions o;
+  o.cavitation = lub::Cavitation::reynolds;
+  lub::FiniteBearingSolver solver(o);
+  const auto g = paper_bearing();
+  solver.solve(g, kMu, trajectory_states()[0]);
+  for (auto _ : state) benchmark::DoNotOptimize(solver.outputs(100.0));
+  state.SetLabel("reynolds 48 x 8, after a solve");
+}
+BENCHMARK(BM_FiniteOutputs)->Unit(benchmark::kMicrosecond);
+
 }  // namespace
 
 BENCHMARK_MAIN();

@@ -90,6 +90,16 @@ SteadyBearingResult solve_steady_bearing(const SteadyBearingInput& in) {
                                 -res.force.radial_N);
   res.min_film_thickness_m = in.geometry.clearance_m() * (1.0 - res.eps);
   res.sommerfeld = sommerfeld_number(in.geometry, in.viscosity_Pa_s, in.load_N, in.speed_rad_s);
+  // Friction for every law (its F_t); flows and peak pressure from the finite bearing's field.
+  res.has_field = in.law == ForceLaw::finite_reynolds;
+  if (res.has_field) {
+    res.outputs = solver.outputs(in.speed_rad_s);
+  } else {
+    const FrictionTorques t = film_friction_torques(in.geometry, in.viscosity_Pa_s, res.eps, in.speed_rad_s,
+                                                    res.force.tangential_N);
+    res.outputs.journal_friction_torque_Nm = t.journal_Nm;
+    res.outputs.bearing_friction_torque_Nm = t.bearing_Nm;
+  }
   return res;
 }
 

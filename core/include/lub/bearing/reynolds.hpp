@@ -64,6 +64,7 @@
 
 #include <memory>
 
+#include "lub/bearing/film_outputs.hpp"
 #include "lub/bearing/force_laws.hpp"
 
 namespace lub {
@@ -102,6 +103,13 @@ class FiniteBearingSolver {
   double pressure_Pa(int i, int j) const;
   double theta_rad(int i) const;
   double z_m(int j) const;
+
+  /// Friction torques, flows and peak pressure of the last solution (lub/bearing/film_outputs.hpp)
+  /// for the sliding speed ω_J − ω_B [rad/s]. Discrete like the force: the Couette integral
+  /// over the cells the film fills, the side flow by a second-order one-sided difference at the
+  /// ends (exact for the short bearing's parabola), the inflow by the flux through the face at
+  /// θ = 0, the peak by a parabola in ψ through the largest mid-plane cell and its neighbours.
+  FilmOutputs outputs(double sliding_rad_s) const;
 
  private:
   struct Impl;

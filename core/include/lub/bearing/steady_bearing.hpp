@@ -9,11 +9,17 @@
 //     (90° for the full-film laws, tan φ = π(1−ε²)^(1/2)/(4ε) for Ocvirk's π film, ...);
 //   minimum film thickness h_min = c (1 − ε);
 //   Sommerfeld number S = (R_J/c)² μ N/P, N = ω/(2π) [rev/s], P = W/(L D), D = 2R_J
-//     (Raimondi & Boyd's definition).
+//     (Raimondi & Boyd's definition);
+//   friction (lub/bearing/film_outputs.hpp): the torque on the journal T_J, the friction
+//     coefficient f = T_J/(R_J W), Raimondi & Boyd's friction variable (R_J/c) f and the power
+//     loss T_J ω; for finite_reynolds also the inflow Q, the side flow Q_s, the flow variable
+//     Q/(R_J c N L), Q_s/Q, the peak pressure, its angle θ and P/p_max.
 #pragma once
 
+#include <cmath>
 #include <string>
 
+#include "lub/bearing/film_outputs.hpp"
 #include "lub/bearing/force_laws.hpp"
 #include "lub/common/constants.hpp"
 
@@ -36,6 +42,8 @@ struct SteadyBearingResult {
   double min_film_thickness_m = 0.0;
   double sommerfeld = 0.0;
   FilmForce force;           ///< film force at the equilibrium (|F| = W)
+  FilmOutputs outputs;       ///< friction (every law); flows, peak pressure (has_field)
+  bool has_field = false;    ///< finite_reynolds: the outputs' flows and peak are set
   int evaluations = 0;       ///< force-law evaluations
 };
 
@@ -67,6 +75,22 @@ void report_steady_bearing(Out& out, const SteadyBearingInput& in, double speed_
   out["min_film_thickness_m"] = r.min_film_thickness_m;
   out["radial_N"] = r.force.radial_N;
   out["tangential_N"] = r.force.tangential_N;
+  const double R = in.geometry.journal_radius_m, c = in.geometry.clearance_m(), L = in.geometry.length_m;
+  const FilmOutputs& o = r.outputs;
+  out["friction_torque_Nm"] = o.journal_friction_torque_Nm;
+  out["friction_coefficient"] = o.journal_friction_torque_Nm / (R * in.load_N);
+  out["friction_variable"] = (R / c) * o.journal_friction_torque_Nm / (R * in.load_N);
+  out["power_loss_W"] = o.journal_friction_torque_Nm * in.speed_rad_s;
+  if (r.has_field) {
+    const double n_rev = std::fabs(in.speed_rad_s) / kTwoPi;
+    out["peak_pressure_Pa"] = o.peak_pressure_Pa;
+    out["peak_pressure_angle_deg"] = o.peak_pressure_angle_rad * 180.0 / kPi;
+    out["load_over_peak_pressure"] = in.load_N / (L * 2.0 * R) / o.peak_pressure_Pa;
+    out["inflow_m3_s"] = o.inflow_m3_s;
+    out["side_flow_m3_s"] = o.side_flow_m3_s;
+    out["flow_variable"] = o.inflow_m3_s / (R * c * n_rev * L);
+    out["side_flow_ratio"] = o.side_flow_m3_s / o.inflow_m3_s;
+  }
   out["force_law_evaluations"] = r.evaluations;
 }
 

@@ -1,0 +1,51 @@
+// What a bearing engineer reads besides the film force: the film's friction torque, the oil
+// flow and the peak film pressure (docs/theory/bearing-outputs.md).
+//
+// ## Friction
+// The shear stress of the film on the journal surface, resisting its rotation relative to the
+// bearing, is τ_J = μ U/h + (h/2) ∂p/∂x (Couette and pressure-gradient parts), U = R_J ω_s
+// the sliding speed, ω_s = ω_J − ω_B [rad/s], x = R_J θ. Over the film, with h = c(1 + ε cos θ)
+// and integrating the second part by parts (p periodic, or zero where the film ruptures):
+//     T_J = μ ω_s R_J³ L/c · I_c + (c ε/2) F_t,      T_B = μ ω_s R_J³ L/c · I_c − (c ε/2) F_t,
+//     I_c = (1/L) ∫∫_film dθ dz / (1 + ε cos θ)      (2π/(1 − ε²)^(1/2) over a full film),
+// T_J [N m] the torque on the journal against ω_s, T_B the torque on the bearing along it
+// (T_J − T_B = e F_t: the film's moment balance), F_t the tangential film force. At ε = 0:
+// Petroff's T = 2π μ ω_s R_J³ L/c. The Couette part is taken over the whole clearance for every
+// law, ruptured films included, as Raimondi & Boyd (1958) do (their friction variable is
+// reproduced to 1 % by the finite bearing so), so the torque needs only ε, ω_s and F_t.
+//
+// ## Flow
+// Per unit width, q_x = R_J w h/2 − h³/(12μ) ∂p/∂x circumferentially (w the wedge speed,
+// relative to the line of centres) and q_z = −h³/(12μ) ∂p/∂z axially [m²/s]:
+//     inflow  Q   = ∫ q_x dz across the line of maximum film θ = 0 (the supply groove),
+//     side flow Q_s = ∫ q_z R_J dθ out of both ends.
+// At ε = 0: Q = π R_J c N L (N = w/(2π)), Q_s = 0.
+#pragma once
+
+#include "lub/bearing/force_laws.hpp"
+
+namespace lub {
+
+struct FilmOutputs {
+  double journal_friction_torque_Nm = 0.0;  ///< T_J, against the sliding ω_J − ω_B
+  double bearing_friction_torque_Nm = 0.0;  ///< T_B, along it
+  double peak_pressure_Pa = 0.0;            ///< largest film pressure (0 for no pressure)
+  double peak_pressure_angle_rad = 0.0;     ///< θ there, from the line of maximum film, [0, 2π)
+  double inflow_m3_s = 0.0;                 ///< Q across θ = 0
+  double side_flow_m3_s = 0.0;              ///< Q_s out of both ends
+};
+
+/// Petroff's torque 2π μ ω_s R³ L/c [N m] of a centred journal.
+double petroff_torque_Nm(double viscosity_Pa_s, double sliding_rad_s, double radius_m, double length_m,
+                         double clearance_m);
+
+struct FrictionTorques {
+  double journal_Nm = 0.0, bearing_Nm = 0.0;  ///< T_J, T_B (above)
+};
+
+/// T_J and T_B of a film at eccentricity ratio ε (0 <= ε < 1), sliding speed ω_s = ω_J − ω_B
+/// [rad/s] and tangential film force F_t [N] (the law's own).
+FrictionTorques film_friction_torques(const BearingGeometry& g, double viscosity_Pa_s, double eps,
+                                      double sliding_rad_s, double tangential_N);
+
+}  // namespace lub
