@@ -57,6 +57,11 @@ Classical ocvirk(const BearingGeometry& g, double e) {  // short, π film
   return {Cs * kOmega * e / (4.0 * om * om) * std::sqrt(16.0 * e * e + kPi * kPi * om),
           std::atan(kPi * std::sqrt(om) / (4.0 * e))};
 }
+double ocvirk_full(const BearingGeometry& g, double e) {  // short, full film: F_t alone
+  const double c = g.clearance_m();
+  const double Cs = kMu * std::pow(g.length_m, 3) * g.journal_radius_m / (c * c);
+  return kPi * Cs * kOmega * e / (2.0 * std::pow(1.0 - e * e, 1.5));
+}
 Classical sommerfeld_full(const BearingGeometry& g, double e) {  // long, full film: φ = 90°
   const double c = g.clearance_m();
   const double C = kMu * g.length_m * std::pow(g.journal_radius_m, 3) / (c * c);
@@ -171,6 +176,40 @@ TEST(SteadyBearing, SommerfeldBearingsFrictionIsTheClassicalOne) {
     // The bearing's torque is the journal's less e F_t (the film's moment balance).
     EXPECT_NEAR(r.outputs.journal_friction_torque_Nm - r.outputs.bearing_friction_torque_Nm,
                 c * r.eps * r.force.tangential_N, 1e-9 * r.outputs.journal_friction_torque_Nm);
+  }
+}
+
+TEST(SteadyBearing, PeakPressureOfTheClassicalBearings) {
+  // Closed forms of the steadily loaded bearings' peak pressure and its angle θ_m (from the
+  // line of maximum film), written here from the classical fields:
+  //   Sommerfeld (and half-Sommerfeld, its positive part): cos θ_m = −3ε/(2 + ε²),
+  //     p_max = 6 μ ω (R/c)² ε sin θ_m (2 + ε cos θ_m)/((2 + ε²)(1 + ε cos θ_m)²);
+  //   Ocvirk (full and π film), mid-plane: cos θ_m = (1 − (1 + 24ε²)^½)/(4ε),
+  //     p_max = 3 μ ω (L²/4) ε sin θ_m/(c² (1 + ε cos θ_m)³).
+  // The library maximises the law's own field numerically: to 1e-8 (the golden section's
+  // 1e-9 rad on a flat maximum moves the value by ~1e-18; the angle by its tolerance).
+  const auto g = geometry(0.050);
+  const double R = g.journal_radius_m, c = g.clearance_m(), L = g.length_m;
+  for (const double e : {0.2, 0.6, 0.9}) {
+    const double cs = -3.0 * e / (2.0 + e * e), ss = std::sqrt(1.0 - cs * cs);
+    const double p_somm = 6.0 * kMu * kOmega * (R / c) * (R / c) * e * ss * (2.0 + e * cs) /
+                          ((2.0 + e * e) * (1.0 + e * cs) * (1.0 + e * cs));
+    const double co = (1.0 - std::sqrt(1.0 + 24.0 * e * e)) / (4.0 * e), so = std::sqrt(1.0 - co * co);
+    const double p_ocv = 3.0 * kMu * kOmega * (L * L / 4.0) * e * so / (c * c * std::pow(1.0 + e * co, 3));
+    const struct {
+      ForceLaw law;
+      double load, p, theta;
+    } cases[] = {{ForceLaw::frene_long, sommerfeld_full(g, e).load_N, p_somm, std::acos(cs)},
+                 {ForceLaw::gumbel_long, half_sommerfeld(g, e).load_N, p_somm, std::acos(cs)},
+                 {ForceLaw::frene_short, ocvirk_full(g, e), p_ocv, std::acos(co)},
+                 {ForceLaw::gumbel_short, ocvirk(g, e).load_N, p_ocv, std::acos(co)}};
+    for (const auto& k : cases) {
+      const SteadyBearingResult r = solve(k.law, g, k.load);
+      ASSERT_TRUE(r.converged) << r.message;
+      ASSERT_NEAR(r.eps, e, 1e-9);
+      EXPECT_NEAR(r.outputs.peak_pressure_Pa, k.p, 1e-8 * k.p) << lub::name_of(k.law) << " eps " << e;
+      EXPECT_NEAR(r.outputs.peak_pressure_angle_rad, k.theta, 1e-7) << lub::name_of(k.law) << " eps " << e;
+    }
   }
 }
 

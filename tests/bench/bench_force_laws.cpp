@@ -108,6 +108,23 @@ void BM_FiniteOutputs(benchmark::State& state) {
 }
 BENCHMARK(BM_FiniteOutputs)->Unit(benchmark::kMicrosecond);
 
+// The peak of a closed-form law's pressure field (lub/bearing/film_outputs.hpp), what a run's
+// recorder pays per measuring observation: short (Eq. 3), long (Eq. 5), π film.
+void BM_PeakPressure(benchmark::State& state) {
+  const lub::ForceLaw laws[] = {lub::ForceLaw::frene_short, lub::ForceLaw::frene_long,
+                                lub::ForceLaw::pinkus_sternlicht_continuous};
+  const lub::ForceLaw law = laws[state.range(0)];
+  const auto g = paper_bearing();
+  const auto states = trajectory_states();
+  size_t k = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(lub::peak_film_pressure(law, g, kMu, states[k]));
+    k = (k + 1) % states.size();
+  }
+  state.SetLabel(std::string(lub::name_of(law)));
+}
+BENCHMARK(BM_PeakPressure)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
+
 }  // namespace
 
 BENCHMARK_MAIN();

@@ -90,7 +90,7 @@ SteadyBearingResult solve_steady_bearing(const SteadyBearingInput& in) {
                                 -res.force.radial_N);
   res.min_film_thickness_m = in.geometry.clearance_m() * (1.0 - res.eps);
   res.sommerfeld = sommerfeld_number(in.geometry, in.viscosity_Pa_s, in.load_N, in.speed_rad_s);
-  // Friction for every law (its F_t); flows and peak pressure from the finite bearing's field.
+  // Friction and peak pressure for every law (its F_t, its field); flows from the finite bearing's.
   res.has_field = in.law == ForceLaw::finite_reynolds;
   if (res.has_field) {
     res.outputs = solver.outputs(in.speed_rad_s);
@@ -99,6 +99,12 @@ SteadyBearingResult solve_steady_bearing(const SteadyBearingInput& in) {
                                                     res.force.tangential_N);
     res.outputs.journal_friction_torque_Nm = t.journal_Nm;
     res.outputs.bearing_friction_torque_Nm = t.bearing_Nm;
+    BearingState s;
+    s.eps = res.eps;
+    s.wedge = in.speed_rad_s;
+    const PeakPressure peak = peak_film_pressure(in.law, in.geometry, in.viscosity_Pa_s, s);
+    res.outputs.peak_pressure_Pa = peak.pressure_Pa;
+    res.outputs.peak_pressure_angle_rad = peak.angle_rad;
   }
   return res;
 }

@@ -20,6 +20,14 @@
 //     inflow  Q   = ∫ q_x dz across the line of maximum film θ = 0 (the supply groove),
 //     side flow Q_s = ∫ q_z R_J dθ out of both ends.
 // At ε = 0: Q = π R_J c N L (N = w/(2π)), Q_s = 0.
+//
+// ## Peak pressure
+// The largest pressure of the law's own field and its angle θ from the line of maximum film:
+// Eq. (3) at the mid-plane for the short laws, Eq. (5) for the long ones, the π film (Eq. (5)
+// less its value at the film start) for the Pinkus–Sternlicht laws; for finite_reynolds the
+// solver's grid (FiniteBearingSolver::outputs). Located by sampling 64 points uniform in the
+// eccentric anomaly ψ (they crowd where the film is thin) and golden-section search in ψ
+// between the neighbours of the largest sample, to 1e-9 rad.
 #pragma once
 
 #include "lub/bearing/force_laws.hpp"
@@ -38,6 +46,15 @@ struct FilmOutputs {
 /// Petroff's torque 2π μ ω_s R³ L/c [N m] of a centred journal.
 double petroff_torque_Nm(double viscosity_Pa_s, double sliding_rad_s, double radius_m, double length_m,
                          double clearance_m);
+
+struct PeakPressure {
+  double pressure_Pa = 0.0;  ///< 0 where the field has no positive pressure
+  double angle_rad = 0.0;    ///< θ, in [0, 2π)
+};
+
+/// The peak of the closed-form law `law`'s pressure field at state `s` (not finite_reynolds:
+/// its field is the solver's).
+PeakPressure peak_film_pressure(ForceLaw law, const BearingGeometry& g, double viscosity_Pa_s, const BearingState& s);
 
 struct FrictionTorques {
   double journal_Nm = 0.0, bearing_Nm = 0.0;  ///< T_J, T_B (above)

@@ -12,8 +12,8 @@
 //     (Raimondi & Boyd's definition);
 //   friction (lub/bearing/film_outputs.hpp): the torque on the journal T_J, the friction
 //     coefficient f = T_J/(R_J W), Raimondi & Boyd's friction variable (R_J/c) f and the power
-//     loss T_J ω; for finite_reynolds also the inflow Q, the side flow Q_s, the flow variable
-//     Q/(R_J c N L), Q_s/Q, the peak pressure, its angle θ and P/p_max.
+//     loss T_J ω; the peak pressure of the law's field, its angle θ and P/p_max; for
+//     finite_reynolds also the inflow Q, the side flow Q_s, the flow variable Q/(R_J c N L), Q_s/Q.
 #pragma once
 
 #include <cmath>
@@ -42,8 +42,8 @@ struct SteadyBearingResult {
   double min_film_thickness_m = 0.0;
   double sommerfeld = 0.0;
   FilmForce force;           ///< film force at the equilibrium (|F| = W)
-  FilmOutputs outputs;       ///< friction (every law); flows, peak pressure (has_field)
-  bool has_field = false;    ///< finite_reynolds: the outputs' flows and peak are set
+  FilmOutputs outputs;       ///< friction, peak pressure (every law); flows (has_field)
+  bool has_field = false;    ///< finite_reynolds: the outputs' flows are set
   int evaluations = 0;       ///< force-law evaluations
 };
 
@@ -81,11 +81,11 @@ void report_steady_bearing(Out& out, const SteadyBearingInput& in, double speed_
   out["friction_coefficient"] = o.journal_friction_torque_Nm / (R * in.load_N);
   out["friction_variable"] = (R / c) * o.journal_friction_torque_Nm / (R * in.load_N);
   out["power_loss_W"] = o.journal_friction_torque_Nm * in.speed_rad_s;
+  out["peak_pressure_Pa"] = o.peak_pressure_Pa;
+  out["peak_pressure_angle_deg"] = o.peak_pressure_angle_rad * 180.0 / kPi;
+  out["load_over_peak_pressure"] = in.load_N / (L * 2.0 * R) / o.peak_pressure_Pa;
   if (r.has_field) {
     const double n_rev = std::fabs(in.speed_rad_s) / kTwoPi;
-    out["peak_pressure_Pa"] = o.peak_pressure_Pa;
-    out["peak_pressure_angle_deg"] = o.peak_pressure_angle_rad * 180.0 / kPi;
-    out["load_over_peak_pressure"] = in.load_N / (L * 2.0 * R) / o.peak_pressure_Pa;
     out["inflow_m3_s"] = o.inflow_m3_s;
     out["side_flow_m3_s"] = o.side_flow_m3_s;
     out["flow_variable"] = o.inflow_m3_s / (R * c * n_rev * L);
