@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "lub/bearing/film_outputs.hpp"
+#include "lub/bearing/reynolds.hpp"
 #include "lub/common/constants.hpp"
 #include "lub/mechanism/film_element.hpp"
 #include "run/metrics.hpp"
@@ -37,7 +39,29 @@ void CycleRecorder::film_extreme(double eps, double angle) {
   }
 }
 
-void CycleRecorder::measure(double t, const Workspace& ws, const double* qdd) {
+void CycleRecorder::film_outputs(double t, const Workspace& ws, int f, const double* v) {
+  const FilmElement& fe = m_.films[f];
+  const FilmKinematics& fk = ws.films[f];
+  // Above the contact hand-over band no film is evaluated (and none exists past the wall).
+  if (!(fk.state.eps < 1.0) || (fe.contact && film_weight(*fe.contact, fk.state.eps) == 0.0)) return;
+  const double wj = fe.journal == kGround ? 0.0 : v[3 * fe.journal + 2];
+  const double wb = fe.bearing == kGround ? 0.0 : v[3 * fe.bearing + 2];
+  const FrictionTorques tq =
+      film_friction_torques(fe.geometry, fe.viscosity, fk.state.eps, wj - wb, fk.force.tangential_N);
+  // The film's power loss: the work rate its shear and its pressure take from the two bodies,
+  // T_J ω_J − T_B ω_B − F·ė (the heat the film makes; T_J ω at a steadily loaded journal).
+  const double power = tq.journal_Nm * wj - tq.bearing_Nm * wb - fk.F.dot(fk.e_dot);
+  if (prev_power_.valid && t > prev_power_.t) friction_energy_J_ += 0.5 * (power + prev_power_.power) * (t - prev_power_.t);
+  prev_power_ = {true, t, power};
+  if (!scene_.metrics.peak_pressure) return;
+  // The finite bearing's field is the one this observation's evaluation just solved.
+  const double peak = fe.law == ForceLaw::finite_reynolds && ws.film_solvers[f]
+                          ? ws.film_solvers[f]->outputs(wj - wb).peak_pressure_Pa
+                          : peak_film_pressure(fe.law, fe.geometry, fe.viscosity, fk.state).pressure_Pa;
+  cur_.peak_film_pressure_Pa = std::max(cur_.peak_film_pressure_Pa, peak);
+}
+
+void CycleRecorder::measure(double t, const Workspace& ws, const double* v, const double* qdd) {
   const double angle = phase_angle(t);
   const int mj = scene_.metrics.joint;
   if (empty_) {
@@ -60,6 +84,7 @@ void CycleRecorder::measure(double t, const Workspace& ws, const double* qdd) {
       }
       film_extreme(eps, angle);
       prev_film_ = {true, t, eps, eps_dot};
+      if (f >= 0) film_outputs(t, ws, f, v);
     }
   }
   if (const int b = scene_.metrics.body; b >= 0) {
@@ -118,6 +143,8 @@ void CycleRecorder::close(double t_end, std::vector<CycleMetrics>& cycles) {
       }
     cur_.periodicity = d;
   }
+  if (prev_power_.valid && t_end > prev_power_.t) friction_energy_J_ += prev_power_.power * (t_end - prev_power_.t);
+  if (cur_.t_end_s > cur_.t_start_s) cur_.friction_power_W = friction_energy_J_ / (cur_.t_end_s - cur_.t_start_s);
   cycles.push_back(cur_);
   std::swap(orbit_cur_, orbit_prev_);
   phase_index_ = 0;
@@ -125,6 +152,8 @@ void CycleRecorder::close(double t_end, std::vector<CycleMetrics>& cycles) {
   cur_.t_start_s = t_end;
   empty_ = true;
   prev_film_ = {};
+  friction_energy_J_ = 0.0;
+  prev_power_.t = t_end;  // the next cycle's first interval starts at this boundary
 }
 
 }  // namespace lub::detail

@@ -221,7 +221,7 @@ bool Runner::observe(double t, const double* y, const double* qv, bool record, b
     res_.stats.max_velocity_drift =
         std::max(res_.stats.max_velocity_drift, m_.nc ? ws.Phi_dot.head(m_.nc).lpNorm<Eigen::Infinity>() : 0.0);
   }
-  cycles_.measure(t, ws, qdd_.data());
+  cycles_.measure(t, ws, v, qdd_.data());
   return true;
 }
 

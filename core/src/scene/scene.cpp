@@ -398,6 +398,7 @@ MetricSpec parse_metrics(const Scene& scene, const json& j) {
   ObjectReader r(j, "metrics");
   if (r.has("joint")) m.joint = resolve_joint(scene, r, "joint");
   if (r.has("body")) m.body = resolve_body(scene, r, "body", false);
+  m.peak_pressure = r.boolean_or("peak_pressure", m.peak_pressure);
   r.finish();
   return m;
 }

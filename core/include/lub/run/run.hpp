@@ -83,6 +83,9 @@ struct CycleMetrics {
   /// Mixed lubrication: asperity load at the cycle's largest ε [N], and that over the peak
   /// joint force (0 without the effect)
   double peak_asperity_load_N = 0.0, asperity_load_ratio = 0.0;
+  /// The metric joint's largest film pressure [Pa] and its film friction power averaged over
+  /// the cycle [W] (lub/bearing/film_outputs.hpp)
+  double peak_film_pressure_Pa = 0.0, friction_power_W = 0.0;
   double periodicity = -1.0;  ///< max orbit distance to the previous cycle / c (-1: first cycle)
   /// The metric joint's state at the cycle's end (crank angle 0: a Poincaré section),
   /// e/c and ė/c; NaN without a film.
@@ -180,6 +183,8 @@ struct Metrics {
   double peak_acceleration_m_s2 = 0.0;  ///< |a| of the metric body
   double peak_asperity_load_N = 0.0;    ///< Greenwood–Tripp load at the largest ε (mixed lubrication)
   double asperity_load_ratio = 0.0;     ///< peak asperity load / peak joint force
+  double peak_film_pressure_Pa = 0.0;   ///< largest film pressure of the metric joint
+  double friction_power_W = 0.0;        ///< its film friction power, mean over the metric cycles
   double periodicity = -1.0;         ///< the largest over the metric cycles (-1: unknown)
   // Error bars (simulation.error_bars; NaN: none): |metric − the same metric of the steady
   // cycle re-found and re-measured at a 100× tighter rtol| (+ a transient's remaining
@@ -192,6 +197,8 @@ struct Metrics {
   double peak_acceleration_m_s2_error = std::numeric_limits<double>::quiet_NaN();
   double peak_asperity_load_N_error = std::numeric_limits<double>::quiet_NaN();
   double asperity_load_ratio_error = std::numeric_limits<double>::quiet_NaN();
+  double peak_film_pressure_Pa_error = std::numeric_limits<double>::quiet_NaN();
+  double friction_power_W_error = std::numeric_limits<double>::quiet_NaN();
   bool steady = false;
   int cycles_to_steady = -1;         ///< cycles run when the criterion first held
   int cycles_run = 0;
@@ -221,8 +228,8 @@ struct SteadyMetric {
   double CycleMetrics::*per_cycle;
   bool angle;
 };
-/// The eight steady-cycle metrics, in column order.
-const std::array<SteadyMetric, 8>& steady_metrics();
+/// The ten steady-cycle metrics, in column order.
+const std::array<SteadyMetric, 10>& steady_metrics();
 /// |a − b|, or for an angle the distance on the circle (in [0, π]).
 double metric_distance(const SteadyMetric& metric, double a, double b);
 

@@ -300,6 +300,8 @@ struct MetricSpec {
   int joint = -1;  ///< joint whose film/reaction is measured (-1: none)
   int body = -1;   ///< body whose peak acceleration is measured (-1: none)
   double safe_film_per_diameter = 0.00015e-3 / 1e-3;  ///< 0.00015 mm per mm [ESDU 84031]
+  /// Measure the metric joint's peak film pressure (a field search per observation: opt-in)
+  bool peak_pressure = false;
 };
 
 struct Scene {
