@@ -46,10 +46,10 @@ TEST(BearingOutputs, ASpinningShaftsPowerLossAndPeakPressureAreTheSteadyBearings
   // times larger near ε = 0.84): 1e-5.
   EXPECT_NEAR(r.metrics.max_eps, s.eps, 1e-6);
   const double power = s.outputs.journal_friction_torque_Nm * in.speed_rad_s;
-  EXPECT_NEAR(r.metrics.friction_power_W, power, 1e-5 * power);
+  EXPECT_NEAR(r.metrics.film_power_loss_W, power, 1e-5 * power);
   EXPECT_NEAR(r.metrics.peak_film_pressure_Pa, s.outputs.peak_pressure_Pa, 1e-5 * s.outputs.peak_pressure_Pa);
   std::printf("[ measured ] run: power %.8g W, peak %.8g Pa; steady bearing: %.8g W, %.8g Pa\n",
-              r.metrics.friction_power_W, r.metrics.peak_film_pressure_Pa, power, s.outputs.peak_pressure_Pa);
+              r.metrics.film_power_loss_W, r.metrics.peak_film_pressure_Pa, power, s.outputs.peak_pressure_Pa);
 }
 
 TEST(BearingOutputs, PeakPressureIsMeasuredOnlyWhereTheSceneAsks) {
@@ -60,7 +60,7 @@ TEST(BearingOutputs, PeakPressureIsMeasuredOnlyWhereTheSceneAsks) {
   EXPECT_GT(on.metrics.peak_film_pressure_Pa, 0.0);
   // Nothing else moves: the measurement reads the state, it does not change the run.
   EXPECT_EQ(off.metrics.min_film_thickness_m, on.metrics.min_film_thickness_m);
-  EXPECT_EQ(off.metrics.friction_power_W, on.metrics.friction_power_W);
+  EXPECT_EQ(off.metrics.film_power_loss_W, on.metrics.film_power_loss_W);
   EXPECT_EQ(off.stats.steps, on.stats.steps);
 }
 

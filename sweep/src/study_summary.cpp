@@ -74,7 +74,7 @@ void add_columns(const h5::Table& t, const std::vector<std::string>& status, con
   numeric("W_asp[N]", "peak_asperity_load_N", "{:.3g}", 1.0, false, true);
   numeric("W_asp/F", "asperity_load_ratio", "{:.3g}", 1.0, false, true);
   // The film's power loss, and its peak pressure where the grid asks (metrics.peak_pressure).
-  numeric("P_loss[W]", "friction_power_W", "{:.4g}", 1.0);
+  numeric("P_loss[W]", "film_power_loss_W", "{:.4g}", 1.0);
   numeric("p_max[MPa]", "peak_film_pressure_Pa", "{:.4g}", 1e-6, false, true);
   numeric("|mu|max", "multiplier_1_modulus", "{:.4f}", 1.0);
   // How well posed the orbit is: kappa = 1/min|1 - mu| and its slowest mode's e-folding

@@ -51,7 +51,7 @@ void CycleRecorder::film_outputs(double t, const Workspace& ws, int f, const dou
   // The film's power loss: the work rate its shear and its pressure take from the two bodies,
   // T_J ω_J − T_B ω_B − F·ė (the heat the film makes; T_J ω at a steadily loaded journal).
   const double power = tq.journal_Nm * wj - tq.bearing_Nm * wb - fk.F.dot(fk.e_dot);
-  if (prev_power_.valid && t > prev_power_.t) friction_energy_J_ += 0.5 * (power + prev_power_.power) * (t - prev_power_.t);
+  if (prev_power_.valid && t > prev_power_.t) loss_energy_J_ += 0.5 * (power + prev_power_.power) * (t - prev_power_.t);
   prev_power_ = {true, t, power};
   if (!scene_.metrics.peak_pressure) return;
   // The finite bearing's field is the one this observation's evaluation just solved.
@@ -143,8 +143,12 @@ void CycleRecorder::close(double t_end, std::vector<CycleMetrics>& cycles) {
       }
     cur_.periodicity = d;
   }
-  if (prev_power_.valid && t_end > prev_power_.t) friction_energy_J_ += prev_power_.power * (t_end - prev_power_.t);
-  if (cur_.t_end_s > cur_.t_start_s) cur_.friction_power_W = friction_energy_J_ / (cur_.t_end_s - cur_.t_start_s);
+  if (prev_power_.valid && t_end > prev_power_.t) loss_energy_J_ += prev_power_.power * (t_end - prev_power_.t);
+  if (cur_.t_end_s > cur_.t_start_s) cur_.film_power_loss_W = loss_energy_J_ / (cur_.t_end_s - cur_.t_start_s);
+  // Not measured: no film at the metric joint, or no peak pressure asked for.
+  const int mjf = scene_.metrics.joint >= 0 ? m_.joint_film[scene_.metrics.joint] : -1;
+  if (mjf < 0) cur_.film_power_loss_W = std::numeric_limits<double>::quiet_NaN();
+  if (mjf < 0 || !scene_.metrics.peak_pressure) cur_.peak_film_pressure_Pa = std::numeric_limits<double>::quiet_NaN();
   cycles.push_back(cur_);
   std::swap(orbit_cur_, orbit_prev_);
   phase_index_ = 0;
@@ -152,7 +156,7 @@ void CycleRecorder::close(double t_end, std::vector<CycleMetrics>& cycles) {
   cur_.t_start_s = t_end;
   empty_ = true;
   prev_film_ = {};
-  friction_energy_J_ = 0.0;
+  loss_energy_J_ = 0.0;
   prev_power_.t = t_end;  // the next cycle's first interval starts at this boundary
 }
 

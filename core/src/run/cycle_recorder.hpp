@@ -26,7 +26,7 @@ class CycleRecorder {
   /// `ws` with accelerations `qdd`: the cycle's extremes. Where ε̇ of the metric film went
   /// from + to − since the last one, the peak between them from the cubic through both
   /// observations' ε and ε̇ (hermite_interior_max, metrics.hpp).
-  /// The metric film's peak pressure and friction power too, with the body velocities `v`.
+  /// The metric film's peak pressure and power loss too, with the body velocities `v`.
   void measure(double t, const Workspace& ws, const double* v, const double* qdd);
   /// The orbit of every film at the next phase point (the first body's position without a film).
   void phase_point(const double* q, const double* v);
@@ -56,15 +56,15 @@ class CycleRecorder {
   std::vector<double> orbit_cur_, orbit_prev_;
   int phase_index_ = 0;
 
-  /// The friction power at the last measuring observation (trapezoidal rule over the cycle).
+  /// The film power loss at the last measuring observation (trapezoidal rule over the cycle).
   struct PowerObservation {
     bool valid = false;
     double t = 0.0, power = 0.0;
   } prev_power_;
-  double friction_energy_J_ = 0.0;
+  double loss_energy_J_ = 0.0;
 
   void film_extreme(double eps, double angle);
-  /// Peak pressure and friction power of the metric film f at this observation.
+  /// Peak pressure and power loss of the metric film f at this observation.
   void film_outputs(double t, const Workspace& ws, int f, const double* v);
 };
 

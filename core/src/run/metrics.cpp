@@ -42,10 +42,10 @@ const std::array<SteadyMetric, 10>& steady_metrics() {
        "largest film pressure of the metric joint over the metric cycles (metrics.peak_pressure; NaN: not measured)",
        "largest film pressure of the metric joint in the cycle", "", &Metrics::peak_film_pressure_Pa,
        &Metrics::peak_film_pressure_Pa_error, &CycleMetrics::peak_film_pressure_Pa, false},
-      {"friction_power_W", "W",
+      {"film_power_loss_W", "W",
        "film power loss of the metric joint (shear and pressure), mean over the metric cycles",
-       "film power loss of the metric joint, mean over the cycle", "", &Metrics::friction_power_W,
-       &Metrics::friction_power_W_error, &CycleMetrics::friction_power_W, false},
+       "film power loss of the metric joint, mean over the cycle", "", &Metrics::film_power_loss_W,
+       &Metrics::film_power_loss_W_error, &CycleMetrics::film_power_loss_W, false},
   }};
   return table;
 }
@@ -78,13 +78,13 @@ Metrics steady_cycle_metrics(const Scene& scene, const std::vector<CycleMetrics>
     mt.peak_asperity_load_N = std::max(mt.peak_asperity_load_N, c.peak_asperity_load_N);
     mt.asperity_load_ratio = std::max(mt.asperity_load_ratio, c.asperity_load_ratio);
     mt.peak_film_pressure_Pa = std::max(mt.peak_film_pressure_Pa, c.peak_film_pressure_Pa);
-    mt.friction_power_W += c.friction_power_W / M;
+    mt.film_power_loss_W += c.film_power_loss_W / M;
     mt.periodicity = std::max(mt.periodicity, c.periodicity);
   }
   const int mj = scene.metrics.joint;
   mt.has_film = mj >= 0 && scene.joints[mj].type == JointType::lubricated_revolute;
   if (!mt.has_film || !scene.metrics.peak_pressure) mt.peak_film_pressure_Pa = std::numeric_limits<double>::quiet_NaN();
-  if (!mt.has_film) mt.friction_power_W = std::numeric_limits<double>::quiet_NaN();
+  if (!mt.has_film) mt.film_power_loss_W = std::numeric_limits<double>::quiet_NaN();
   if (!mt.has_film || !std::isfinite(mt.min_film_thickness_m)) mt.min_film_thickness_m = 0.0;
   if (mt.has_film) {
     mt.safe_film_thickness_m = scene.metrics.safe_film_per_diameter * 2.0 * scene.joints[mj].bearing.bearing_radius_m;

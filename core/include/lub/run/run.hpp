@@ -83,9 +83,9 @@ struct CycleMetrics {
   /// Mixed lubrication: asperity load at the cycle's largest ε [N], and that over the peak
   /// joint force (0 without the effect)
   double peak_asperity_load_N = 0.0, asperity_load_ratio = 0.0;
-  /// The metric joint's largest film pressure [Pa] and its film friction power averaged over
+  /// The metric joint's largest film pressure [Pa] (NaN: not asked for) and its film power loss averaged over
   /// the cycle [W] (lub/bearing/film_outputs.hpp)
-  double peak_film_pressure_Pa = 0.0, friction_power_W = 0.0;
+  double peak_film_pressure_Pa = 0.0, film_power_loss_W = 0.0;
   double periodicity = -1.0;  ///< max orbit distance to the previous cycle / c (-1: first cycle)
   /// The metric joint's state at the cycle's end (crank angle 0: a Poincaré section),
   /// e/c and ė/c; NaN without a film.
@@ -184,7 +184,7 @@ struct Metrics {
   double peak_asperity_load_N = 0.0;    ///< Greenwood–Tripp load at the largest ε (mixed lubrication)
   double asperity_load_ratio = 0.0;     ///< peak asperity load / peak joint force
   double peak_film_pressure_Pa = 0.0;   ///< largest film pressure of the metric joint
-  double friction_power_W = 0.0;        ///< its film friction power, mean over the metric cycles
+  double film_power_loss_W = 0.0;       ///< its film power loss, mean over the metric cycles
   double periodicity = -1.0;         ///< the largest over the metric cycles (-1: unknown)
   // Error bars (simulation.error_bars; NaN: none): |metric − the same metric of the steady
   // cycle re-found and re-measured at a 100× tighter rtol| (+ a transient's remaining
@@ -198,7 +198,7 @@ struct Metrics {
   double peak_asperity_load_N_error = std::numeric_limits<double>::quiet_NaN();
   double asperity_load_ratio_error = std::numeric_limits<double>::quiet_NaN();
   double peak_film_pressure_Pa_error = std::numeric_limits<double>::quiet_NaN();
-  double friction_power_W_error = std::numeric_limits<double>::quiet_NaN();
+  double film_power_loss_W_error = std::numeric_limits<double>::quiet_NaN();
   bool steady = false;
   int cycles_to_steady = -1;         ///< cycles run when the criterion first held
   int cycles_run = 0;
