@@ -2,6 +2,7 @@
 #include "lub/bearing/asperity.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "common/gauss_legendre.hpp"
@@ -16,24 +17,35 @@ constexpr double kLow = -4.0;
 constexpr int kPerUnit = 128;
 constexpr int kNodes = static_cast<int>((kAsperityCutoffRatio - kLow) * kPerUnit) + 1;
 
+// F_n(H) = 2/√(2π) ∫_0^U u^{2n+1} e^{−(u² + H)²/2} du (s = H + u², smooth in u) by composite
+// Simpson on m panels, for each power u^{2n+1} that `powers(u, out)` writes: the integrand is
+// below e^{−45} beyond u² = √90 + max(0, −H).
+template <int K, class Powers>
+std::array<double, K> simpson_in_u(double H, int m, Powers&& powers) {
+  const double U = std::sqrt(std::sqrt(90.0) + std::max(0.0, -H));
+  const double du = U / m;
+  std::array<double, K> sum{}, pw{};
+  for (int j = 0; j <= m; ++j) {
+    const double u = j * du, s = u * u + H;
+    const double g = (j == 0 || j == m ? 1.0 : (j % 2 ? 4.0 : 2.0)) * std::exp(-0.5 * s * s);
+    powers(u, pw);
+    for (int k = 0; k < K; ++k) sum[k] += g * pw[k];
+  }
+  for (double& v : sum) v *= 2.0 / std::sqrt(kTwoPi) * du / 3.0;
+  return sum;
+}
+
 struct F52Table {
   std::vector<double> f52, f32;
   F52Table() : f52(kNodes), f32(kNodes) {
-    // As greenwood_tripp_integral, both orders in one pass (u⁶ and u⁴ by products).
+    // Both orders in one pass, u⁶ and u⁴ by products.
     for (int i = 0; i < kNodes; ++i) {
-      const double H = kLow + static_cast<double>(i) / kPerUnit;
-      const double U = std::sqrt(std::sqrt(90.0) + std::max(0.0, -H));
-      const int m = 2000;
-      const double du = U / m;
-      double s52 = 0.0, s32 = 0.0;
-      for (int j = 0; j <= m; ++j) {
-        const double u = j * du, s = u * u + H, u4 = u * u * u * u;
-        const double g = (j == 0 || j == m ? 1.0 : (j % 2 ? 4.0 : 2.0)) * std::exp(-0.5 * s * s);
-        s52 += g * u4 * u * u;
-        s32 += g * u4;
-      }
-      f52[i] = 2.0 / std::sqrt(kTwoPi) * s52 * du / 3.0;
-      f32[i] = 2.0 / std::sqrt(kTwoPi) * s32 * du / 3.0;
+      const auto f = simpson_in_u<2>(kLow + static_cast<double>(i) / kPerUnit, 2000, [](double u, auto& pw) {
+        pw[1] = u * u * u * u;
+        pw[0] = pw[1] * u * u;
+      });
+      f52[i] = f[0];
+      f32[i] = f[1];
     }
   }
 };
@@ -73,18 +85,7 @@ AsperityLaw resolve_asperity(const AsperitySpec& spec) {
 }
 
 double greenwood_tripp_integral(double n, double H) {
-  // s = H + u²: F_n(H) = 2/√(2π) ∫_0^∞ u^{2n+1} e^{−(u² + H)²/2} du, smooth in u. The
-  // integrand is below e^{−45} beyond u² = √90 + max(0, −H); composite Simpson.
-  const double U = std::sqrt(std::sqrt(90.0) + std::max(0.0, -H));
-  const int m = 4000;
-  const double du = U / m;
-  double sum = 0.0;
-  for (int i = 0; i <= m; ++i) {
-    const double u = i * du, s = u * u + H;
-    const double f = std::pow(u, 2.0 * n + 1.0) * std::exp(-0.5 * s * s);
-    sum += (i == 0 || i == m ? 1.0 : (i % 2 ? 4.0 : 2.0)) * f;
-  }
-  return 2.0 / std::sqrt(kTwoPi) * sum * du / 3.0;
+  return simpson_in_u<1>(H, 4000, [n](double u, auto& pw) { pw[0] = std::pow(u, 2.0 * n + 1.0); })[0];
 }
 
 double greenwood_tripp_f52(double H, double* derivative) {

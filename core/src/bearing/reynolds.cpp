@@ -68,9 +68,10 @@ struct FiniteBearingSolver::Impl {
   double pressure_scale = 0;  // 6 μ (R/c)²
   double radius = 0.0;
   double beta = 0.0;          // Kepler β of the last solve's ε
-  // The last solve, for outputs(): its state, viscosity, clearance, half length / R, force.
+  // The last solve, for outputs(): its geometry, viscosity, state and force.
+  BearingGeometry last_geometry;
+  double mu = 0.0;
   BearingState last;
-  double mu = 0.0, clearance = 0.0, half_length_bar = 0.0;
   FilmForce last_force;
   FiniteBearingStats stats;
 
@@ -234,10 +235,9 @@ struct FiniteBearingSolver::Impl {
     dz = lambda / Nz;
     inv_dz2 = 1.0 / (dz * dz);
     pressure_scale = 6.0 * mu * (radius / c) * (radius / c);
-    last = s;
+    last_geometry = g;
     this->mu = mu;
-    clearance = c;
-    half_length_bar = lambda;
+    last = s;
   }
 
   // Full-film solution into P (separable: one cyclic tridiagonal system per axial mode).
@@ -547,7 +547,7 @@ FilmForce FiniteBearingSolver::solve(const BearingGeometry& g, double viscosity_
 
 FilmOutputs FiniteBearingSolver::outputs(double sliding_rad_s) const {
   const Impl& m = *impl_;
-  const double e = m.last.eps, R = m.radius, c = m.clearance;
+  const double e = m.last.eps, R = m.radius, c = m.last_geometry.clearance_m();
   const bool ruptures = m.opt.cavitation != Cavitation::sommerfeld;  // negative pressure is gas
   FilmOutputs out;
   double side = 0.0, inflow = 0.0;
@@ -559,8 +559,7 @@ FilmOutputs FiniteBearingSolver::outputs(double sliding_rad_s) const {
     const double dpdz = m.Nz >= 2 ? (-4.0 * pn1 + pn2) / (2.0 * m.dz) : -2.0 * pn1 / m.dz;
     side += -m.mass[i] * dpdz;  // ∫ H³ (−∂P/∂z̄) dθ, per end
   }
-  const FrictionTorques t = film_friction_torques(BearingGeometry{R, R + c, 2.0 * m.half_length_bar * R}, m.mu, e,
-                                                  sliding_rad_s, m.last_force.tangential_N);
+  const FrictionTorques t = film_friction_torques(m.last_geometry, m.mu, e, sliding_rad_s, m.last_force.tangential_N);
   out.journal_friction_torque_Nm = t.journal_Nm;
   out.bearing_friction_torque_Nm = t.bearing_Nm;
   // Side flow: (c R²/2) ∫ H³ (−∂P/∂z̄) dθ per end, both ends.
