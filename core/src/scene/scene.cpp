@@ -584,7 +584,10 @@ Scene parse_scene(const json& doc) {
     r.finish();
   }
 
-  if (const json* solver = top.raw_optional("solver")) scene.solver = parse_solver(*solver);
+  // An absent solver object is an empty one: the defaults that depend on other choices (the
+  // Jacobian on the formulation) come from the same rules.
+  const json* solver = top.raw_optional("solver");
+  scene.solver = parse_solver(solver ? *solver : json::object());
   if ((scene.solver.method == Method::cvode_bdf || scene.solver.method == Method::ida) &&
       scene.solver.max_order > 5)
     fail("solver.max_order", json(scene.solver.max_order),
