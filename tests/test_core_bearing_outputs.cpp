@@ -64,4 +64,45 @@ TEST(BearingOutputs, PeakPressureIsMeasuredOnlyWhereTheSceneAsks) {
   EXPECT_EQ(off.stats.steps, on.stats.steps);
 }
 
+// Mixed lubrication with boundary friction (effects.mixed_lubrication.boundary_friction):
+// the asperities' friction μ_b W_a R_J, against the sliding, adds μ_b W_a R_J ω to the power
+// loss, W_a the asperity load at the run's ε. Surfaces rough enough (σ 20 µm) that the
+// shaft's film (78 µm) is within 8σ; with the film-friction effect the driver supplies it.
+TEST(BearingOutputs, AsperityFrictionAddsItsPowerToTheLoss) {
+  json doc = spinning_shaft(false);
+  doc["effects"]["mixed_lubrication"] = {{"roughness_m", 2e-5},
+                                         {"asperity_density_per_m2", 1.6e8},
+                                         {"asperity_radius_m", 5e-4},
+                                         {"composite_modulus_Pa", 8e10}};
+  doc["outputs"]["energy_balance"] = true;
+  doc["effects"]["film_friction"] = json::object();
+  const lub::RunResult dry = lub::run_scene(lub::parse_scene(doc));
+  doc["effects"]["mixed_lubrication"]["boundary_friction"] = 0.1;
+  const lub::RunResult r = lub::run_scene(lub::parse_scene(doc));
+  ASSERT_EQ(dry.status, lub::RunStatus::ok) << dry.message;
+  ASSERT_EQ(r.status, lub::RunStatus::ok) << r.message;
+  const double W = r.metrics.peak_asperity_load_N;
+  ASSERT_GT(W, 1e-3 * 4.905) << "the test needs asperity contact";
+  // Friction torques act on the spinning shaft only as a drag its driver overcomes: the
+  // journal's position, hence W_a, does not move (the bearing is fixed).
+  EXPECT_NEAR(W, dry.metrics.peak_asperity_load_N, 1e-9 * W);
+  const double omega = 5.0 * lub::kTwoPi / 60.0;
+  // Coulomb's sign regularised as ω/(ω² + ω₀²)^½, ω₀ = 1e-3 rad/s: 1 − 1.8e-6 here.
+  const double expected = 0.1 * W * 0.0095 * omega * omega / std::hypot(omega, 1e-3);
+  EXPECT_NEAR(r.metrics.film_power_loss_W - dry.metrics.film_power_loss_W, expected, 1e-6 * expected);
+  const double scale = std::fabs(r.metrics.driver_work_J) + std::fabs(r.metrics.film_dissipation_J);
+  EXPECT_LT(std::fabs(r.metrics.energy_residual_J), 1e-5 * scale);
+}
+
+TEST(BearingOutputs, FilmFrictionNamedForNoJointIsRejected) {
+  json doc = spinning_shaft(false);
+  doc["effects"]["film_friction"] = {{"joints", json::array({"nope"})}};
+  try {
+    lub::parse_scene(doc);
+    FAIL() << "expected a scene error";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("effects.film_friction.joints[0]"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace

@@ -8,7 +8,9 @@
 //  - BM_Run: one crank cycle of the four-bar, recording every channel or none (metrics
 //    only), so the cost of series nobody asked for;
 //  - BM_RhsMixed: one evaluation of the slider-crank (Frêne short) without and with mixed
-//    lubrication, its journal 100 µm or 1 µm from the wall (asperity band not reached, reached).
+//    lubrication, its journal 100 µm or 1 µm from the wall (asperity band not reached, reached);
+//  - BM_RhsFriction: the same evaluation (film 100 µm) without and with effects.film_friction
+//    (the film's shear torques applied to the bodies).
 //
 //   build/tests/bench/bench_effects
 #include <benchmark/benchmark.h>
@@ -111,6 +113,20 @@ void BM_RhsMixed(benchmark::State& state) {
 }
 // Arguments: mixed lubrication (1) or not (0), the film from the wall [µm].
 BENCHMARK(BM_RhsMixed)->ArgsProduct({{0, 1}, {100, 1}})->ArgNames({"mixed", "film_um"});
+
+void BM_RhsFriction(benchmark::State& state) {
+  const bool friction = state.range(0) != 0;
+  json doc = load("slider_crank.json");
+  doc["joints"][3]["force_law"] = "frene_short";
+  doc["joints"][3]["initial_eccentricity_m"] = {-4e-4, 0.0};
+  if (friction) doc["effects"]["film_friction"] = json::object();
+  const lub::Scene s = lub::parse_scene(doc);
+  const lub::Model m = lub::build_model(s);
+  lub::Workspace ws(m);
+  time_rhs(state, s, m, ws);
+  state.SetLabel(std::string("slider_crank frene_short, film 100 um, ") + (friction ? "friction applied" : "no friction"));
+}
+BENCHMARK(BM_RhsFriction)->Arg(0)->Arg(1)->ArgNames({"friction"});
 
 }  // namespace
 

@@ -6,9 +6,17 @@ tabulated Sommerfeld number, solved by `lubbearing steady` (finite_reynolds, 192
 and its friction variable (R/c) f, flow variable Q/(R c N L), side-flow ratio Q_s/Q and P/p_max
 beside the table's. Prints a Markdown table.
 
+With --energy instead: the paper's slider-crank (configs/scenes/slider_crank.json, 3 cycles
+from the centred start, rtol 1e-9) with and without effects.film_friction, each law's energy
+balance W_driver = ΔE + D_film and its mean film power loss.
+
     PYTHONPATH=build/python /usr/bin/python3 tools/docs/bearing_outputs.py      (~5 s)
+    PYTHONPATH=build/python /usr/bin/python3 tools/docs/bearing_outputs.py --energy   (~2 s)
 """
+import sys
+
 import lubjoint.bearing  # noqa: E402  PYTHONPATH=build/python
+import lubjoint.run
 
 RADIUS, CLEARANCE, MU, RPM = 0.025, 50e-6, 0.05, 3000.0
 # eps, S, (R/c) f, Q/(RcNL), Qs/Q, P/pmax: Raimondi & Boyd (1958) Table 1, as reproduced in
@@ -47,5 +55,23 @@ def main():
                   f"{r['load_over_peak_pressure']:.3g} / {pr:g} |")
 
 
+def energy():
+    print("| law | film_friction | W_driver [J] | ΔE [J] | D_film [J] | residual / W_driver "
+          "| D_film / t [W] | mean power loss [W] |")
+    print("|---|---|---|---|---|---|---|---|")
+    for law in ("frene_long", "frene_short", "pinkus_sternlicht"):
+        for friction in (False, True):
+            over = {"/joints/3/force_law": law, "/solver/rtol": 1e-9, "/simulation/max_cycles": 3,
+                    "/simulation/metric_cycles": 3, "/simulation/steady": "transient",
+                    "/outputs/channels": [], "/outputs/energy_balance": True}
+            if friction:
+                over["/effects/film_friction"] = {}
+            r = lubjoint.run.simulate("configs/scenes/slider_crank.json", over)
+            w, de, d = (float(r[k]) for k in ("driver_work_J", "energy_change_J", "film_dissipation_J"))
+            t = float(r["final_time_s"])
+            print(f"| {law} | {'yes' if friction else 'no'} | {w:.5g} | {de:.3g} | {d:.5g} | "
+                  f"{float(r['energy_residual_J']) / w:.1e} | {d / t:.5g} | {float(r['film_power_loss_W']):.5g} |")
+
+
 if __name__ == "__main__":
-    main()
+    energy() if "--energy" in sys.argv[1:] else main()

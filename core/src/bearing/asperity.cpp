@@ -81,6 +81,7 @@ AsperityLaw resolve_asperity(const AsperitySpec& spec) {
   AsperityLaw law;
   law.roughness_m = s;
   law.pressure_scale_Pa = 16.0 * std::sqrt(2.0) / 15.0 * kPi * nbs * nbs * std::sqrt(s / b) * spec.composite_modulus_Pa;
+  law.boundary_friction = spec.boundary_friction;
   return law;
 }
 

@@ -76,12 +76,14 @@ FilmElement film_element(const Scene& scene, int jk, const JointSpec& s) {
   f.viscosity = s.viscosity_Pa_s;
   f.law = s.law;
   f.finite = s.finite;
-  const auto& covered = scene.contact ? scene.contact->joints : std::vector<int>{};
-  if (scene.contact && (covered.empty() || std::find(covered.begin(), covered.end(), jk) != covered.end()))
-    f.contact = resolve_contact(*scene.contact, s.bearing);
-  const auto& mixed = scene.mixed_lubrication ? scene.mixed_lubrication->joints : std::vector<int>{};
-  if (scene.mixed_lubrication && (mixed.empty() || std::find(mixed.begin(), mixed.end(), jk) != mixed.end()))
-    f.asperity = resolve_asperity(*scene.mixed_lubrication);
+  // An effect covers the joint when it names it or names no joint.
+  const auto covers = [jk](const auto& effect) {
+    return effect && (effect->joints.empty() ||
+                      std::find(effect->joints.begin(), effect->joints.end(), jk) != effect->joints.end());
+  };
+  if (covers(scene.contact)) f.contact = resolve_contact(*scene.contact, s.bearing);
+  if (covers(scene.mixed_lubrication)) f.asperity = resolve_asperity(*scene.mixed_lubrication);
+  f.friction = covers(scene.film_friction);
   f.switching = s.law == ForceLaw::pinkus_sternlicht && scene.solver.switching == Switching::events;
   return f;
 }

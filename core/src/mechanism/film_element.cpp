@@ -97,6 +97,28 @@ FilmForce film_element_force(const Model& m, Workspace& ws, int k, const Bearing
   return out;
 }
 
+FrictionTorques film_element_friction(const FilmElement& f, const FilmKinematics& fk, double omega_journal,
+                                      double omega_bearing) {
+  FrictionTorques tq;
+  const double eps = fk.state.eps;
+  if (!(eps < 1.0)) return tq;
+  const double sliding = omega_journal - omega_bearing;
+  const double weight = f.contact ? film_weight(*f.contact, eps) : 1.0;
+  if (weight > 0.0) {
+    tq = film_friction_torques(f.geometry, f.viscosity, eps, sliding, fk.force.tangential_N);
+    tq.journal_Nm *= weight;
+    tq.bearing_Nm *= weight;
+  }
+  if (f.asperity && f.asperity->boundary_friction > 0.0) {
+    constexpr double kOmega0 = 1e-3;  // rad/s: below it the Coulomb sign is regularised
+    const double Ta = f.asperity->boundary_friction * asperity_load_N(*f.asperity, f.geometry, eps) *
+                      f.geometry.journal_radius_m * sliding / std::hypot(sliding, kOmega0);
+    tq.journal_Nm += Ta;
+    tq.bearing_Nm += Ta;
+  }
+  return tq;
+}
+
 bool film_element_load(const Model& m, Workspace& ws, int k, const BodyState& bi, const BodyState& bj,
                        double sliding_radial_N, long long* law_calls, FilmKinematics& fk, double load[6]) {
   const FilmElement& f = m.films[k];
@@ -115,6 +137,14 @@ bool film_element_load(const Model& m, Workspace& ws, int k, const BodyState& bi
   load[3] = fk.F.x();
   load[4] = fk.F.y();
   load[5] = cross(aj, fk.F);
+  fk.torque_power_W = 0.0;
+  if (f.friction) {
+    const FrictionTorques tq = film_element_friction(f, fk, bj.phid, bi.phid);
+    if (!std::isfinite(tq.journal_Nm) || !std::isfinite(tq.bearing_Nm)) return false;
+    load[2] += tq.bearing_Nm;
+    load[5] -= tq.journal_Nm;
+    fk.torque_power_W = tq.bearing_Nm * bi.phid - tq.journal_Nm * bj.phid;
+  }
   return true;
 }
 

@@ -397,7 +397,7 @@ double driver_power(const Model& m, const Workspace& ws, const double* v) {
 
 double film_power(const Workspace& ws) {
   double P = 0.0;
-  for (const FilmKinematics& fk : ws.films) P += fk.F.dot(fk.e_dot);
+  for (const FilmKinematics& fk : ws.films) P += fk.F.dot(fk.e_dot) + fk.torque_power_W;
   return P;
 }
 

@@ -46,10 +46,11 @@ void CycleRecorder::film_outputs(double t, const Workspace& ws, int f, const dou
   if (!(fk.state.eps < 1.0) || (fe.contact && film_weight(*fe.contact, fk.state.eps) == 0.0)) return;
   const double wj = fe.journal == kGround ? 0.0 : v[3 * fe.journal + 2];
   const double wb = fe.bearing == kGround ? 0.0 : v[3 * fe.bearing + 2];
-  const FrictionTorques tq =
-      film_friction_torques(fe.geometry, fe.viscosity, fk.state.eps, wj - wb, fk.force.tangential_N);
+  // Measured whether or not the film-friction effect applies the torques to the bodies.
+  const FrictionTorques tq = film_element_friction(fe, fk, wj, wb);
   // The film's power loss: the work rate its shear and its pressure take from the two bodies,
-  // T_J ω_J − T_B ω_B − F·ė (the heat the film makes; T_J ω at a steadily loaded journal).
+  // T_J ω_J − T_B ω_B − F·ė (the heat the film makes; T_J ω at a steadily loaded journal);
+  // with mixed lubrication, the asperities' friction μ_b W_a R_J ω_s besides.
   const double power = tq.journal_Nm * wj - tq.bearing_Nm * wb - fk.F.dot(fk.e_dot);
   if (prev_power_.valid && t > prev_power_.t) loss_energy_J_ += 0.5 * (power + prev_power_.power) * (t - prev_power_.t);
   prev_power_ = {true, t, power};

@@ -196,6 +196,15 @@ ContactSpec parse_contact(const Scene& scene, const json& j) {
   return c;
 }
 
+// effects.film_friction (lub/bearing/film_outputs.hpp). Joints must already be parsed.
+FrictionSpec parse_film_friction(const Scene& scene, const json& j) {
+  ObjectReader r(j, "effects.film_friction");
+  FrictionSpec f;
+  f.joints = parse_film_joints(scene, r);
+  r.finish();
+  return f;
+}
+
 // effects.mixed_lubrication (lub/bearing/asperity.hpp). Joints must already be parsed.
 AsperitySpec parse_mixed_lubrication(const Scene& scene, const json& j) {
   ObjectReader r(j, "effects.mixed_lubrication");
@@ -205,6 +214,9 @@ AsperitySpec parse_mixed_lubrication(const Scene& scene, const json& j) {
   a.asperity_density_per_m2 = r.number("asperity_density_per_m2", positive, "must be > 0 1/m^2");
   a.asperity_radius_m = r.number("asperity_radius_m", positive, "must be > 0 m");
   a.composite_modulus_Pa = r.number("composite_modulus_Pa", positive, "must be > 0 Pa");
+  if (r.has("boundary_friction"))
+    a.boundary_friction = r.number("boundary_friction", [](double x) { return x >= 0.0 && x <= 1.0; },
+                                   "must be >= 0 and <= 1 (a friction coefficient)");
   a.joints = parse_film_joints(scene, r);
   r.finish();
   return a;
@@ -581,6 +593,8 @@ Scene parse_scene(const json& doc) {
     if (const json* contact = r.raw_optional("contact")) scene.contact = parse_contact(scene, *contact);
     if (const json* mixed = r.raw_optional("mixed_lubrication"))
       scene.mixed_lubrication = parse_mixed_lubrication(scene, *mixed);
+    if (const json* friction = r.raw_optional("film_friction"))
+      scene.film_friction = parse_film_friction(scene, *friction);
     r.finish();
   }
 

@@ -48,6 +48,7 @@ struct AsperitySpec {
   double asperity_density_per_m2 = 0.0;  ///< η
   double asperity_radius_m = 0.0;        ///< β
   double composite_modulus_Pa = 0.0;     ///< E'
+  double boundary_friction = 0.0;        ///< μ_b, friction coefficient of the asperity contacts
   std::vector<int> joints;               ///< scene joint indices; empty: every film joint
 };
 
@@ -55,6 +56,7 @@ struct AsperitySpec {
 struct AsperityLaw {
   double roughness_m = 0.0;        ///< σ
   double pressure_scale_Pa = 0.0;  ///< K E'
+  double boundary_friction = 0.0;  ///< μ_b
 };
 
 /// Film thickness beyond which the asperity pressure is taken as zero, in units of σ.

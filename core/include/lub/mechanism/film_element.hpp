@@ -6,8 +6,11 @@
 // Generalised force of the film force F on the journal at P_j (−F on the bearing at P_i),
 // with a_i, a_j the bearing and journal points from their bodies' centres of mass, global:
 //     bearing body: (−F_x, −F_y, −a_i × F),     journal body: (F_x, F_y, a_j × F).
+// With the film-friction effect the torques T_J (on the journal, against the sliding
+// ω_s = ω_J − ω_B) and T_B (on the bearing, along it) add −T_J and +T_B to the φ entries.
 #pragma once
 
+#include "lub/bearing/film_outputs.hpp"
 #include "lub/mechanism/model.hpp"
 #include "lub/mechanism/planar.hpp"
 
@@ -29,11 +32,20 @@ FilmKinematics film_kinematics(const Model& m, int k, const double* q, const dou
 FilmForce film_element_force(const Model& m, Workspace& ws, int k, const BearingState& state, FilmMode mode,
                              long long* law_calls = nullptr);
 
+/// Friction torques of film element f at kinematics fk (fk.force evaluated) and shaft rates
+/// ω_J (journal body), ω_B (bearing body) [rad/s]: the film's shear (film_friction_torques,
+/// with the law's F_t, weighted as the film over a contact hand-over band) plus, with mixed
+/// lubrication, the asperities' μ_b W_a R_J, the same on both bodies, against ω_s (Coulomb's
+/// law, its sign regularised as ω_s/(ω_s² + ω₀²)^½ with ω₀ = 1e-3 rad/s). Zero past the wall.
+FrictionTorques film_element_friction(const FilmElement& f, const FilmKinematics& fk, double omega_journal,
+                                      double omega_bearing);
+
 /// Film element k at the body states bi (bearing body), bj (journal body): kinematics and
 /// force into `fk` (fk.force, fk.F), the force on the branch of the film's current mode
 /// (ws.film_mode[k]) with a sliding film's radial force replaced by `sliding_radial_N`,
 /// and its generalised force into `load`: load[0..2] on the bearing body (x, y, φ),
-/// load[3..5] on the journal body. False outside the model's domain (ε >= 1 without the
+/// load[3..5] on the journal body (with the friction torques if the film-friction effect
+/// covers the film; fk.torque_power_W their power). False outside the model's domain (ε >= 1 without the
 /// contact effect, or a force that is not finite).
 bool film_element_load(const Model& m, Workspace& ws, int k, const BodyState& bi, const BodyState& bj,
                        double sliding_radial_N, long long* law_calls, FilmKinematics& fk, double load[6]);

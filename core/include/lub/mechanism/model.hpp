@@ -63,6 +63,9 @@ struct FilmElement {
   /// The scene's mixed-lubrication effect covers this joint: the asperity load is added to
   /// the film force (lub/bearing/asperity.hpp). Absent: no asperity code.
   std::optional<AsperityLaw> asperity;
+  /// The scene's film-friction effect covers this joint: the film's shear torques (and the
+  /// asperities' friction) act on journal and bearing (film_element_friction).
+  bool friction = false;
   /// The law jumps across ε̇ = 0 (the printed Pinkus–Sternlicht law) and the scene asks
   /// for event-driven switching: the run tracks a FilmMode for this film.
   bool switching = false;
@@ -126,6 +129,9 @@ struct FilmKinematics {
   BearingState state;           ///< ε, ε̇, wedge
   FilmForce force;              ///< on the journal, radial/tangential
   Eigen::Vector2d F{0, 0};      ///< on the journal, global [N]
+  /// Power of the friction torques applied to the two bodies, −T_J ω_J + T_B ω_B [W]
+  /// (0 unless the film-friction effect covers the film).
+  double torque_power_W = 0.0;
   /// Angle of the line of centres [rad]; on demand, as only observers need it.
   double gamma() const { return std::atan2(r.y(), r.x()); }
 };
@@ -224,7 +230,8 @@ Eigen::VectorXd state_scales(const Model& m, double length_m, double rate_rad_s)
 double mechanical_energy(const Model& m, const double* q, const double* v);
 /// Power of the drivers on the system [W] (after evaluate()).
 double driver_power(const Model& m, const Workspace& ws, const double* v);
-/// Power of the film forces on the system, F·ė summed over films [W] (after evaluate()).
+/// Power of the film forces on the system, F·ė plus the applied friction torques' power,
+/// summed over films [W] (after evaluate()).
 double film_power(const Workspace& ws);
 
 }  // namespace lub

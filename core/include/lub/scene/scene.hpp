@@ -289,6 +289,12 @@ struct ChannelSpec {
   JointQuantity joint_quantity = JointQuantity::reaction;   ///< source joint
 };
 
+/// effects.film_friction: the film's shear torques T_J, T_B (lub/bearing/film_outputs.hpp)
+/// and the asperities' friction μ_b W_a R_J applied to journal and bearing.
+struct FrictionSpec {
+  std::vector<int> joints;  ///< scene joint indices; empty: every film joint
+};
+
 struct OutputSpec {
   double sample_interval_s = 1e-5;
   std::vector<ChannelSpec> channels;  ///< empty: no series
@@ -313,6 +319,8 @@ struct Scene {
   std::optional<ContactSpec> contact;  ///< effects.contact: dry contact when the film collapses
   /// effects.mixed_lubrication: asperity contact where the film is a few roughnesses thin
   std::optional<AsperitySpec> mixed_lubrication;
+  /// effects.film_friction: the film's (and asperities') shear torques act on the bodies
+  std::optional<FrictionSpec> film_friction;
   SolverSpec solver;
   SimulationSpec simulation;
   OutputSpec output;
