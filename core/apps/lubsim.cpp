@@ -27,10 +27,11 @@ const char* const kDescription =
     "lubsim: runs one scene (format: configs/scene.schema.json) and writes RUN.h5: /series (the\n"
     "scene's channels, each with a units attribute), /orbit (the periodic orbit, when found by\n"
     "shooting), /metrics, /solver, /cycles (per-cycle extremes), and the scene, version, revision,\n"
-    "status and warnings as root attributes.";
+    "status, warnings and notes as root attributes.";
 
 const char* const kFooter =
-    "Plausibility warnings go to stderr, once, and into the run file's root attribute `warnings`.\n"
+    "Plausibility warnings go to stderr, once, and into the run file's root attribute `warnings`;\n"
+    "validity notes (a force law outside its assumptions) likewise, into `notes`.\n"
     "Exit status: 0 completed, 2 bad input (no file written), 3 run not completed (file written\n"
     "with its status and message).";
 
@@ -132,6 +133,8 @@ int main(int argc, char** argv) {
     std::cerr << "lubsim: cannot write " << out_path << ": " << e.what() << "\n";
     return 1;
   }
+  // Validity notes (lub/bearing/law_validity.hpp): once, after the run; never refused.
+  for (const std::string& n : r.notes) std::cerr << "lubsim: note: " << n << "\n";
   if (!quiet) {
     std::printf("status   %s%s%s\n", lub::to_string(r.status).c_str(), r.message.empty() ? "" : ": ",
                 r.message.c_str());

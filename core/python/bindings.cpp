@@ -107,6 +107,7 @@ py::dict simulate(const std::optional<std::string>& scene_path, const std::optio
   out["version"] = lub::program_version();
   out["revision"] = lub::build_revision();
   out["warnings"] = warnings;
+  out["notes"] = r.notes;
   std::vector<Scalar> metrics, solver;
   for (const auto& f : lub::metric_fields()) metrics.push_back({f.name, f.get(r), f.unit, f.integer, f.long_name});
   if (lub::has_energy_balance(r))  // as the run file

@@ -161,6 +161,7 @@ void Expander::explicit_cases(Block& b, const json& cases, const std::string& pa
 int Expander::add_case(json scene, const std::string& label, const std::string& what, const std::vector<Given>& given) {
   bool valid = false;
   std::vector<std::string> warnings;  // the plausibility warnings of the scene that runs
+  std::vector<std::string> notes;     // and its validity notes
   SteadyMethod steady = SimulationSpec().steady;  // and its simulation.steady
   if (cx_.samples_per_cycle && cx_.stores_series) {
     // The sample interval follows the case's cycle period, which only the parsed scene
@@ -171,6 +172,7 @@ int Expander::add_case(json scene, const std::string& label, const std::string& 
     else {
       valid = true;
       warnings = s.warnings;
+      notes = s.validity_notes;
       steady = s.simulation.steady;
     }
   }
@@ -185,6 +187,7 @@ int Expander::add_case(json scene, const std::string& label, const std::string& 
   if (!valid) {
     const Scene s = parse_or_blame(scene, what, given);
     warnings = s.warnings;
+    notes = s.validity_notes;
     steady = s.simulation.steady;
   }
   if (g_.cases.size() >= kMaxCases) throw InputError(fmt::format("grid: more than {} cases", kMaxCases));
@@ -195,6 +198,7 @@ int Expander::add_case(json scene, const std::string& label, const std::string& 
   std::map<int, json>& columns = given_.emplace_back();
   for (const Given& g : given) columns[g.axis] = g.value;  // two keys of one axis: the last, as applied
   warnings_.push_back(std::move(warnings));
+  notes_.push_back(std::move(notes));
   g_.cases.push_back(std::move(c));
   return g_.cases.back().id;
 }
@@ -234,6 +238,7 @@ void Expander::finish() {
   std::size_t total = g_.cases.size();
   for (Case& c : g_.cases) c.name = case_name(c.id, total);
   g_.warnings = distinct_warnings(g_, warnings_);
+  g_.notes = distinct_warnings(g_, notes_);
 }
 
 /// An axis column is float64 if every value it holds is a number (and it holds one); a

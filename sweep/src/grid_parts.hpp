@@ -103,6 +103,7 @@ class Expander {
   std::map<std::string, int> by_hash_;
   std::vector<std::map<int, nlohmann::json>> given_;  ///< per case id
   std::vector<std::vector<std::string>> warnings_;    ///< per case id: its scene's plausibility warnings
+  std::vector<std::vector<std::string>> notes_;       ///< per case id: its scene's validity notes
 };
 
 /// Grid::warnings from each case's (by case id): each distinct warning once, in the order

@@ -87,6 +87,7 @@ void write_root_attributes(h5::File& f, const Grid& g, bool complete) {
   f.set_attribute("cases_total", static_cast<std::int64_t>(g.cases.size()));
   f.set_attribute_int64("complete", complete ? 1 : 0);
   f.set_attribute("warnings", g.warnings);  // plausibility warnings of the cases (Grid::warnings)
+  f.set_attribute("notes", g.notes);        // validity notes of the cases (Grid::notes)
 }
 
 /// The missing-value convention (run_io.hpp) on /cases: a float column declares NaN

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "lub/bearing/law_validity.hpp"
 #include "lub/io/json_reader.hpp"
 #include "lub/sweep/study_file.hpp"
 
@@ -134,6 +135,28 @@ void print_table(std::FILE* out, const std::vector<SummaryColumn>& cols, std::si
   }
 }
 
+/// Validity notes (lub/bearing/law_validity.hpp): the study's own (a law outside its L/D), and
+/// how many cases of a full-film law saw their load reverse.
+void print_notes(std::FILE* out, const h5::File& f, const h5::Table& t) {
+  if (f.has_attribute("notes"))
+    for (const std::string& n : f.attribute_strings("notes")) fmt::print(out, "note: {}\n", n);
+  if (!t.has_column("force_law") || !t.has_column("load_reverses")) return;
+  const auto law = t.read_strings("force_law");
+  const auto reverses = t.read_int64s("load_reverses");
+  std::size_t full = 0, reversed = 0;
+  for (std::size_t i = 0; i < law.size(); ++i) {
+    const auto l = parse_name<ForceLaw>(law[i]);
+    if (!l || !is_full_film_law(*l)) continue;
+    ++full;
+    reversed += reverses[i] == 1;
+  }
+  if (reversed > 0)
+    fmt::print(out,
+               "note: the load reverses (load_reverses = 1) in {} of the {} cases of a full-film law (frene_long, "
+               "frene_short): their sub-ambient half films hold the journal where a real film ruptures\n",
+               reversed, full);
+}
+
 }  // namespace
 
 void print_summary(const std::string& path, std::FILE* out) {
@@ -162,6 +185,7 @@ void print_summary(const std::string& path, std::FILE* out) {
   const std::int64_t total = f.has_attribute("cases_total") ? f.attribute_int64("cases_total") : static_cast<std::int64_t>(n);
   print_counts(out, path, n, total, status, cls);
   print_table(out, cols, n);
+  print_notes(out, f, t);
   for (std::size_t i = 0; i < n; ++i)
     if (!is_ok(status[i])) fmt::print(out, "{}: {}: {}\n", names[i], status[i], message[i]);
 }

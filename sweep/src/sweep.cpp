@@ -53,6 +53,8 @@ int prepare(const Options& o, Grid& grid, ResumeState& resume, bool& reuse_file,
     fmt::print(stderr, "lubsweep: {}{}{}\n", o.strict ? o.grid + ": " : "warning: ", w,
                o.strict ? "; refused under --strict" : "");
   if (o.strict && !grid.warnings.empty()) return kExitBadInput;
+  // Validity notes (a force law outside its assumptions): once per grid, never refused.
+  for (const std::string& n : grid.notes) fmt::print(stderr, "lubsweep: note: {}\n", n);
   if (o.check) return 0;
   if (const auto problem = output_path_problem(o.output)) {
     fmt::print(stderr, "lubsweep: {}\n", *problem);

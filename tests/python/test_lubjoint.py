@@ -296,6 +296,24 @@ def test_simulate_plausible_scene_warns_nothing():
     assert ds.attrs["warnings"] == []
 
 
+def test_simulate_notes_a_law_outside_its_assumptions_and_strict_does_not_refuse(tmp_path):
+    # frene_short at the paper's L/D = 40/19: a short-bearing law used far outside L/D <= 0.5,
+    # and a full-film law whose load (the rod's force) reverses every cycle.
+    over = {**SHORT, "/joints/3/force_law": "frene_short"}
+    with pytest.warns(lubjoint.ValidityNote) as record:
+        ds = lubjoint.simulate(SCENE, over, strict=True)
+    notes = [str(w.message) for w in record if w.category is lubjoint.ValidityNote]
+    assert notes == ds.attrs["notes"]
+    assert notes[0].startswith('/joints/3/force_law = "frene_short" is a short-bearing law')
+    assert "reverses" in notes[1]
+    assert int(ds["load_reverses"]) == 1
+    assert ds.attrs["warnings"] == []
+    sets = [a for k, v in over.items() for a in ("--set", f"{k}={v}")]
+    p = run([LUBSIM, SCENE, "-o", tmp_path / "lubsim.h5", "--quiet", "--strict", *sets])
+    assert p.returncode == 0, p.stderr
+    assert p.stderr == "".join(f"lubsim: note: {n}\n" for n in notes)
+
+
 def test_simulate_strict_raises_and_writes_nothing(tmp_path):
     out = tmp_path / "run.h5"
     with pytest.raises(lubjoint.InputError) as e:

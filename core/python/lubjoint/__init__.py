@@ -38,12 +38,13 @@ import sys
 from .study import Study, StudyFormatError, load_study, study_format
 
 __all__ = ["simulate", "force", "steady_bearing", "load_study", "study_format", "FilmForce", "Study",
-           "InputError", "SceneError", "PlausibilityWarning", "StudyFormatError", "FORCE_LAWS", "__version__"]
+           "InputError", "SceneError", "PlausibilityWarning", "ValidityNote", "StudyFormatError", "FORCE_LAWS", "__version__"]
 
 # The names that need the compiled extension, and the submodule each comes from: imported
 # on first use (PEP 562), so that lubjoint.study does not need the extension.
 _FROM_SUBMODULE = {
     "simulate": "run", "InputError": "run", "SceneError": "run", "PlausibilityWarning": "run",
+    "ValidityNote": "run",
     "force": "bearing", "steady_bearing": "bearing", "FilmForce": "bearing", "FORCE_LAWS": "bearing",
 }
 

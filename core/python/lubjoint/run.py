@@ -32,6 +32,13 @@ class PlausibilityWarning(UserWarning):
     Pointer, the value, the range and the likely slip."""
 
 
+class ValidityNote(UserWarning):
+    """A force law used outside its assumptions (docs/theory/force-laws.md, validity notes): a
+    short-bearing law at L/D > 0.5 or a long-bearing law at L/D < 2, with its measured deviation
+    from the finite bearing at the scene's L/D, or a full-film law whose load reversed in the
+    run. The message is lubsim's note line. Informative: ``strict=True`` does not refuse it."""
+
+
 def _assignment(pointer, value):
     """``--set POINTER=VALUE`` for one override: the Python value as JSON (a str stays a str)."""
     if not isinstance(pointer, str):
@@ -83,7 +90,8 @@ def simulate(scene, overrides=None, output=None, *, strict=False):
           ``solver_formulation``, ``solver_jacobian``, ``solver_rtol``, ``solver_atol``
           (the absolute tolerance of lengths [m]; docs/theory/formulations.md), ``warnings`` (the
           plausibility warnings, a list of str, empty if none; each also issued as a
-          ``PlausibilityWarning``) and ``output`` (the run file, if written).
+          ``PlausibilityWarning``), ``notes`` (the validity notes, likewise, each issued as a
+          ``ValidityNote``) and ``output`` (the run file, if written).
 
     Raises
     ------
@@ -97,6 +105,8 @@ def simulate(scene, overrides=None, output=None, *, strict=False):
     -----
     PlausibilityWarning
         Once per implausible value (lubsim's warning line), before the run.
+    ValidityNote
+        Once per validity note (lubsim's note line), after the run.
 
     The GIL is released during the run: Python threads can run scenes side by side.
     """
@@ -115,6 +125,8 @@ def simulate(scene, overrides=None, output=None, *, strict=False):
     r = _lubjoint.simulate(scene_path, scene_text, origin, assignments, out_path, strict=bool(strict))
     for w in r["warnings"]:
         warnings.warn(w, PlausibilityWarning, stacklevel=2)
+    for n in r["notes"]:
+        warnings.warn(n, ValidityNote, stacklevel=2)
 
     def attrs_of(unit, long_name, **more):
         a = {"units": unit} if unit else {}
@@ -170,6 +182,7 @@ def simulate(scene, overrides=None, output=None, *, strict=False):
         "solver_rtol": settings["rtol"],
         "solver_atol": settings["atol"],
         "warnings": list(r["warnings"]),
+        "notes": list(r["notes"]),
     }
     if out_path is not None:
         attrs["output"] = out_path

@@ -52,6 +52,15 @@ void CycleRecorder::film_outputs(double t, const Workspace& ws, int f, const dou
   // T_J ω_J − T_B ω_B − F·ė (the heat the film makes; T_J ω at a steadily loaded journal);
   // with mixed lubrication, the asperities' friction μ_b W_a R_J ω_s besides.
   const double power = tq.journal_Nm * wj - tq.bearing_Nm * wb - fk.F.dot(fk.e_dot);
+  // Does the load reverse? The film force's direction in the bearing body's frame.
+  if (const double n = fk.F.norm(); n > 0.0) {
+    const bool moving = fe.bearing != kGround;
+    const double c = moving ? ws.cos_phi[static_cast<size_t>(fe.bearing)] : 1.0;
+    const double s = moving ? ws.sin_phi[static_cast<size_t>(fe.bearing)] : 0.0;
+    const Eigen::Vector2d u(c * fk.F.x() + s * fk.F.y(), -s * fk.F.x() + c * fk.F.y());
+    if (!load_direction_) load_direction_ = u / n;
+    else if (u.dot(*load_direction_) < 0.0) cur_.load_reverses = true;
+  }
   if (prev_power_.valid && t > prev_power_.t) loss_energy_J_ += 0.5 * (power + prev_power_.power) * (t - prev_power_.t);
   prev_power_ = {true, t, power};
   if (!scene_.metrics.peak_pressure) return;
@@ -158,6 +167,7 @@ void CycleRecorder::close(double t_end, std::vector<CycleMetrics>& cycles) {
   empty_ = true;
   prev_film_ = {};
   loss_energy_J_ = 0.0;
+  load_direction_.reset();
   prev_power_.t = t_end;  // the next cycle's first interval starts at this boundary
 }
 

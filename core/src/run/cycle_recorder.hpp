@@ -62,6 +62,9 @@ class CycleRecorder {
     double t = 0.0, power = 0.0;
   } prev_power_;
   double loss_energy_J_ = 0.0;
+  /// Direction of the metric film's force at the cycle's first measuring observation, in the
+  /// bearing body's frame (a load that turns by more than 90° from it reverses).
+  std::optional<Eigen::Vector2d> load_direction_;
 
   void film_extreme(double eps, double angle);
   /// Peak pressure and power loss of the metric film f at this observation.

@@ -80,6 +80,7 @@ Metrics steady_cycle_metrics(const Scene& scene, const std::vector<CycleMetrics>
     mt.peak_film_pressure_Pa = std::max(mt.peak_film_pressure_Pa, c.peak_film_pressure_Pa);
     mt.film_power_loss_W += c.film_power_loss_W / M;
     mt.periodicity = std::max(mt.periodicity, c.periodicity);
+    mt.load_reverses = mt.load_reverses || c.load_reverses;
   }
   const int mj = scene.metrics.joint;
   mt.has_film = mj >= 0 && scene.joints[mj].type == JointType::lubricated_revolute;

@@ -13,6 +13,8 @@
 //  - continuation: a neighbour's orbit carried along a path of scenes (continuation.cpp).
 #include "lub/run/run.hpp"
 
+#include "lub/bearing/law_validity.hpp"
+
 #include "run/steady_strategies.hpp"
 #include "run/verdict.hpp"
 
@@ -150,15 +152,30 @@ RunResult run_steady(const Scene& scene, PeriodBudget budget) {
 
 }  // namespace detail
 
+namespace {
+
+/// The run's validity notes: the scene's, and the metric joint's if its law keeps the whole
+/// film and its load reversed in a metric cycle.
+RunResult with_notes(const Scene& scene, RunResult r) {
+  r.notes = scene.validity_notes;
+  const int mj = scene.metrics.joint;
+  if (mj >= 0 && r.metrics.load_reverses && scene.joints[mj].type == JointType::lubricated_revolute &&
+      !scene.joints[mj].ideal && is_full_film_law(scene.joints[mj].law))
+    r.notes.push_back(reversing_load_note("/joints/" + std::to_string(mj), scene.joints[mj].law));
+  return r;
+}
+
+}  // namespace
+
 RunResult run_scene(const Scene& scene) {
-  if (scene.simulation.steady == SteadyMethod::continuation) return detail::run_alone(scene);
-  return detail::run_steady(scene, detail::PeriodBudget(scene.simulation.max_periods, 0));
+  if (scene.simulation.steady == SteadyMethod::continuation) return with_notes(scene, detail::run_alone(scene));
+  return with_notes(scene, detail::run_steady(scene, detail::PeriodBudget(scene.simulation.max_periods, 0)));
 }
 
 RunResult run_scene(const Scene& scene, const ContinuationStart& from) {
   // Too short for a steady stage: the transient alone, whatever the neighbour.
-  if (scene.simulation.max_cycles < kMinSteadyCycles) return detail::run_alone(scene);
-  return detail::run_continued(scene, from);
+  if (scene.simulation.max_cycles < kMinSteadyCycles) return with_notes(scene, detail::run_alone(scene));
+  return with_notes(scene, detail::run_continued(scene, from));
 }
 
 }  // namespace lub

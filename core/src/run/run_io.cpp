@@ -108,6 +108,8 @@ const std::vector<ResultField>& metric_fields() {
          "safe minimum film thickness, 0.00015 mm per mm of bearing diameter (ESDU 84031)"},
         {"below_safe_film", "1", true, [](const RunResult& r) { return r.metrics.below_safe_film ? 1.0 : 0.0; },
          "1 if the minimum film thickness is below the safe film thickness"},
+        {"load_reverses", "1", true, [](const RunResult& r) { return r.metrics.load_reverses ? 1.0 : 0.0; },
+         "1 if the metric joint's film force turns by more than 90 degrees (in the bearing body's frame) within a metric cycle"},
     };
     fields.insert(fields.end(), rest.begin(), rest.end());
     return fields;
@@ -284,6 +286,7 @@ void write_run_file(const std::string& path, const std::string& scene_text, cons
     f.set_attribute("status", to_string(r.status));
     f.set_attribute("message", r.message);
     f.set_attribute("warnings", warnings);  // plausibility warnings (Scene::warnings)
+    f.set_attribute("notes", r.notes);      // validity notes (RunResult::notes)
     if (!r.series.names.empty()) {
       h5::Group sg = f.require_group("series");
       write_series(sg, r.series, channel_long_names(scene_text, r.series.names));

@@ -1,9 +1,11 @@
-// Plausibility warnings of a scene: the ranges of lub/bearing/plausibility.hpp applied to its
-// joints and drivers, each named by its JSON Pointer (the form --set takes).
+// Plausibility warnings of a scene (the ranges of lub/bearing/plausibility.hpp applied to its
+// joints and drivers) and its validity notes (lub/bearing/law_validity.hpp), each named by its
+// JSON Pointer (the form --set takes).
 #include "lub/bearing/plausibility.hpp"
 
 #include <cmath>
 
+#include "lub/bearing/law_validity.hpp"
 #include "lub/common/constants.hpp"
 #include "lub/scene/scene.hpp"
 
@@ -25,6 +27,17 @@ std::vector<std::string> plausibility_warnings(const Scene& scene) {
   for (std::size_t i = 0; i < scene.drivers.size(); ++i)
     add(implausible_speed_rpm("/drivers/" + std::to_string(i) + "/speed_rpm",
                               scene.drivers[i].speed_rad_s * 60.0 / (2.0 * kPi)));
+  return out;
+}
+
+std::vector<std::string> validity_notes(const Scene& scene) {
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < scene.joints.size(); ++i) {
+    const JointSpec& s = scene.joints[i];
+    if (s.type != JointType::lubricated_revolute || s.ideal) continue;
+    if (auto n = geometry_validity_note("/joints/" + std::to_string(i) + "/force_law", s.law, s.bearing))
+      out.push_back(std::move(*n));
+  }
   return out;
 }
 

@@ -632,6 +632,7 @@ Scene parse_scene(const json& doc) {
          "needs duration_s, or cycle_period_s, or a driver with non-zero speed to define a cycle");
   check_whole_scene(scene, doc);
   scene.warnings = plausibility_warnings(scene);
+  scene.validity_notes = validity_notes(scene);
   return scene;
 }
 

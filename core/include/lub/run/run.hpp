@@ -87,6 +87,9 @@ struct CycleMetrics {
   /// the cycle [W] (lub/bearing/film_outputs.hpp)
   double peak_film_pressure_Pa = 0.0, film_power_loss_W = 0.0;
   double periodicity = -1.0;  ///< max orbit distance to the previous cycle / c (-1: first cycle)
+  /// The metric film's force turned by more than 90° from its direction at the cycle's
+  /// start, in the bearing body's frame (lub/bearing/law_validity.hpp)
+  bool load_reverses = false;
   /// The metric joint's state at the cycle's end (crank angle 0: a Poincaré section),
   /// e/c and ė/c; NaN without a film.
   double end_eccentricity_x = std::numeric_limits<double>::quiet_NaN();
@@ -204,6 +207,7 @@ struct Metrics {
   int cycles_run = 0;
   double safe_film_thickness_m = 0.0;  ///< 0.00015 mm per mm of bearing diameter
   bool below_safe_film = false;
+  bool load_reverses = false;  ///< in a metric cycle (CycleMetrics::load_reverses)
   // Energy balance (outputs.energy_balance): W_driver = ΔE + D_film + W_drift
   double driver_work_J = 0.0;
   double film_dissipation_J = 0.0;   ///< −∫ F·ė dt
@@ -273,6 +277,9 @@ struct RunResult {
   Series series;                     ///< the transient's channels
   Series orbit;                      ///< the periodic orbit's channels (shooting), over metric_cycles
   OrbitSeed orbit_seed;              ///< the periodic orbit found (shooting), to continue from
+  /// Validity notes (lub/bearing/law_validity.hpp): the scene's, and a full-film law's whose
+  /// load reversed in the run. Informative; printed once by the programs.
+  std::vector<std::string> notes;
 };
 
 /// The run's classification: its SteadyClass if it ended ok, else its status.

@@ -329,6 +329,10 @@ struct Scene {
   /// are most likely a unit slip, one line each naming the JSON Pointer, the value, the
   /// plausible range and the likely slip. Set by parse_scene; empty for the shipped scenes.
   std::vector<std::string> warnings;
+  /// Validity notes (lub/bearing/law_validity.hpp): a force law used outside its assumptions
+  /// (L/D), with its measured deviation from the finite bearing. Informative: not warnings,
+  /// so --strict does not refuse them. Set by parse_scene.
+  std::vector<std::string> validity_notes;
 
   int body_index(const std::string& name) const;  ///< kGround for "ground", -2 if unknown
   int joint_index(const std::string& name) const;
@@ -344,6 +348,9 @@ Scene parse_scene(const nlohmann::json& doc);
 /// The plausibility warnings of a parsed scene (Scene::warnings): for each lubricated joint
 /// with a film law its viscosity and clearance/radius, for each driver its speed.
 std::vector<std::string> plausibility_warnings(const Scene& scene);
+/// The scene's validity notes (Scene::validity_notes), one per lubricated joint whose law is
+/// used outside its assumptions, named by the law's JSON Pointer.
+std::vector<std::string> validity_notes(const Scene& scene);
 
 /// True for the joint quantities only a lubricated joint has (e_x, eps, h_min, ...).
 bool is_film_quantity(JointQuantity q);

@@ -104,6 +104,9 @@ struct Grid {
   /// The plausibility warnings of its cases (Scene::warnings, lub/bearing/plausibility.hpp),
   /// each distinct warning once: "W; in 3 of 16 cases (the first case_0004)".
   std::vector<std::string> warnings;
+  /// The validity notes of its cases (Scene::validity_notes, lub/bearing/law_validity.hpp),
+  /// each distinct note once, as the warnings. Informative: --strict does not refuse them.
+  std::vector<std::string> notes;
 };
 
 /// Reads, validates and expands a grid file. Throws lub::InputError naming the field, the
