@@ -14,6 +14,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -21,6 +22,7 @@
 
 #include "lub/bearing/bearing_inputs.hpp"
 #include "lub/bearing/film_force.hpp"
+#include "lub/bearing/film_outputs.hpp"
 #include "lub/bearing/plausibility.hpp"
 #include "lub/common/constants.hpp"
 #include "lub/io/json_reader.hpp"
@@ -243,6 +245,50 @@ py::dict force(const std::string& law, const Flat& eps, const Flat& eps_dot, con
   return out;
 }
 
+// Mid-plane film pressure [Pa] at angles theta [rad] from the line of maximum film, one state:
+// the closed-form law's own field, or the finite bearing's grid (its mid-plane cell centres,
+// interpolated linearly and periodically in θ).
+py::array_t<double> pressure(const std::string& law, const Flat& theta, double eps, double eps_dot, double wedge,
+                             double radius_m, double clearance_m, double length_m, double viscosity_Pa_s,
+                             const std::optional<std::string>& cavitation, std::optional<int> n_theta,
+                             std::optional<int> n_z, bool groove) {
+  const Bearing b = read_bearing(law, radius_m, clearance_m, length_m, viscosity_Pa_s, cavitation, n_theta, n_z,
+                                 groove);
+  if (!lub::is_film_eccentricity_ratio(eps)) lub::fail("eps", eps, std::string(lub::kFilmEccentricityRatioRule));
+  if (!std::isfinite(eps_dot)) lub::fail("eps_dot", eps_dot, "must be finite");
+  if (!std::isfinite(wedge)) lub::fail("wedge_rad_s", wedge, "must be finite");
+  const py::ssize_t n = theta.size();
+  const double* th = theta.data();
+  for (py::ssize_t i = 0; i < n; ++i)
+    if (!std::isfinite(th[i])) lub::fail("theta_rad[" + std::to_string(i) + "]", th[i], "must be finite");
+  py::array_t<double> out(n);
+  double* p = out.mutable_data();
+  py::gil_scoped_release release;
+  const lub::BearingState s{eps, eps_dot, wedge};
+  if (b.law != lub::ForceLaw::finite_reynolds) {
+    for (py::ssize_t i = 0; i < n; ++i) p[i] = lub::film_pressure_Pa(b.law, b.geometry, b.viscosity, s, th[i]);
+    return out;
+  }
+  lub::FiniteBearingSolver solver(b.finite);
+  solver.solve(b.geometry, b.viscosity, s);
+  std::vector<std::pair<double, double>> cells;  // (θ in [0, 2π), p) at the mid-plane
+  for (int i = 0; i < b.finite.n_theta; ++i) {
+    const double t = solver.theta_rad(i);
+    cells.emplace_back(t - lub::kTwoPi * std::floor(t / lub::kTwoPi), solver.pressure_Pa(i, 0));
+  }
+  std::sort(cells.begin(), cells.end());
+  cells.insert(cells.begin(), {cells.back().first - lub::kTwoPi, cells.back().second});
+  cells.emplace_back(cells[1].first + lub::kTwoPi, cells[1].second);
+  for (py::ssize_t i = 0; i < n; ++i) {
+    const double t = th[i] - lub::kTwoPi * std::floor(th[i] / lub::kTwoPi);
+    const auto hi = std::upper_bound(cells.begin(), cells.end(), std::make_pair(t, -HUGE_VAL));
+    const auto lo = hi - 1;
+    const double w = (t - lo->first) / (hi->first - lo->first);
+    p[i] = (1.0 - w) * lo->second + w * hi->second;
+  }
+  return out;
+}
+
 // lubbearing steady: the same inputs, the same keys as its JSON.
 py::dict steady_bearing(const std::string& law, double load_N, double speed_rpm, double radius_m,
                         double clearance_m, double length_m, double viscosity_Pa_s,
@@ -311,6 +357,11 @@ PYBIND11_MODULE(_lubjoint, m) {
         py::arg("cavitation") = py::none(), py::arg("n_theta") = py::none(), py::arg("n_z") = py::none(),
         py::arg("groove_at_max_film") = false,
         "Film force [N] {radial_N, tangential_N} at flat, equally long arrays (GIL released). See lubjoint.force.");
+  m.def("pressure", &pressure, py::arg("law"), py::arg("theta_rad"), py::arg("eps"), py::arg("eps_dot"),
+        py::arg("wedge_rad_s"), py::arg("radius_m"), py::arg("clearance_m"), py::arg("length_m"),
+        py::arg("viscosity_Pa_s"), py::arg("cavitation") = py::none(), py::arg("n_theta") = py::none(),
+        py::arg("n_z") = py::none(), py::arg("groove_at_max_film") = false,
+        "Mid-plane film pressure [Pa] at a flat array of angles, one state. See lubjoint.bearing.pressure.");
   m.def("steady_bearing", &steady_bearing, py::arg("law"), py::arg("load_N"), py::arg("speed_rpm"),
         py::arg("radius_m"), py::arg("clearance_m"), py::arg("length_m"), py::arg("viscosity_Pa_s"),
         py::arg("cavitation") = py::none(), py::arg("n_theta") = py::none(), py::arg("n_z") = py::none(),

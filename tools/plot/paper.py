@@ -8,6 +8,11 @@ Writes PNGs (Agg backend, no display needed):
   fig05_reference.png           the reference case (0.5 mm, 400 cP, 5000 rpm, Pinkus-Sternlicht):
                                 slider velocity and acceleration, joint reaction, journal orbit,
                                 minimum film thickness, phase portrait
+  fig05_reference_pressure.png  the reference case's film pressure over its steady cycle: the
+                                mid-plane pressure over crank angle and bearing angle, its profile
+                                at four crank angles, and the peak pressure (the case re-run from
+                                its scene with the channels the field needs; needs the compiled
+                                lubjoint)
   figNN_<study>_reaction.png    joint reaction force against crank angle, one panel per case,
                                 with the ideal-joint mechanism at the same crank speed (dashed)
   figNN_<study>_orbit.png       journal centre orbit inside the clearance circle
@@ -23,6 +28,7 @@ import argparse
 import math
 import os
 import sys
+import warnings
 
 import matplotlib
 
@@ -225,6 +231,66 @@ class Figures:
         self.save(fig, "fig05_reference.png")
 
 
+def pressure_figure(figs, cid):
+    """fig05_reference_pressure.png: the film pressure of case `cid` over its steady cycle, from the
+    law's own field (lubjoint.pressure) at the state of each sample. The study stores no wedge
+    speed, so the case is run again from its scene with ε, ε̇ and w recorded."""
+    try:
+        import lubjoint
+    except ImportError as e:  # the pure-Python reader works without the extension; this does not
+        print(f"plot_paper: no pressure figure: {e}", file=sys.stderr)
+        return
+    scene = study_reader.scene(figs.path, cid)
+    name = scene.get("metrics", {}).get("joint")
+    joint = next((j for j in scene["joints"] if j.get("name") == name and "bearing_radius_m" in j), None)
+    if joint is None or joint.get("force_law", "pinkus_sternlicht") == "ideal":
+        return
+    crank = [c for c in scene.get("outputs", {}).get("channels", []) if c.get("name") == "crank_angle"]
+    channels = crank + [{"name": q, "joint": name, "quantity": q} for q in ("eps", "eps_dot", "wedge")]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", lubjoint.ValidityNote)  # the study's summary notes them
+        ds = lubjoint.simulate(scene, {"/outputs/channels": channels, "/outputs/last_cycles": 1})
+    pre = "orbit_" if "orbit_eps" in ds else ""
+    if pre + "eps" not in ds:
+        return
+    s = {q: ds[pre + q].values for q in ("eps", "eps_dot", "wedge")}
+    s["crank_angle"] = ds[pre + "crank_angle"].values if crank else ds[pre + "t"].values if pre else ds["t"].values
+    law = joint.get("force_law", "pinkus_sternlicht")
+    c = joint["bearing_radius_m"] - joint["journal_radius_m"]
+    geometry = dict(radius_m=joint["journal_radius_m"], clearance_m=c, length_m=joint["length_m"],
+                    viscosity_Pa_s=joint["viscosity_Pa_s"])
+    theta = np.linspace(0.0, 2.0 * math.pi, 181)
+    p = np.array([lubjoint.pressure(law, theta, e, ed, w, **geometry)
+                  for e, ed, w in zip(s["eps"], s["eps_dot"], s["wedge"])]) / 1e6
+    x = crank_deg(s) if crank else (s["crank_angle"] - s["crank_angle"][0]) / (s["crank_angle"][-1] - s["crank_angle"][0]) * 360
+    fig, axs = plt.subplots(1, 3, figsize=(13, 4.0))
+    lim = np.nanmax(np.abs(p))
+    m = axs[0].pcolormesh(x, np.degrees(theta), p.T, shading="auto", cmap="RdBu_r", vmin=-lim, vmax=lim)
+    fig.colorbar(m, ax=axs[0], label="pressure [MPa]")
+    axs[0].set_xlabel("crank angle [deg]", fontsize=8)
+    axs[0].set_ylabel("θ from the line of maximum film [deg]", fontsize=8)
+    axs[0].set_title("mid-plane film pressure", fontsize=9)
+    for k in np.linspace(0, len(x) - 1, 5)[:-1].astype(int):
+        axs[1].plot(np.degrees(theta), p[k], lw=0.9, label=f"crank {x[k]:.0f}°")
+    top = int(np.nanargmax(p.max(axis=1)))
+    axs[1].plot(np.degrees(theta), p[top], "k", lw=1.2, label=f"peak, crank {x[top]:.0f}°")
+    axs[1].set_xlabel("θ [deg]", fontsize=8)
+    axs[1].set_ylabel("pressure [MPa]", fontsize=8)
+    axs[1].set_title("pressure profiles", fontsize=9)
+    axs[1].legend(fontsize=7)
+    axs[2].plot(x, p.max(axis=1), lw=0.9)
+    axs[2].set_xlabel("crank angle [deg]", fontsize=8)
+    axs[2].set_ylabel("peak film pressure [MPa]", fontsize=8)
+    axs[2].set_title("peak pressure over the cycle", fontsize=9)
+    for ax in axs:
+        ax.tick_params(labelsize=7)
+        ax.grid(True, lw=0.3, alpha=0.5)
+    what = "its periodic orbit" if pre else "its last cycle (no orbit located)"
+    fig.suptitle(f"film pressure of the reference case ({LAW_NAMES.get(law, law)}), over {what}", fontsize=10)
+    fig.tight_layout()
+    figs.save(fig, "fig05_reference_pressure.png")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("study", help="study file written by lubsweep")
@@ -250,6 +316,7 @@ def main():
         ref = int(figs.c.index[0])
     if ref is not None:
         figs.reference(ref)
+        pressure_figure(figs, ref)
     if not figs.written:
         print(f"plot_paper: {args.study}: no series to plot (does the grid store channels?)", file=sys.stderr)
         return 1

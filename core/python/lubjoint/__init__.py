@@ -37,7 +37,7 @@ import sys
 
 from .study import Study, StudyFormatError, load_study, study_format
 
-__all__ = ["simulate", "force", "steady_bearing", "load_study", "study_format", "FilmForce", "Study",
+__all__ = ["simulate", "force", "pressure", "steady_bearing", "load_study", "study_format", "FilmForce", "Study",
            "InputError", "SceneError", "PlausibilityWarning", "ValidityNote", "StudyFormatError", "FORCE_LAWS", "__version__"]
 
 # The names that need the compiled extension, and the submodule each comes from: imported
@@ -45,7 +45,7 @@ __all__ = ["simulate", "force", "steady_bearing", "load_study", "study_format", 
 _FROM_SUBMODULE = {
     "simulate": "run", "InputError": "run", "SceneError": "run", "PlausibilityWarning": "run",
     "ValidityNote": "run",
-    "force": "bearing", "steady_bearing": "bearing", "FilmForce": "bearing", "FORCE_LAWS": "bearing",
+    "force": "bearing", "pressure": "bearing", "steady_bearing": "bearing", "FilmForce": "bearing", "FORCE_LAWS": "bearing",
 }
 
 

@@ -80,6 +80,45 @@ def force(law, eps, eps_dot, wedge_rad_s, *, radius_m, clearance_m, length_m, vi
     return FilmForce(f["radial_N"].reshape(shape), f["tangential_N"].reshape(shape))
 
 
+def pressure(law, theta_rad, eps, eps_dot, wedge_rad_s, *, radius_m, clearance_m, length_m, viscosity_Pa_s,
+             cavitation=None, n_theta=None, n_z=None, groove_at_max_film=False):
+    """Film pressure [Pa] in the bearing's mid-plane at the angles ``theta_rad``, one state.
+
+    The field the law's force integrates (docs/theory/bearing-outputs.md): Eq. (3) for the short
+    laws, Eq. (5) for the long ones, the π film for the Pinkus–Sternlicht laws (negative values
+    included for the full-film Frêne laws, 0 where a cavitated film has ruptured); for
+    ``finite_reynolds`` the solver's grid at the mid-plane cell centres, interpolated linearly
+    and periodically in θ.
+
+    Parameters
+    ----------
+    law : str
+        A force law (``FORCE_LAWS``).
+    theta_rad : array_like
+        Angles θ [rad] from the line of maximum film thickness (h = c (1 + ε cos θ)), in the
+        direction of the wedge speed.
+    eps, eps_dot, wedge_rad_s : float
+        The state, as ``force`` takes it (ε, ε̇ [1/s], w [rad/s]).
+    radius_m, clearance_m, length_m, viscosity_Pa_s, cavitation, n_theta, n_z, groove_at_max_film
+        As ``force``.
+
+    Returns
+    -------
+    numpy.ndarray
+        float64, the shape of ``theta_rad`` [Pa].
+
+    Raises
+    ------
+    InputError
+        (a ``ValueError``) naming the argument, its value and the rule.
+    """
+    th = np.asarray(theta_rad, dtype=np.float64)
+    p = _lubjoint.pressure(law, th.ravel(), float(eps), float(eps_dot), float(wedge_rad_s), float(radius_m),
+                           float(clearance_m), float(length_m), float(viscosity_Pa_s), cavitation, n_theta, n_z,
+                           bool(groove_at_max_film))
+    return p.reshape(th.shape)
+
+
 def steady_bearing(law, *, load_N, speed_rpm, radius_m, clearance_m, length_m, viscosity_Pa_s,
                    cavitation=None, n_theta=None, n_z=None, groove_at_max_film=False):
     """Equilibrium of a steadily loaded journal bearing: the computation of ``lubbearing steady``.

@@ -1,6 +1,7 @@
 // Friction torques of a film: see lub/bearing/film_outputs.hpp.
 #include "lub/bearing/film_outputs.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "bearing/film_math.hpp"
@@ -23,17 +24,21 @@ FrictionTorques film_friction_torques(const BearingGeometry& g, double viscosity
   return {couette + pressure, couette - pressure};
 }
 
+double film_pressure_Pa(ForceLaw law, const BearingGeometry& g, double viscosity_Pa_s, const BearingState& s,
+                        double theta) {
+  switch (law) {
+    case ForceLaw::frene_short: return pressure_short(g, viscosity_Pa_s, s, theta, 0.0);
+    case ForceLaw::gumbel_short: return std::max(0.0, pressure_short(g, viscosity_Pa_s, s, theta, 0.0));
+    case ForceLaw::pinkus_sternlicht:
+    case ForceLaw::pinkus_sternlicht_continuous: return pressure_pi_film(g, viscosity_Pa_s, s, theta);
+    case ForceLaw::gumbel_long: return std::max(0.0, pressure_long(g, viscosity_Pa_s, s, theta));
+    default: return pressure_long(g, viscosity_Pa_s, s, theta);
+  }
+}
+
 PeakPressure peak_film_pressure(ForceLaw law, const BearingGeometry& g, double viscosity_Pa_s,
                                 const BearingState& s) {
-  const auto field = [&](double theta) {
-    switch (law) {
-      case ForceLaw::frene_short:
-      case ForceLaw::gumbel_short: return pressure_short(g, viscosity_Pa_s, s, theta, 0.0);
-      case ForceLaw::pinkus_sternlicht:
-      case ForceLaw::pinkus_sternlicht_continuous: return pressure_pi_film(g, viscosity_Pa_s, s, theta);
-      default: return pressure_long(g, viscosity_Pa_s, s, theta);
-    }
-  };
+  const auto field = [&](double theta) { return film_pressure_Pa(law, g, viscosity_Pa_s, s, theta); };
   const double beta = detail::kepler_beta(s.eps, std::sqrt((1.0 - s.eps) * (1.0 + s.eps)));
   const auto at = [&](double psi) { return field(detail::theta_of_psi(psi, beta)); };
   constexpr int kSamples = 64;

@@ -52,6 +52,13 @@ struct PeakPressure {
   double angle_rad = 0.0;    ///< θ, in [0, 2π)
 };
 
+/// The film pressure [Pa] of the closed-form law `law` (not finite_reynolds) at state `s`, at
+/// angle θ [rad] from the line of maximum film, in the mid-plane: the field its force integrates
+/// (Eq. (3), (5) or the π film, negative values included for the full-film laws; 0 where a
+/// cavitated film has ruptured).
+double film_pressure_Pa(ForceLaw law, const BearingGeometry& g, double viscosity_Pa_s, const BearingState& s,
+                        double theta);
+
 /// The peak of the closed-form law `law`'s pressure field at state `s` (not finite_reynolds:
 /// its field is the solver's).
 PeakPressure peak_film_pressure(ForceLaw law, const BearingGeometry& g, double viscosity_Pa_s, const BearingState& s);
