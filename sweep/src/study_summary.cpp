@@ -86,6 +86,7 @@ void add_columns(const h5::Table& t, const std::vector<std::string>& status, con
   // and how many cycles after the transient its slow flow followed it (docs/theory/
   // steady-cycles.md, slow flow).
   numeric("last_h[um]", "last_cycle_min_film_m", "{:.3g}", 1e6, true);
+  numeric("last_W/F", "last_cycle_asperity_load_ratio", "{:.3g}", 1.0, true, true);
   numeric("dh/cycle[nm]", "min_film_drift_m_per_cycle", "{:.3g}", 1e9, true);
   numeric("dh_error[nm]", "min_film_drift_m_per_cycle_error", "{:.3g}", 1e9, true);
   numeric("flow[cycles]", "slow_flow_cycles", "{:.0f}", 1.0, true);

@@ -128,6 +128,7 @@ void take_slow_flow_metrics(SteadyContext& cx, SegmentResult& measured, Chart& c
   res.metrics.steady = false;
   res.series = std::move(measured.res.series);
   steady.last_cycle_min_film_m = h.back();
+  steady.last_cycle_asperity_load_ratio = measured.res.cycles.back().asperity_load_ratio;
   // How it drifts: the film against the flow's state some tenth of its cycles before
   // (consecutive cycles differ by the flow's slow change and a wobble the jumps leave in
   // the modes that decay over tens of cycles, at times larger).

@@ -179,6 +179,7 @@ void finish_transient(SteadyContext& cx) {
   }
   const std::vector<double> h = cycle_min_films(cx.res.cycles);
   if (!h.empty()) sc.last_cycle_min_film_m = h.back();
+  if (!cx.res.cycles.empty()) sc.last_cycle_asperity_load_ratio = cx.res.cycles.back().asperity_load_ratio;
   if (h.size() >= 2) sc.min_film_drift_m_per_cycle = steady::trend_per_cycle(h, cx.tuning.window);
 }
 

@@ -170,6 +170,8 @@ struct SteadyCycle {
   /// The last transient cycle's minimum film thickness [m] (where the slow flow was
   /// followed: at the state it reached)
   double last_cycle_min_film_m = std::numeric_limits<double>::quiet_NaN();
+  /// That cycle's peak asperity load over its peak joint force (0 without mixed lubrication)
+  double last_cycle_asperity_load_ratio = std::numeric_limits<double>::quiet_NaN();
   /// Cycles of the slow flow followed by projective steps after the transient, where
   /// shooting from the transient found no orbit (steady/slow_manifold.hpp; 0: not followed)
   double slow_flow_cycles = 0.0;
