@@ -4,6 +4,8 @@
 // "run 'PROGRAM --help' for usage" on stderr, exit 2. Runs the built executables.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <fstream>
 #include <regex>
 #include <string>
 #include <vector>
@@ -113,6 +115,20 @@ TEST(ProgramsCli, UsageErrorsHaveOneFormat) {
     ASSERT_GE(r.out.size(), hint.size()) << r.out;
     EXPECT_EQ(r.out.substr(r.out.size() - hint.size()), hint) << c.args << "\n" << r.out;
     EXPECT_EQ(r.out.find("usage:"), std::string::npos) << "the whole usage is not repeated: " << r.out;
+  }
+}
+
+// --sensitivity names a number of the effective scene: otherwise exit 2, naming the option
+// and the pointer, before anything runs, and no file.
+TEST(ProgramsCli, LubsimRefusesASensitivityToWhatIsNotANumber) {
+  const std::string scene = std::string(LUB_SOURCE_DIR) + "/configs/scenes/slider_crank.json";
+  const std::string out = ::testing::TempDir() + "sens_refused.h5";
+  std::remove(out.c_str());
+  for (const std::string ptr : {"/joints/3/force_law", "/nope", "/joints/3/initial_eccentricity_m/0"}) {
+    const Result r = run("/core/lubsim", scene + " -o " + out + " --sensitivity " + ptr, true);
+    EXPECT_EQ(r.status, 2) << ptr << "\n" << r.out;
+    EXPECT_NE(r.out.find("--sensitivity " + ptr), std::string::npos) << r.out;
+    EXPECT_FALSE(std::ifstream(out).good()) << ptr;
   }
 }
 

@@ -45,6 +45,7 @@ int usage_error(const std::string& msg) {
 struct Options {
   std::string scene_path, out_path;
   std::vector<std::string> sets;
+  std::vector<std::string> sensitivities;  ///< JSON Pointers of scene numbers
   bool quiet = false, strict = false, version = false;
 };
 
@@ -60,6 +61,12 @@ int parse_options(int argc, char** argv, Options& o) {
                  "parsed as JSON, a bare word is a string, e.g. --set /joints/3/viscosity_Pa_s=0.04 "
                  "--set /joints/3/force_law=frene_long")
       ->type_name("POINTER=VALUE")
+      ->allow_extra_args(false);
+  app.add_option("--sensitivity", o.sensitivities,
+                 "the located orbit's steady metrics differentiated with respect to this scene number (JSON "
+                 "Pointer, repeatable), e.g. --sensitivity /joints/3/viscosity_Pa_s; written to the run file's "
+                 "/sensitivities (docs/theory/sensitivities.md)")
+      ->type_name("POINTER")
       ->allow_extra_args(false);
   app.add_flag("--strict", o.strict,
                "an implausible value (a viscosity, clearance or speed that looks like a unit slip) is an "
@@ -90,6 +97,60 @@ int parse_options(int argc, char** argv, Options& o) {
 
 }  // namespace
 
+// The unit of a scene number, from its key's suffix (the scene format names every unit so).
+std::string unit_of_key(const std::string& pointer) {
+  static const std::pair<const char*, const char*> suffixes[] = {
+      {"_Pa_s", "Pa s"}, {"_kg_m2", "kg m2"}, {"_m_s2", "m s-2"}, {"_m_s", "m s-1"}, {"_rad_s", "rad s-1"},
+      {"_rpm", "rpm"},   {"_kg", "kg"},       {"_rad", "rad"},    {"_Pa", "Pa"},     {"_m", "m"},
+      {"_s", "s"},       {"_N", "N"}};
+  for (const auto& [suffix, unit] : suffixes) {
+    const std::string s(suffix);
+    if (pointer.size() > s.size() && pointer.compare(pointer.size() - s.size(), s.size(), s) == 0) return unit;
+  }
+  return "1";
+}
+
+// The parameters --sensitivity names: each a number of the effective scene `doc`, not 0.
+// Throws InputError naming the option, the pointer and the rule.
+std::vector<lub::SensitivityParameter> sensitivity_parameters(const nlohmann::json& doc,
+                                                              const std::vector<std::string>& pointers) {
+  std::vector<lub::SensitivityParameter> out;
+  for (const std::string& ptr : pointers) {
+    const nlohmann::json* value = nullptr;
+    try {
+      value = &doc.at(nlohmann::json::json_pointer(ptr));
+    } catch (const nlohmann::json::exception&) {
+    }
+    if (!value || !value->is_number())
+      throw lub::InputError("--sensitivity " + ptr + ": names no number of the scene (a JSON Pointer to a numeric value)");
+    if (value->get<double>() == 0.0)
+      throw lub::InputError("--sensitivity " + ptr + " = 0: must be non-zero (the step is 1e-3 of the value)");
+    lub::SensitivityParameter p;
+    p.name = ptr;
+    p.unit = unit_of_key(ptr);
+    p.value = value->get<double>();
+    p.scene_at = [doc, ptr](double v) {
+      nlohmann::json d = doc;
+      d[nlohmann::json::json_pointer(ptr)] = v;
+      return lub::parse_scene(d);
+    };
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+void print_sensitivities(const std::vector<lub::Sensitivity>& sens) {
+  for (const lub::Sensitivity& s : sens) {
+    std::printf("sensitivity to %s = %.6g %s: %s%s%s (%lld periods)\n", s.name.c_str(), s.value, s.unit.c_str(),
+                s.ok ? "ok" : "failed", s.message.empty() ? "" : ": ", s.message.c_str(), s.periods);
+    if (!s.ok) continue;
+    const auto& metrics = lub::steady_metrics();
+    for (std::size_t i = 0; i < metrics.size(); ++i)
+      std::printf("  d %-30s %+.6g ± %.2g %s/(%s)\n", metrics[i].name, s.d_metric[i], s.d_metric_error[i],
+                  metrics[i].unit, s.unit.c_str());
+  }
+}
+
 int main(int argc, char** argv) {
   Options o;
   if (const int status = parse_options(argc, argv, o); status >= 0) return status;
@@ -105,11 +166,13 @@ int main(int argc, char** argv) {
 
   lub::Scene scene;
   std::string scene_text;
+  std::vector<lub::SensitivityParameter> sens_params;
   try {
     nlohmann::json doc = lub::read_json_file(scene_path);
     for (const auto& s : sets) lub::apply_override(doc, s);
     scene = lub::parse_scene(doc);
     scene_text = doc.dump(2);
+    sens_params = sensitivity_parameters(doc, o.sensitivities);
   } catch (const lub::InputError& e) {
     std::cerr << "lubsim: " << scene_path << ": " << e.what() << "\n";
     return 2;
@@ -127,8 +190,13 @@ int main(int argc, char** argv) {
     std::cerr << "lubsim: " << scene_path << ": " << e.what() << "\n";
     return 2;
   }
+  std::vector<lub::Sensitivity> sens;
+  if (!sens_params.empty()) {
+    if (!quiet) std::cerr << "lubsim: sensitivities of the orbit to " << sens_params.size() << " parameter(s)...\n";
+    sens = lub::steady_sensitivities(scene, r, sens_params);
+  }
   try {
-    lub::write_run_file(out_path, scene_text, "lubsim", r, scene.warnings);
+    lub::write_run_file(out_path, scene_text, "lubsim", r, scene.warnings, sens);
   } catch (const std::exception& e) {
     std::cerr << "lubsim: cannot write " << out_path << ": " << e.what() << "\n";
     return 1;
@@ -158,6 +226,7 @@ int main(int argc, char** argv) {
                 names.method.c_str(), names.formulation.c_str(), r.stats.rtol, r.stats.atol, names.jacobian.c_str());
     for (const auto& f : lub::solver_fields())
       std::printf("  %-34s %.6g %s\n", f.name.c_str(), f.get(r), f.unit.c_str());
+    print_sensitivities(sens);
     std::printf("wrote    %s\n", out_path.c_str());
   }
   return r.status == lub::RunStatus::ok ? 0 : 3;

@@ -276,8 +276,41 @@ void put(h5::Object& obj, const ResultField& f, const RunResult& r) {
 }
 }  // namespace
 
+namespace {
+/// A derivative's unit: the metric's over the parameter's ("m/(Pa s)").
+std::string per(const std::string& metric_unit, const std::string& parameter_unit) {
+  if (parameter_unit.empty() || parameter_unit == "1") return metric_unit;
+  return metric_unit + "/(" + parameter_unit + ")";
+}
+
+void write_sensitivities(h5::File& f, const std::vector<Sensitivity>& sens) {
+  if (sens.empty()) return;
+  h5::Group g = f.require_group("sensitivities");
+  for (std::size_t k = 0; k < sens.size(); ++k) {
+    const Sensitivity& s = sens[k];
+    h5::Group p = g.require_group(std::to_string(k));
+    p.set_attribute("parameter", s.name);
+    p.set_attribute("parameter_unit", s.unit);
+    p.set_attribute("value", s.value);
+    p.set_attribute("status", s.ok ? "ok" : "failed");
+    p.set_attribute("message", s.message);
+    p.set_attribute_int64("periods_integrated", s.periods);
+    const auto& metrics = steady_metrics();
+    for (std::size_t i = 0; i < metrics.size(); ++i) {
+      const std::string unit = per(metrics[i].unit, s.unit);
+      const std::string name = metrics[i].name;
+      p.write_dataset(name, std::vector<double>{s.d_metric[i]}, unit)
+          .set_attribute("long_name", "d " + name + " / d " + s.name + " on the located orbit");
+      p.write_dataset(name + "_error", std::vector<double>{s.d_metric_error[i]}, unit)
+          .set_attribute("long_name", "error bar of d " + name + " / d " + s.name + " (step delta against 4 delta)");
+    }
+  }
+}
+}  // namespace
+
 void write_run_file(const std::string& path, const std::string& scene_text, const std::string& program,
-                    const RunResult& r, const std::vector<std::string>& warnings) {
+                    const RunResult& r, const std::vector<std::string>& warnings,
+                    const std::vector<Sensitivity>& sensitivities) {
   const std::string tmp = path + ".partial";
   {
     h5::File f = h5::File::create(tmp);
@@ -299,6 +332,7 @@ void write_run_file(const std::string& path, const std::string& scene_text, cons
       h5::Group og = f.require_group("orbit");
       write_series(og, r.orbit, channel_long_names(scene_text, r.orbit.names));
     }
+    write_sensitivities(f, sensitivities);
     h5::Group m = f.require_group("metrics");
     std::vector<std::string> units;
     m.set_attribute("classification", classification(r));

@@ -297,6 +297,37 @@ struct ContinuationStart {
   OrbitSeed seed;
   std::function<Scene(double lambda)> path;
 };
+/// A scene number whose steady metrics' sensitivity is asked for (lubsim --sensitivity):
+/// its name (the JSON Pointer), unit, value, and the scene with the number set to another
+/// value (which may throw InputError).
+struct SensitivityParameter {
+  std::string name;
+  std::string unit;
+  double value = 0.0;
+  std::function<Scene(double value)> scene_at;
+};
+
+/// d(metric)/dλ of each steady metric on a located orbit (docs/theory/sensitivities.md): by
+/// the implicit-function theorem dz*/dλ = (I − M)⁻¹ ∂P/∂λ, ∂P/∂λ a central difference of the
+/// period map at z* over λ(1 ± δ); each metric then measured on the orbits z* ± δλ dz*/dλ
+/// of the scenes at λ(1 ± δ) and differenced. At rtol/100, with δ = 1e-3 and again with 4δ:
+/// the error bar is the two estimates' difference.
+struct Sensitivity {
+  std::string name, unit;
+  double value = 0.0;
+  bool ok = false;
+  std::string message;               ///< why not, where !ok
+  std::vector<double> d_metric;      ///< per steady_metrics(): [metric unit / parameter unit]
+  std::vector<double> d_metric_error;
+  std::vector<double> d_orbit;       ///< dz*/dλ in the chart's coordinates, each in its unit / parameter unit
+  long long periods = 0;             ///< periods integrated for it
+};
+
+/// The sensitivities of `r`'s orbit (r ran `scene` and located an orbit: r.orbit_seed) to
+/// each parameter. A parameter whose value is 0, or an r without an orbit, gets !ok.
+std::vector<Sensitivity> steady_sensitivities(const Scene& scene, const RunResult& r,
+                                              const std::vector<SensitivityParameter>& parameters);
+
 /// Runs a validated scene from a neighbour's orbit: Newton on the period map from the
 /// seed (its monodromy the first Jacobian), stepping along the path when a step fails
 /// (halved on failure, doubled on quick convergence), then the orbit's multipliers,

@@ -79,7 +79,12 @@ void write_series(h5::Group& group, const Series& series, const std::vector<std:
 /// /solver attributes; /cycles, a table (one column per quantity, dimension `cycle`).
 /// Writes to PATH.partial and renames, so PATH is never left half-written. Root attribute
 /// `warnings`: the scene's plausibility warnings (Scene::warnings; an empty list if none).
+/// /sensitivities/<k>, one group per parameter asked for (steady_sensitivities): attributes
+/// `parameter` (its JSON Pointer), `parameter_unit`, `value`, `status` (`ok`, `failed`),
+/// `message`, `periods_integrated`; one 1-element dataset per steady metric, its derivative
+/// with `units` "<metric unit>/(<parameter unit>)", and `<metric>_error`.
 void write_run_file(const std::string& path, const std::string& scene_text, const std::string& program,
-                    const RunResult& result, const std::vector<std::string>& warnings = {});
+                    const RunResult& result, const std::vector<std::string>& warnings = {},
+                    const std::vector<Sensitivity>& sensitivities = {});
 
 }  // namespace lub

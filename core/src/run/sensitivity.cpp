@@ -1,0 +1,185 @@
+// Sensitivities of a located orbit's steady metrics to scene numbers (lub/run/run.hpp,
+// steady_sensitivities; docs/theory/sensitivities.md).
+//
+// The orbit z*(λ) solves G(y, λ) = P̃_λ(y) − y = 0 in the chart's scaled coordinates
+// y = z/u (u the chart's units at λ, so that a clearance change moves the orbit in
+// clearances, as the continuation's seeds do). By the implicit-function theorem
+//     dy*/dλ = −(∂G/∂y)⁻¹ ∂G/∂λ = (I − M̃)⁻¹ ∂G/∂λ,     M̃ = the monodromy in scaled units,
+// ∂G/∂λ from the period maps of the scenes at λ± = λ(1 ± δ) applied at the seed's state
+// (each through its own chart; a state that differs between the two charts is carried by
+// M̃ − I to first order). A metric's derivative is the central difference of the metric
+// measured on the first-order orbits y* ± δλ dy*/dλ of the scenes at λ±: O(δ²) off, like the
+// difference itself. Maps and measurements at rtol/100, so that the map's error (~1.7e3 rtol a
+// period) is small against the change δ makes.
+#include <cmath>
+#include <optional>
+#include <sstream>
+
+#include <Eigen/LU>
+
+#include "lub/common/constants.hpp"
+#include "run/orbit_seed.hpp"
+#include "run/steady_strategies.hpp"
+
+namespace lub {
+
+namespace detail {
+namespace {
+
+constexpr double kRelativeStep = 1e-3;   // δ: the step in λ, relative
+constexpr double kCoarseFactor = 4.0;    // the error bar's second estimate at 4δ
+
+/// The scaled residual G(y, λ) = (P(z) − z)/u of the seed placed in `cx`'s scene, at
+/// rtol × factor; its chart coordinates `y` = z/u; `failure` where it could not be evaluated.
+struct ScaledPeriod {
+  Eigen::VectorXd y, G;
+  std::vector<double> units;
+  std::string failure;
+};
+
+ScaledPeriod scaled_period(SteadyContext& cx, const OrbitSeed& seed, double factor) {
+  ScaledPeriod out;
+  const std::optional<StartState> base = place_seed(cx.rm, seed);
+  if (!base) {
+    out.failure = "the seed does not fit the scene's mechanism";
+    return out;
+  }
+  Chart chart(cx.rm, *base, cx.sim.shooting_coordinates);
+  if (chart.independent() != seed.chart) {
+    out.failure = "the scene's shooting chart differs from the orbit's";
+    return out;
+  }
+  PeriodMap P(cx.rm, chart, *base, seed.winding, factor, cx.res.stats, cx.res.steady.periods_integrated);
+  const Eigen::VectorXd z = chart.reduce(base->qv);
+  Eigen::VectorXd Pz(z.size());
+  if (P.apply(z.data(), Pz.data()) != 0) {
+    out.failure = "a period failed: " + P.last_failure();
+    return out;
+  }
+  out.units = chart.units();
+  out.y.resize(z.size());
+  out.G.resize(z.size());
+  for (Eigen::Index i = 0; i < z.size(); ++i) {
+    const double u = out.units[static_cast<size_t>(i)];
+    out.y(i) = z(i) / u;
+    out.G(i) = (Pz(i) - z(i)) / u;
+  }
+  return out;
+}
+
+/// The metrics of the scene in `cx` measured on the orbit whose scaled chart state is `y`
+/// (placed through the seed's chart at that scene), at rtol × factor.
+std::optional<Metrics> measure_at(SteadyContext& cx, const OrbitSeed& seed, const Eigen::VectorXd& y, double factor,
+                                  std::string& failure) {
+  const std::optional<StartState> base = place_seed(cx.rm, seed);
+  if (!base) {
+    failure = "the seed does not fit the scene's mechanism";
+    return std::nullopt;
+  }
+  Chart chart(cx.rm, *base, cx.sim.shooting_coordinates);
+  Eigen::VectorXd z(y.size());
+  for (Eigen::Index i = 0; i < y.size(); ++i) z(i) = y(i) * chart.units()[static_cast<size_t>(i)];
+  StartState start = *base;
+  if (!chart.expand(base->t, z.data(), start.qv)) {
+    failure = "the predicted orbit lies outside the chart";
+    return std::nullopt;
+  }
+  const SegmentResult m = cx.measure(start, factor, false);
+  if (m.res.status != RunStatus::ok) {
+    failure = "the measurement failed: " + m.res.message;
+    return std::nullopt;
+  }
+  return m.res.metrics;
+}
+
+/// One estimate of every metric's derivative with the relative step `delta`.
+struct Estimate {
+  bool ok = false;
+  std::string failure;
+  std::vector<double> d_metric;
+  Eigen::VectorXd dy;  ///< dy*/dλ, scaled
+};
+
+Estimate estimate(const SensitivityParameter& p, const OrbitSeed& seed, const Eigen::MatrixXd& M_scaled, double delta,
+                  long long& periods) {
+  Estimate e;
+  const double h = delta * p.value;
+  const Scene plus_scene = p.scene_at(p.value + h), minus_scene = p.scene_at(p.value - h);
+  SteadyContext plus(plus_scene, PeriodBudget(plus_scene.simulation.max_periods, 0));
+  SteadyContext minus(minus_scene, PeriodBudget(minus_scene.simulation.max_periods, 0));
+  const double tight = plus.tuning.tight_factor;
+  const ScaledPeriod a = scaled_period(plus, seed, tight), b = scaled_period(minus, seed, tight);
+  periods += plus.res.steady.periods_integrated + minus.res.steady.periods_integrated;
+  if (!a.failure.empty() || !b.failure.empty()) {
+    e.failure = !a.failure.empty() ? a.failure : b.failure;
+    return e;
+  }
+  const Eigen::Index n = a.y.size();
+  const Eigen::MatrixXd J = M_scaled - Eigen::MatrixXd::Identity(n, n);  // ∂G/∂y
+  // ∂G/∂λ: the two residuals, each carried to the same y (their charts' states may differ).
+  const Eigen::VectorXd dG = (a.G - b.G - J * (a.y - b.y)) / (2.0 * h);
+  e.dy = -J.fullPivLu().solve(dG);
+  const Eigen::VectorXd y0 = 0.5 * (a.y + b.y);
+  const long long before = plus.res.steady.periods_integrated + minus.res.steady.periods_integrated;
+  const std::optional<Metrics> mp = measure_at(plus, seed, y0 + h * e.dy, tight, e.failure);
+  const std::optional<Metrics> mm = mp ? measure_at(minus, seed, y0 - h * e.dy, tight, e.failure) : std::nullopt;
+  periods += plus.res.steady.periods_integrated + minus.res.steady.periods_integrated - before;
+  if (!mp || !mm) return e;
+  for (const SteadyMetric& sm : steady_metrics()) {
+    double d = (*mp).*sm.value - (*mm).*sm.value;
+    if (sm.angle) d = std::remainder(d, kTwoPi);
+    e.d_metric.push_back(d / (2.0 * h));
+  }
+  e.ok = true;
+  return e;
+}
+
+}  // namespace
+}  // namespace detail
+
+std::vector<Sensitivity> steady_sensitivities(const Scene& /*scene*/, const RunResult& r,
+                                              const std::vector<SensitivityParameter>& parameters) {
+  std::vector<Sensitivity> out;
+  for (const SensitivityParameter& p : parameters) {
+    Sensitivity s;
+    s.name = p.name;
+    s.unit = p.unit;
+    s.value = p.value;
+    const std::size_t nm = steady_metrics().size();
+    s.d_metric.assign(nm, kNaN);
+    s.d_metric_error.assign(nm, kNaN);
+    try {
+      if (!r.orbit_seed.valid() || r.orbit_seed.monodromy.empty()) {
+        s.message = "no located orbit with its monodromy: sensitivities need one";
+      } else if (!(p.value != 0.0) || !std::isfinite(p.value)) {
+        s.message = "the value is 0: the step is 1e-3 of it";
+      } else {
+        // The monodromy in the seed's scaled coordinates (as the seed stores it).
+        const OrbitSeed& seed = r.orbit_seed;
+        const auto n = static_cast<Eigen::Index>(std::lround(std::sqrt(static_cast<double>(seed.monodromy.size()))));
+        const Eigen::MatrixXd M = Eigen::Map<const Eigen::MatrixXd>(seed.monodromy.data(), n, n);
+        const detail::Estimate fine = detail::estimate(p, seed, M, detail::kRelativeStep, s.periods);
+        const detail::Estimate coarse =
+            fine.ok ? detail::estimate(p, seed, M, detail::kCoarseFactor * detail::kRelativeStep, s.periods)
+                    : detail::Estimate{};
+        if (!fine.ok) {
+          s.message = fine.failure;
+        } else {
+          s.ok = true;
+          s.d_metric = fine.d_metric;
+          s.d_orbit.assign(fine.dy.data(), fine.dy.data() + fine.dy.size());
+          for (std::size_t i = 0; i < nm; ++i)
+            s.d_metric_error[i] = coarse.ok ? std::abs(fine.d_metric[i] - coarse.d_metric[i]) : kNaN;
+          if (!coarse.ok) s.message = "no error bar: " + coarse.failure;
+        }
+      }
+    } catch (const std::exception& e) {
+      s.ok = false;
+      s.message = e.what();
+    }
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+}  // namespace lub
