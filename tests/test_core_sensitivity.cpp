@@ -85,6 +85,28 @@ TEST(Sensitivity, AgreesWithCentralDifferencesOfSeparatelyLocatedOrbits) {
   }
 }
 
+// A second, exact route: the printed (long-bearing) law's force is μ L times a function of the
+// film's state, and nothing else in the mechanism depends on μ or L, so the orbit and every
+// metric depend on the product μ L alone: L ∂m/∂L = μ ∂m/∂μ. Bound: the two error bars, and
+// 1e-4 of the value for what the bars do not see (the maps' noise at rtol/100 over the step).
+TEST(Sensitivity, ThePrintedLawsMetricsDependOnViscosityTimesLength) {
+  const json doc = paper_case();
+  const lub::Scene scene = lub::parse_scene(doc);
+  const lub::RunResult r = lub::run_scene(scene);
+  ASSERT_TRUE(lub::has_orbit(r.steady.kind)) << r.message;
+  const auto s = lub::steady_sensitivities(
+      scene, r, {parameter(doc, "/joints/3/viscosity_Pa_s", "Pa s"), parameter(doc, "/joints/3/length_m", "m")});
+  ASSERT_TRUE(s[0].ok && s[1].ok) << s[0].message << s[1].message;
+  const auto& metrics = lub::steady_metrics();
+  for (std::size_t i = 0; i < metrics.size(); ++i) {
+    const double mu = s[0].value * s[0].d_metric[i], len = s[1].value * s[1].d_metric[i];
+    if (!std::isfinite(mu)) continue;
+    const double bound =
+        s[0].value * s[0].d_metric_error[i] + s[1].value * s[1].d_metric_error[i] + 1e-4 * std::abs(mu);
+    EXPECT_NEAR(mu, len, bound) << metrics[i].name;
+  }
+}
+
 TEST(Sensitivity, ARunWithoutAnOrbitSaysSo) {
   json doc = paper_case();
   doc["simulation"]["steady"] = "transient";

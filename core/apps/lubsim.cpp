@@ -97,48 +97,6 @@ int parse_options(int argc, char** argv, Options& o) {
 
 }  // namespace
 
-// The unit of a scene number, from its key's suffix (the scene format names every unit so).
-std::string unit_of_key(const std::string& pointer) {
-  static const std::pair<const char*, const char*> suffixes[] = {
-      {"_Pa_s", "Pa s"}, {"_kg_m2", "kg m2"}, {"_m_s2", "m s-2"}, {"_m_s", "m s-1"}, {"_rad_s", "rad s-1"},
-      {"_rpm", "rpm"},   {"_kg", "kg"},       {"_rad", "rad"},    {"_Pa", "Pa"},     {"_m", "m"},
-      {"_s", "s"},       {"_N", "N"}};
-  for (const auto& [suffix, unit] : suffixes) {
-    const std::string s(suffix);
-    if (pointer.size() > s.size() && pointer.compare(pointer.size() - s.size(), s.size(), s) == 0) return unit;
-  }
-  return "1";
-}
-
-// The parameters --sensitivity names: each a number of the effective scene `doc`, not 0.
-// Throws InputError naming the option, the pointer and the rule.
-std::vector<lub::SensitivityParameter> sensitivity_parameters(const nlohmann::json& doc,
-                                                              const std::vector<std::string>& pointers) {
-  std::vector<lub::SensitivityParameter> out;
-  for (const std::string& ptr : pointers) {
-    const nlohmann::json* value = nullptr;
-    try {
-      value = &doc.at(nlohmann::json::json_pointer(ptr));
-    } catch (const nlohmann::json::exception&) {
-    }
-    if (!value || !value->is_number())
-      throw lub::InputError("--sensitivity " + ptr + ": names no number of the scene (a JSON Pointer to a numeric value)");
-    if (value->get<double>() == 0.0)
-      throw lub::InputError("--sensitivity " + ptr + " = 0: must be non-zero (the step is 1e-3 of the value)");
-    lub::SensitivityParameter p;
-    p.name = ptr;
-    p.unit = unit_of_key(ptr);
-    p.value = value->get<double>();
-    p.scene_at = [doc, ptr](double v) {
-      nlohmann::json d = doc;
-      d[nlohmann::json::json_pointer(ptr)] = v;
-      return lub::parse_scene(d);
-    };
-    out.push_back(std::move(p));
-  }
-  return out;
-}
-
 void print_sensitivities(const std::vector<lub::Sensitivity>& sens) {
   for (const lub::Sensitivity& s : sens) {
     std::printf("sensitivity to %s = %.6g %s: %s%s%s (%lld periods)\n", s.name.c_str(), s.value, s.unit.c_str(),
@@ -146,8 +104,8 @@ void print_sensitivities(const std::vector<lub::Sensitivity>& sens) {
     if (!s.ok) continue;
     const auto& metrics = lub::steady_metrics();
     for (std::size_t i = 0; i < metrics.size(); ++i)
-      std::printf("  d %-30s %+.6g ± %.2g %s/(%s)\n", metrics[i].name, s.d_metric[i], s.d_metric_error[i],
-                  metrics[i].unit, s.unit.c_str());
+      std::printf("  d %-30s %+.6g ± %.2g %s\n", metrics[i].name, s.d_metric[i], s.d_metric_error[i],
+                  lub::derivative_unit(metrics[i].unit, s.unit).c_str());
   }
 }
 
@@ -172,7 +130,7 @@ int main(int argc, char** argv) {
     for (const auto& s : sets) lub::apply_override(doc, s);
     scene = lub::parse_scene(doc);
     scene_text = doc.dump(2);
-    sens_params = sensitivity_parameters(doc, o.sensitivities);
+    sens_params = lub::sensitivity_parameters(doc, o.sensitivities, "--sensitivity");
   } catch (const lub::InputError& e) {
     std::cerr << "lubsim: " << scene_path << ": " << e.what() << "\n";
     return 2;

@@ -67,10 +67,12 @@ struct Column {
 // InputError (lubsim --strict), raised before any work.
 py::dict simulate(const std::optional<std::string>& scene_path, const std::optional<std::string>& scene_text,
                   const std::string& origin, const std::vector<std::string>& assignments,
-                  const std::optional<std::string>& output, const std::string& program, bool strict) {
+                  const std::optional<std::string>& output, const std::string& program, bool strict,
+                  const std::vector<std::string>& sensitivity) {
   lub::RunResult r;
   std::string effective;
   std::vector<std::string> warnings;
+  std::vector<lub::Sensitivity> sens;
   {
     py::gil_scoped_release release;
     // The output path first, as lubsim: refused before any work, nothing created.
@@ -88,12 +90,14 @@ py::dict simulate(const std::optional<std::string>& scene_path, const std::optio
         throw lub::InputError(all + "; refused under strict=True");
       }
       effective = doc.dump(2);
+      const std::vector<lub::SensitivityParameter> params = lub::sensitivity_parameters(doc, sensitivity, "sensitivity");
       r = lub::run_scene(scene);  // throws InputError only if the mechanism cannot assemble
+      if (!params.empty()) sens = lub::steady_sensitivities(scene, r, params);
     } catch (const lub::InputError& e) {
       // lubsim prints "lubsim: SCENE: message"; the message here is "SCENE: message".
       throw lub::InputError(origin + ": " + e.what());
     }
-    if (output) lub::write_run_file(*output, effective, program, r, warnings);
+    if (output) lub::write_run_file(*output, effective, program, r, warnings, sens);
   }
   py::dict out;
   out["status"] = lub::to_string(r.status);
@@ -110,6 +114,26 @@ py::dict simulate(const std::optional<std::string>& scene_path, const std::optio
   out["revision"] = lub::build_revision();
   out["warnings"] = warnings;
   out["notes"] = r.notes;
+  py::list sl;
+  for (const lub::Sensitivity& s : sens) {
+    py::dict d;
+    d["parameter"] = s.name;
+    d["unit"] = s.unit;
+    d["value"] = s.value;
+    d["ok"] = s.ok;
+    d["message"] = s.message;
+    d["periods"] = s.periods;
+    d["d_metric"] = to_array(s.d_metric);
+    d["d_metric_error"] = to_array(s.d_metric_error);
+    std::vector<std::string> units;
+    for (const lub::SteadyMetric& m : lub::steady_metrics()) units.push_back(lub::derivative_unit(m.unit, s.unit));
+    d["units"] = units;
+    sl.append(d);
+  }
+  out["sensitivities"] = sl;
+  std::vector<std::string> metric_names;
+  for (const lub::SteadyMetric& m : lub::steady_metrics()) metric_names.emplace_back(m.name);
+  out["steady_metric_names"] = metric_names;
   std::vector<Scalar> metrics, solver;
   for (const auto& f : lub::metric_fields()) metrics.push_back({f.name, f.get(r), f.unit, f.integer, f.long_name});
   if (lub::has_energy_balance(r))  // as the run file
@@ -351,6 +375,7 @@ PYBIND11_MODULE(_lubjoint, m) {
       .def_readonly("values", &Column::values);
   m.def("simulate", &simulate, py::arg("scene_path"), py::arg("scene_text"), py::arg("origin"),
         py::arg("assignments"), py::arg("output"), py::arg("program") = "lubjoint", py::arg("strict") = false,
+        py::arg("sensitivity") = std::vector<std::string>{},
         "Runs one scene as lubsim does (GIL released); returns a dict with Scalar/Column records. See lubjoint.simulate.");
   m.def("force", &force, py::arg("law"), py::arg("eps"), py::arg("eps_dot"), py::arg("wedge_rad_s"),
         py::arg("radius_m"), py::arg("clearance_m"), py::arg("length_m"), py::arg("viscosity_Pa_s"),

@@ -659,3 +659,17 @@ def test_pressure_of_the_finite_bearing_peaks_where_its_steady_solution_says():
     assert p.max() == pytest.approx(s["peak_pressure_Pa"], rel=0.02)
     with pytest.raises(lubjoint.InputError, match="eps = 1"):
         lubjoint.pressure("frene_long", theta, 1.0, 0.0, 1.0, **g)
+
+
+def test_simulate_sensitivities_are_variables_with_units():
+    # The printed law's force is mu L times a function of the state: mu dh/dmu = L dh/dL.
+    over = {"/simulation/steady": "auto", "/outputs/channels": []}
+    ds = lubjoint.simulate(SCENE, over, sensitivity=["/joints/3/viscosity_Pa_s", "/joints/3/length_m"])
+    mu = ds["d_min_film_thickness_m_per_joints_3_viscosity_Pa_s"]
+    length = ds["d_min_film_thickness_m_per_joints_3_length_m"]
+    assert mu.attrs["units"] == "m/(Pa s)" and length.attrs["units"] == "m/m"
+    assert mu.attrs["parameter"] == "/joints/3/viscosity_Pa_s"
+    assert float(mu) * 0.4 == pytest.approx(float(length) * 0.04, rel=1e-3)
+    assert ds.attrs["sensitivities"] == ["/joints/3/viscosity_Pa_s: ok", "/joints/3/length_m: ok"]
+    with pytest.raises(lubjoint.InputError, match="sensitivity /joints/3/force_law: names no number"):
+        lubjoint.simulate(SCENE, over, sensitivity="/joints/3/force_law")

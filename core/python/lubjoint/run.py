@@ -48,7 +48,7 @@ def _assignment(pointer, value):
     return f"{pointer}={json.dumps(value)}"
 
 
-def simulate(scene, overrides=None, output=None, *, strict=False):
+def simulate(scene, overrides=None, output=None, *, strict=False, sensitivity=()):
     """Run one scene, as ``lubsim`` does, and return it as an ``xarray.Dataset``.
 
     Parameters
@@ -68,6 +68,13 @@ def simulate(scene, overrides=None, output=None, *, strict=False):
     strict : bool, optional
         lubsim's ``--strict``: an implausible value is an ``InputError`` (nothing run or
         written) instead of a ``PlausibilityWarning``.
+    sensitivity : sequence of str, optional
+        lubsim's ``--sensitivity``: JSON Pointers of scene numbers; every steady metric of the
+        located orbit is differentiated with respect to each (docs/theory/sensitivities.md).
+        In the Dataset: ``d_<metric>_per_<key>`` (``<key>`` the pointer without its leading
+        slash, ``/`` as ``_``) with ``units`` "metric unit/(parameter unit)", ``parameter``
+        and ``long_name``, and ``..._error``; ``attrs["sensitivities"]``: each pointer's
+        status and message.
 
     Returns
     -------
@@ -122,7 +129,10 @@ def simulate(scene, overrides=None, output=None, *, strict=False):
     assignments = [_assignment(p, v) for p, v in (overrides or {}).items()]
     out_path = None if output is None else os.fspath(output)
 
-    r = _lubjoint.simulate(scene_path, scene_text, origin, assignments, out_path, strict=bool(strict))
+    if isinstance(sensitivity, str):
+        sensitivity = [sensitivity]
+    r = _lubjoint.simulate(scene_path, scene_text, origin, assignments, out_path, strict=bool(strict),
+                           sensitivity=[str(p) for p in sensitivity])
     for w in r["warnings"]:
         warnings.warn(w, PlausibilityWarning, stacklevel=2)
     for n in r["notes"]:
@@ -166,6 +176,15 @@ def simulate(scene, overrides=None, output=None, *, strict=False):
                                        {"units": "1", "long_name": "Floquet multipliers' moduli, largest first"})
     data_vars["multiplier_angle_rad"] = ("multiplier", r["multiplier_angle_rad"],
                                          {"units": "rad", "long_name": "Floquet multipliers' angles"})
+    sens_status = []
+    for s in r["sensitivities"]:
+        key = s["parameter"].lstrip("/").replace("/", "_")
+        sens_status.append(f"{s['parameter']}: {'ok' if s['ok'] else 'failed'}" + (f": {s['message']}" if s["message"] else ""))
+        for name, units, d, e in zip(r["steady_metric_names"], s["units"], s["d_metric"], s["d_metric_error"]):
+            for suffix, v, what in (("", d, "d"), ("_error", e, "error bar of d")):
+                data_vars[f"d_{name}_per_{key}{suffix}"] = ((), np.float64(v), attrs_of(
+                    units, f"{what} {name} / d {s['parameter']} on the located orbit", kind="sensitivity",
+                    parameter=s["parameter"]))
     settings = r["solver_settings"]
     attrs = {
         "status": r["status"],
@@ -183,6 +202,7 @@ def simulate(scene, overrides=None, output=None, *, strict=False):
         "solver_atol": settings["atol"],
         "warnings": list(r["warnings"]),
         "notes": list(r["notes"]),
+        "sensitivities": sens_status,
     }
     if out_path is not None:
         attrs["output"] = out_path

@@ -276,12 +276,13 @@ void put(h5::Object& obj, const ResultField& f, const RunResult& r) {
 }
 }  // namespace
 
-namespace {
-/// A derivative's unit: the metric's over the parameter's ("m/(Pa s)").
-std::string per(const std::string& metric_unit, const std::string& parameter_unit) {
+std::string derivative_unit(const std::string& metric_unit, const std::string& parameter_unit) {
   if (parameter_unit.empty() || parameter_unit == "1") return metric_unit;
+  if (parameter_unit.find(' ') == std::string::npos) return metric_unit + "/" + parameter_unit;
   return metric_unit + "/(" + parameter_unit + ")";
 }
+
+namespace {
 
 void write_sensitivities(h5::File& f, const std::vector<Sensitivity>& sens) {
   if (sens.empty()) return;
@@ -297,7 +298,7 @@ void write_sensitivities(h5::File& f, const std::vector<Sensitivity>& sens) {
     p.set_attribute_int64("periods_integrated", s.periods);
     const auto& metrics = steady_metrics();
     for (std::size_t i = 0; i < metrics.size(); ++i) {
-      const std::string unit = per(metrics[i].unit, s.unit);
+      const std::string unit = derivative_unit(metrics[i].unit, s.unit);
       const std::string name = metrics[i].name;
       p.write_dataset(name, std::vector<double>{s.d_metric[i]}, unit)
           .set_attribute("long_name", "d " + name + " / d " + s.name + " on the located orbit");

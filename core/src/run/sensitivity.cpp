@@ -134,8 +134,49 @@ Estimate estimate(const SensitivityParameter& p, const OrbitSeed& seed, const Ei
   return e;
 }
 
+/// The unit of a scene number, from its key's suffix (the scene format names every unit so).
+std::string unit_of_key(const std::string& pointer) {
+  static const std::pair<const char*, const char*> suffixes[] = {
+      {"_Pa_s", "Pa s"}, {"_kg_m2", "kg m2"}, {"_m_s2", "m s-2"}, {"_m_s", "m s-1"}, {"_rad_s", "rad s-1"},
+      {"_rpm", "rpm"},   {"_kg", "kg"},       {"_rad", "rad"},    {"_Pa", "Pa"},     {"_m", "m"},
+      {"_s", "s"},       {"_N", "N"}};
+  for (const auto& [suffix, unit] : suffixes) {
+    const std::string s(suffix);
+    if (pointer.size() > s.size() && pointer.compare(pointer.size() - s.size(), s.size(), s) == 0) return unit;
+  }
+  return "1";
+}
+
 }  // namespace
 }  // namespace detail
+
+std::vector<SensitivityParameter> sensitivity_parameters(const nlohmann::json& doc,
+                                                         const std::vector<std::string>& pointers,
+                                                         const std::string& option) {
+  std::vector<SensitivityParameter> out;
+  for (const std::string& ptr : pointers) {
+    const nlohmann::json* value = nullptr;
+    try {
+      value = &doc.at(nlohmann::json::json_pointer(ptr));
+    } catch (const nlohmann::json::exception&) {
+    }
+    if (!value || !value->is_number())
+      throw InputError(option + " " + ptr + ": names no number of the scene (a JSON Pointer to a numeric value)");
+    if (value->get<double>() == 0.0)
+      throw InputError(option + " " + ptr + " = 0: must be non-zero (the step is 1e-3 of the value)");
+    SensitivityParameter p;
+    p.name = ptr;
+    p.unit = detail::unit_of_key(ptr);
+    p.value = value->get<double>();
+    p.scene_at = [doc, ptr](double v) {
+      nlohmann::json d = doc;
+      d[nlohmann::json::json_pointer(ptr)] = v;
+      return parse_scene(d);
+    };
+    out.push_back(std::move(p));
+  }
+  return out;
+}
 
 std::vector<Sensitivity> steady_sensitivities(const Scene& /*scene*/, const RunResult& r,
                                               const std::vector<SensitivityParameter>& parameters) {

@@ -323,6 +323,14 @@ struct Sensitivity {
   long long periods = 0;             ///< periods integrated for it
 };
 
+/// The parameters `pointers` name in the effective scene `doc`: each a JSON Pointer to a
+/// non-zero number; its unit from its key's suffix (`_Pa_s`, `_m`, `_rpm`, …; "1" for none);
+/// its scene_at sets the number in a copy of `doc` and parses it. Throws InputError naming
+/// `option`, the pointer and the rule.
+std::vector<SensitivityParameter> sensitivity_parameters(const nlohmann::json& doc,
+                                                         const std::vector<std::string>& pointers,
+                                                         const std::string& option);
+
 /// The sensitivities of `r`'s orbit (r ran `scene` and located an orbit: r.orbit_seed) to
 /// each parameter. A parameter whose value is 0, or an r without an orbit, gets !ok.
 std::vector<Sensitivity> steady_sensitivities(const Scene& scene, const RunResult& r,

@@ -73,6 +73,10 @@ std::vector<std::string> channel_long_names(const std::string& scene_json,
 /// (h5netcdf) indexes the group by time; group attribute `channels`.
 void write_series(h5::Group& group, const Series& series, const std::vector<std::string>& long_names);
 
+/// A derivative's unit, the metric's over the parameter's, UDUNITS syntax: "m/(Pa s)",
+/// "N/rpm", the metric's own for a dimensionless parameter.
+std::string derivative_unit(const std::string& metric_unit, const std::string& parameter_unit);
+
 /// Writes a run file (lubsim's run.h5): root attributes `scene` (the effective scene
 /// JSON), `program`, `format`, `version`, `revision`, `status`, `message`;
 /// /series/<channel> on the dimension scale /series/t (write_series); /metrics and
@@ -82,7 +86,7 @@ void write_series(h5::Group& group, const Series& series, const std::vector<std:
 /// /sensitivities/<k>, one group per parameter asked for (steady_sensitivities): attributes
 /// `parameter` (its JSON Pointer), `parameter_unit`, `value`, `status` (`ok`, `failed`),
 /// `message`, `periods_integrated`; one 1-element dataset per steady metric, its derivative
-/// with `units` "<metric unit>/(<parameter unit>)", and `<metric>_error`.
+/// with `units` derivative_unit(metric, parameter), and `<metric>_error`.
 void write_run_file(const std::string& path, const std::string& scene_text, const std::string& program,
                     const RunResult& result, const std::vector<std::string>& warnings = {},
                     const std::vector<Sensitivity>& sensitivities = {});
