@@ -48,6 +48,10 @@ TEST(BearingOutputs, ASpinningShaftsPowerLossAndPeakPressureAreTheSteadyBearings
   const double power = s.outputs.journal_friction_torque_Nm * in.speed_rad_s;
   EXPECT_NEAR(r.metrics.film_power_loss_W, power, 1e-5 * power);
   EXPECT_NEAR(r.metrics.peak_film_pressure_Pa, s.outputs.peak_pressure_Pa, 1e-5 * s.outputs.peak_pressure_Pa);
+  // Where it sits: θ from the line of maximum film, as the steady bearing's (its sensitivity
+  // to ε is O(1) rad per unit ε: 1e-5 rad).
+  EXPECT_NEAR(r.metrics.peak_pressure_angle_rad, s.outputs.peak_pressure_angle_rad, 1e-5);
+  EXPECT_TRUE(std::isfinite(r.metrics.crank_angle_at_peak_pressure_rad));
   std::printf("[ measured ] run: power %.8g W, peak %.8g Pa; steady bearing: %.8g W, %.8g Pa\n",
               r.metrics.film_power_loss_W, r.metrics.peak_film_pressure_Pa, power, s.outputs.peak_pressure_Pa);
 }
@@ -57,6 +61,8 @@ TEST(BearingOutputs, PeakPressureIsMeasuredOnlyWhereTheSceneAsks) {
   const lub::RunResult on = lub::run_scene(lub::parse_scene(spinning_shaft(true)));
   ASSERT_EQ(off.status, lub::RunStatus::ok) << off.message;
   EXPECT_TRUE(std::isnan(off.metrics.peak_film_pressure_Pa));
+  EXPECT_TRUE(std::isnan(off.metrics.peak_pressure_angle_rad));
+  EXPECT_TRUE(std::isnan(off.metrics.crank_angle_at_peak_pressure_rad));
   EXPECT_GT(on.metrics.peak_film_pressure_Pa, 0.0);
   // Nothing else moves: the measurement reads the state, it does not change the run.
   EXPECT_EQ(off.metrics.min_film_thickness_m, on.metrics.min_film_thickness_m);

@@ -65,10 +65,18 @@ void CycleRecorder::film_outputs(double t, const Workspace& ws, int f, const dou
   prev_power_ = {true, t, power};
   if (!scene_.metrics.peak_pressure) return;
   // The finite bearing's field is the one this observation's evaluation just solved.
-  const double peak = fe.law == ForceLaw::finite_reynolds && ws.film_solvers[f]
-                          ? ws.film_solvers[f]->outputs(wj - wb).peak_pressure_Pa
-                          : peak_film_pressure(fe.law, fe.geometry, fe.viscosity, fk.state).pressure_Pa;
-  cur_.peak_film_pressure_Pa = std::max(cur_.peak_film_pressure_Pa, peak);
+  PeakPressure peak;
+  if (fe.law == ForceLaw::finite_reynolds && ws.film_solvers[f]) {
+    const FilmOutputs o = ws.film_solvers[f]->outputs(wj - wb);
+    peak = {o.peak_pressure_Pa, o.peak_pressure_angle_rad};
+  } else {
+    peak = peak_film_pressure(fe.law, fe.geometry, fe.viscosity, fk.state);
+  }
+  if (peak.pressure_Pa > cur_.peak_film_pressure_Pa) {
+    cur_.peak_film_pressure_Pa = peak.pressure_Pa;
+    cur_.crank_angle_at_peak_pressure_rad = phase_angle(t);
+    cur_.peak_pressure_angle_rad = peak.angle_rad;
+  }
 }
 
 void CycleRecorder::measure(double t, const Workspace& ws, const double* v, const double* qdd) {
@@ -158,7 +166,11 @@ void CycleRecorder::close(double t_end, std::vector<CycleMetrics>& cycles) {
   // Not measured: no film at the metric joint, or no peak pressure asked for.
   const int mjf = scene_.metrics.joint >= 0 ? m_.joint_film[scene_.metrics.joint] : -1;
   if (mjf < 0) cur_.film_power_loss_W = std::numeric_limits<double>::quiet_NaN();
-  if (mjf < 0 || !scene_.metrics.peak_pressure) cur_.peak_film_pressure_Pa = std::numeric_limits<double>::quiet_NaN();
+  if (mjf < 0 || !scene_.metrics.peak_pressure) {
+    cur_.peak_film_pressure_Pa = std::numeric_limits<double>::quiet_NaN();
+    cur_.crank_angle_at_peak_pressure_rad = std::numeric_limits<double>::quiet_NaN();
+    cur_.peak_pressure_angle_rad = std::numeric_limits<double>::quiet_NaN();
+  }
   cycles.push_back(cur_);
   std::swap(orbit_cur_, orbit_prev_);
   phase_index_ = 0;

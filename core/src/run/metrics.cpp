@@ -9,8 +9,8 @@
 
 namespace lub {
 
-const std::array<SteadyMetric, 10>& steady_metrics() {
-  static const std::array<SteadyMetric, 10> table{{
+const std::array<SteadyMetric, 12>& steady_metrics() {
+  static const std::array<SteadyMetric, 12> table{{
       {"min_film_thickness_m", "m", "minimum film thickness h = c (1 - eps) over the metric cycles",
        "minimum film thickness in the cycle",
        ": change at a 100x tighter rtol (+ the transient's remaining change)", &Metrics::min_film_thickness_m,
@@ -42,6 +42,13 @@ const std::array<SteadyMetric, 10>& steady_metrics() {
        "largest film pressure of the metric joint over the metric cycles (metrics.peak_pressure; NaN: not measured)",
        "largest film pressure of the metric joint in the cycle", "", &Metrics::peak_film_pressure_Pa,
        &Metrics::peak_film_pressure_Pa_error, &CycleMetrics::peak_film_pressure_Pa, false},
+      {"crank_angle_at_peak_pressure_rad", "rad", "crank angle at the peak film pressure (NaN: not measured)",
+       "crank angle at the cycle's peak film pressure", "", &Metrics::crank_angle_at_peak_pressure_rad,
+       &Metrics::crank_angle_at_peak_pressure_rad_error, &CycleMetrics::crank_angle_at_peak_pressure_rad, true},
+      {"peak_pressure_angle_rad", "rad",
+       "angle of the peak film pressure in the bearing, from the line of maximum film thickness (NaN: not measured)",
+       "angle of the cycle's peak film pressure from the line of maximum film", "", &Metrics::peak_pressure_angle_rad,
+       &Metrics::peak_pressure_angle_rad_error, &CycleMetrics::peak_pressure_angle_rad, true},
       {"film_power_loss_W", "W",
        "film power loss of the metric joint (shear and pressure), mean over the metric cycles",
        "film power loss of the metric joint, mean over the cycle", "", &Metrics::film_power_loss_W,
@@ -77,14 +84,22 @@ Metrics steady_cycle_metrics(const Scene& scene, const std::vector<CycleMetrics>
     mt.peak_acceleration_m_s2 = std::max(mt.peak_acceleration_m_s2, c.peak_acceleration_m_s2);
     mt.peak_asperity_load_N = std::max(mt.peak_asperity_load_N, c.peak_asperity_load_N);
     mt.asperity_load_ratio = std::max(mt.asperity_load_ratio, c.asperity_load_ratio);
-    mt.peak_film_pressure_Pa = std::max(mt.peak_film_pressure_Pa, c.peak_film_pressure_Pa);
+    if (c.peak_film_pressure_Pa > mt.peak_film_pressure_Pa) {
+      mt.peak_film_pressure_Pa = c.peak_film_pressure_Pa;
+      mt.crank_angle_at_peak_pressure_rad = c.crank_angle_at_peak_pressure_rad;
+      mt.peak_pressure_angle_rad = c.peak_pressure_angle_rad;
+    }
     mt.film_power_loss_W += c.film_power_loss_W / M;
     mt.periodicity = std::max(mt.periodicity, c.periodicity);
     mt.load_reverses = mt.load_reverses || c.load_reverses;
   }
   const int mj = scene.metrics.joint;
   mt.has_film = mj >= 0 && scene.joints[mj].type == JointType::lubricated_revolute;
-  if (!mt.has_film || !scene.metrics.peak_pressure) mt.peak_film_pressure_Pa = std::numeric_limits<double>::quiet_NaN();
+  if (!mt.has_film || !scene.metrics.peak_pressure) {
+    mt.peak_film_pressure_Pa = std::numeric_limits<double>::quiet_NaN();
+    mt.crank_angle_at_peak_pressure_rad = std::numeric_limits<double>::quiet_NaN();
+    mt.peak_pressure_angle_rad = std::numeric_limits<double>::quiet_NaN();
+  }
   if (!mt.has_film) mt.film_power_loss_W = std::numeric_limits<double>::quiet_NaN();
   if (!mt.has_film || !std::isfinite(mt.min_film_thickness_m)) mt.min_film_thickness_m = 0.0;
   if (mt.has_film) {

@@ -86,6 +86,9 @@ struct CycleMetrics {
   /// The metric joint's largest film pressure [Pa] (NaN: not asked for) and its film power loss averaged over
   /// the cycle [W] (lub/bearing/film_outputs.hpp)
   double peak_film_pressure_Pa = 0.0, film_power_loss_W = 0.0;
+  /// Where the peak pressure was: the crank angle [rad] and θ from the line of maximum film
+  /// [rad, in [0, 2π)] (NaN where the peak pressure is not measured)
+  double crank_angle_at_peak_pressure_rad = 0.0, peak_pressure_angle_rad = 0.0;
   double periodicity = -1.0;  ///< max orbit distance to the previous cycle / c (-1: first cycle)
   /// The metric film's force turned by more than 90° from its direction at the cycle's
   /// start, in the bearing body's frame (lub/bearing/law_validity.hpp)
@@ -188,6 +191,8 @@ struct Metrics {
   double peak_acceleration_m_s2 = 0.0;  ///< |a| of the metric body
   double peak_asperity_load_N = 0.0;    ///< Greenwood–Tripp load at the largest ε (mixed lubrication)
   double asperity_load_ratio = 0.0;     ///< peak asperity load / peak joint force
+  double crank_angle_at_peak_pressure_rad = 0.0;  ///< where it was, in the crank's cycle
+  double peak_pressure_angle_rad = 0.0;           ///< θ there, from the line of maximum film
   double peak_film_pressure_Pa = 0.0;   ///< largest film pressure of the metric joint
   double film_power_loss_W = 0.0;       ///< its film power loss, mean over the metric cycles
   double periodicity = -1.0;         ///< the largest over the metric cycles (-1: unknown)
@@ -203,6 +208,8 @@ struct Metrics {
   double peak_asperity_load_N_error = std::numeric_limits<double>::quiet_NaN();
   double asperity_load_ratio_error = std::numeric_limits<double>::quiet_NaN();
   double peak_film_pressure_Pa_error = std::numeric_limits<double>::quiet_NaN();
+  double crank_angle_at_peak_pressure_rad_error = std::numeric_limits<double>::quiet_NaN();
+  double peak_pressure_angle_rad_error = std::numeric_limits<double>::quiet_NaN();
   double film_power_loss_W_error = std::numeric_limits<double>::quiet_NaN();
   bool steady = false;
   int cycles_to_steady = -1;         ///< cycles run when the criterion first held
@@ -234,8 +241,8 @@ struct SteadyMetric {
   double CycleMetrics::*per_cycle;
   bool angle;
 };
-/// The ten steady-cycle metrics, in column order.
-const std::array<SteadyMetric, 10>& steady_metrics();
+/// The twelve steady-cycle metrics, in column order.
+const std::array<SteadyMetric, 12>& steady_metrics();
 /// |a − b|, or for an angle the distance on the circle (in [0, π]).
 double metric_distance(const SteadyMetric& metric, double a, double b);
 
