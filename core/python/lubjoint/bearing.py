@@ -135,10 +135,10 @@ def steady_bearing(law, *, load_N, speed_rpm, radius_m, clearance_m, length_m, v
         ``attitude_angle_deg`` [deg] (load line to line of centres),
         ``min_film_thickness_m`` [m], ``radial_N``, ``tangential_N`` [N] (``|F|`` = W),
         ``friction_torque_Nm`` (on the journal), ``friction_coefficient``,
-        ``friction_variable`` ((R/c) f), ``power_loss_W``; for ``finite_reynolds`` also
-        ``peak_pressure_Pa``, ``peak_pressure_angle_deg`` (from the line of maximum film),
-        ``load_over_peak_pressure`` (P/p_max), ``inflow_m3_s``, ``side_flow_m3_s``,
-        ``flow_variable`` (Q/(R c N L)), ``side_flow_ratio`` (Q_s/Q);
+        ``friction_variable`` ((R/c) f), ``power_loss_W``, ``peak_pressure_Pa``,
+        ``peak_pressure_angle_deg`` (from the line of maximum film), ``load_over_peak_pressure``
+        (P/p_max); for ``finite_reynolds`` and the short-bearing laws also ``inflow_m3_s``,
+        ``side_flow_m3_s``, ``flow_variable`` (Q/(R c N L)), ``side_flow_ratio`` (Q_s/Q);
         ``force_law_evaluations``; if not, ``message`` (lubbearing's exit status 3);
         ``warnings``: the plausibility warnings (a list of str; each also issued as a
         ``PlausibilityWarning``).

@@ -24,6 +24,12 @@ FrictionTorques film_friction_torques(const BearingGeometry& g, double viscosity
   return {couette + pressure, couette - pressure};
 }
 
+void short_bearing_flows(const BearingGeometry& g, double eps, double wedge_rad_s, FilmOutputs& out) {
+  const double c = g.clearance_m(), U = g.journal_radius_m * std::abs(wedge_rad_s) * g.length_m;
+  out.inflow_m3_s = 0.5 * U * c * (1.0 + eps);
+  out.side_flow_m3_s = U * c * eps;
+}
+
 double film_pressure_Pa(ForceLaw law, const BearingGeometry& g, double viscosity_Pa_s, const BearingState& s,
                         double theta) {
   switch (law) {

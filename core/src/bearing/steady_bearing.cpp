@@ -6,6 +6,7 @@
 
 #include "bearing/film_math.hpp"
 #include "lub/bearing/film_force.hpp"
+#include "lub/bearing/law_validity.hpp"
 
 namespace lub {
 
@@ -90,8 +91,10 @@ SteadyBearingResult solve_steady_bearing(const SteadyBearingInput& in) {
                                 -res.force.radial_N);
   res.min_film_thickness_m = in.geometry.clearance_m() * (1.0 - res.eps);
   res.sommerfeld = sommerfeld_number(in.geometry, in.viscosity_Pa_s, in.load_N, in.speed_rad_s);
-  // Friction and peak pressure for every law (its F_t, its field); flows from the finite bearing's.
+  // Friction and peak pressure for every law (its F_t, its field); flows from the finite
+  // bearing's field and the short-bearing laws' own.
   res.has_field = in.law == ForceLaw::finite_reynolds;
+  res.has_flows = res.has_field || is_short_bearing_law(in.law);
   if (res.has_field) {
     res.outputs = solver.outputs(in.speed_rad_s);
   } else {
@@ -105,6 +108,7 @@ SteadyBearingResult solve_steady_bearing(const SteadyBearingInput& in) {
     const PeakPressure peak = peak_film_pressure(in.law, in.geometry, in.viscosity_Pa_s, s);
     res.outputs.peak_pressure_Pa = peak.pressure_Pa;
     res.outputs.peak_pressure_angle_rad = peak.angle_rad;
+    if (res.has_flows) short_bearing_flows(in.geometry, res.eps, in.speed_rad_s, res.outputs);
   }
   return res;
 }

@@ -20,6 +20,10 @@
 //     inflow  Q   = ∫ q_x dz across the line of maximum film θ = 0 (the supply groove),
 //     side flow Q_s = ∫ q_z R_J dθ out of both ends.
 // At ε = 0: Q = π R_J c N L (N = w/(2π)), Q_s = 0.
+// The short-bearing laws have no circumferential pressure flow: the Couette flow alone carries
+// the film round, Q = R_J |w| c (1 + ε) L/2 at θ = 0, and what enters the pressurised half
+// (θ from 0 to π) and does not leave it at θ = π leaves through the ends, Q_s = ε c R_J |w| L
+// (short_bearing_flows; a steady load, ε̇ = 0).
 //
 // ## Peak pressure
 // The largest pressure of the law's own field and its angle θ from the line of maximum film:
@@ -66,6 +70,10 @@ PeakPressure peak_film_pressure(ForceLaw law, const BearingGeometry& g, double v
 struct FrictionTorques {
   double journal_Nm = 0.0, bearing_Nm = 0.0;  ///< T_J, T_B (above)
 };
+
+/// Inflow Q and side flow Q_s [m³/s] of a short-bearing law's film at ε with wedge speed w
+/// [rad/s] under a steady load (above): into FilmOutputs' inflow_m3_s and side_flow_m3_s.
+void short_bearing_flows(const BearingGeometry& g, double eps, double wedge_rad_s, FilmOutputs& out);
 
 /// T_J and T_B of a film at eccentricity ratio ε (0 <= ε < 1), sliding speed ω_s = ω_J − ω_B
 /// [rad/s] and tangential film force F_t [N] (the law's own).

@@ -42,8 +42,9 @@ struct SteadyBearingResult {
   double min_film_thickness_m = 0.0;
   double sommerfeld = 0.0;
   FilmForce force;           ///< film force at the equilibrium (|F| = W)
-  FilmOutputs outputs;       ///< friction, peak pressure (every law); flows (has_field)
-  bool has_field = false;    ///< finite_reynolds: the outputs' flows are set
+  FilmOutputs outputs;       ///< friction, peak pressure (every law); flows (has_flows)
+  bool has_field = false;    ///< finite_reynolds
+  bool has_flows = false;    ///< the outputs' flows are set (finite_reynolds, the short-bearing laws)
   int evaluations = 0;       ///< force-law evaluations
 };
 
@@ -84,7 +85,7 @@ void report_steady_bearing(Out& out, const SteadyBearingInput& in, double speed_
   out["peak_pressure_Pa"] = o.peak_pressure_Pa;
   out["peak_pressure_angle_deg"] = o.peak_pressure_angle_rad * 180.0 / kPi;
   out["load_over_peak_pressure"] = in.load_N / (L * 2.0 * R) / o.peak_pressure_Pa;
-  if (r.has_field) {
+  if (r.has_flows) {
     const double n_rev = std::fabs(in.speed_rad_s) / kTwoPi;
     out["inflow_m3_s"] = o.inflow_m3_s;
     out["side_flow_m3_s"] = o.side_flow_m3_s;
