@@ -63,7 +63,7 @@ TEST(Sensitivity, AgreesWithCentralDifferencesOfSeparatelyLocatedOrbits) {
   for (const auto& [pointer, unit, step] : cases) {
     SCOPED_TRACE(pointer);
     const lub::SensitivityParameter p = parameter(doc, pointer, unit);
-    const std::vector<lub::Sensitivity> s = lub::steady_sensitivities(scene, r, {p});
+    const std::vector<lub::Sensitivity> s = lub::steady_sensitivities(r, {p});
     ASSERT_EQ(s.size(), 1u);
     ASSERT_TRUE(s[0].ok) << s[0].message;
     EXPECT_LT(s[0].periods, 20);  // 2 maps and 2 measurements of 2 cycles, twice
@@ -95,7 +95,7 @@ TEST(Sensitivity, ThePrintedLawsMetricsDependOnViscosityTimesLength) {
   const lub::RunResult r = lub::run_scene(scene);
   ASSERT_TRUE(lub::has_orbit(r.steady.kind)) << r.message;
   const auto s = lub::steady_sensitivities(
-      scene, r, {parameter(doc, "/joints/3/viscosity_Pa_s", "Pa s"), parameter(doc, "/joints/3/length_m", "m")});
+      r, {parameter(doc, "/joints/3/viscosity_Pa_s", "Pa s"), parameter(doc, "/joints/3/length_m", "m")});
   ASSERT_TRUE(s[0].ok && s[1].ok) << s[0].message << s[1].message;
   const auto& metrics = lub::steady_metrics();
   for (std::size_t i = 0; i < metrics.size(); ++i) {
@@ -114,7 +114,7 @@ TEST(Sensitivity, ARunWithoutAnOrbitSaysSo) {
   doc["simulation"]["metric_cycles"] = 1;
   const lub::Scene scene = lub::parse_scene(doc);
   const lub::RunResult r = lub::run_scene(scene);
-  const auto s = lub::steady_sensitivities(scene, r, {parameter(doc, "/joints/3/viscosity_Pa_s", "Pa s")});
+  const auto s = lub::steady_sensitivities(r, {parameter(doc, "/joints/3/viscosity_Pa_s", "Pa s")});
   ASSERT_EQ(s.size(), 1u);
   EXPECT_FALSE(s[0].ok);
   EXPECT_NE(s[0].message.find("no located orbit"), std::string::npos) << s[0].message;

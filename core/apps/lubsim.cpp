@@ -151,7 +151,7 @@ int main(int argc, char** argv) {
   std::vector<lub::Sensitivity> sens;
   if (!sens_params.empty()) {
     if (!quiet) std::cerr << "lubsim: sensitivities of the orbit to " << sens_params.size() << " parameter(s)...\n";
-    sens = lub::steady_sensitivities(scene, r, sens_params);
+    sens = lub::steady_sensitivities(r, sens_params);
   }
   try {
     lub::write_run_file(out_path, scene_text, "lubsim", r, scene.warnings, sens);

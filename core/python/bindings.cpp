@@ -92,7 +92,7 @@ py::dict simulate(const std::optional<std::string>& scene_path, const std::optio
       effective = doc.dump(2);
       const std::vector<lub::SensitivityParameter> params = lub::sensitivity_parameters(doc, sensitivity, "sensitivity");
       r = lub::run_scene(scene);  // throws InputError only if the mechanism cannot assemble
-      if (!params.empty()) sens = lub::steady_sensitivities(scene, r, params);
+      if (!params.empty()) sens = lub::steady_sensitivities(r, params);
     } catch (const lub::InputError& e) {
       // lubsim prints "lubsim: SCENE: message"; the message here is "SCENE: message".
       throw lub::InputError(origin + ": " + e.what());

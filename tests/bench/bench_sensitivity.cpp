@@ -34,7 +34,7 @@ void BM_ImplicitFunction(benchmark::State& state) {
   lub::SensitivityParameter p{"/joints/3/viscosity_Pa_s", "Pa s", 0.4, [&doc](double v) { return at(doc, v); }};
   long long periods = 0;
   for (auto _ : state) {
-    const auto s = lub::steady_sensitivities(scene, r, {p});
+    const auto s = lub::steady_sensitivities(r, {p});
     periods = s.front().periods;
     benchmark::DoNotOptimize(s.front().d_metric.data());
   }

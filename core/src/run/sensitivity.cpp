@@ -13,7 +13,7 @@
 // period) is small against the change δ makes.
 #include <cmath>
 #include <optional>
-#include <sstream>
+#include <string>
 
 #include <Eigen/LU>
 
@@ -29,62 +29,63 @@ namespace {
 constexpr double kRelativeStep = 1e-3;   // δ: the step in λ, relative
 constexpr double kCoarseFactor = 4.0;    // the error bar's second estimate at 4δ
 
-/// The scaled residual G(y, λ) = (P(z) − z)/u of the seed placed in `cx`'s scene, at
-/// rtol × factor; its chart coordinates `y` = z/u; `failure` where it could not be evaluated.
-struct ScaledPeriod {
-  Eigen::VectorXd y, G;
-  std::vector<double> units;
+/// One perturbed scene: its steady context, the seed placed in it and the seed's chart there,
+/// built once for both the period and the measurement. `failure` where the seed does not fit.
+struct Side {
+  Side(const Scene& scene, const OrbitSeed& seed)
+      : cx(scene, PeriodBudget(scene.simulation.max_periods, 0)), base(place_seed(cx.rm, seed)) {
+    if (!base) {
+      failure = "the seed does not fit the scene's mechanism";
+      return;
+    }
+    chart.emplace(cx.rm, *base, cx.sim.shooting_coordinates);
+    if (chart->independent() != seed.chart) failure = "the scene's shooting chart differs from the orbit's";
+  }
+  SteadyContext cx;
+  std::optional<StartState> base;
+  std::optional<Chart> chart;
   std::string failure;
 };
 
-ScaledPeriod scaled_period(SteadyContext& cx, const OrbitSeed& seed, double factor) {
+/// The scaled residual G(y, λ) = (P(z) − z)/u at the seed's state in `side`'s scene, at
+/// rtol × factor, and its chart coordinates `y` = z/u; `failure` where it could not be evaluated.
+struct ScaledPeriod {
+  Eigen::VectorXd y, G;
+  std::string failure;
+};
+
+ScaledPeriod scaled_period(Side& side, const OrbitSeed& seed, double factor) {
   ScaledPeriod out;
-  const std::optional<StartState> base = place_seed(cx.rm, seed);
-  if (!base) {
-    out.failure = "the seed does not fit the scene's mechanism";
+  if (!side.failure.empty()) {
+    out.failure = side.failure;
     return out;
   }
-  Chart chart(cx.rm, *base, cx.sim.shooting_coordinates);
-  if (chart.independent() != seed.chart) {
-    out.failure = "the scene's shooting chart differs from the orbit's";
-    return out;
-  }
-  PeriodMap P(cx.rm, chart, *base, seed.winding, factor, cx.res.stats, cx.res.steady.periods_integrated);
-  const Eigen::VectorXd z = chart.reduce(base->qv);
+  Chart& chart = *side.chart;
+  PeriodMap P(side.cx.rm, chart, *side.base, seed.winding, factor, side.cx.res.stats,
+              side.cx.res.steady.periods_integrated);
+  const Eigen::VectorXd z = chart.reduce(side.base->qv);
   Eigen::VectorXd Pz(z.size());
   if (P.apply(z.data(), Pz.data()) != 0) {
     out.failure = "a period failed: " + P.last_failure();
     return out;
   }
-  out.units = chart.units();
-  out.y.resize(z.size());
-  out.G.resize(z.size());
-  for (Eigen::Index i = 0; i < z.size(); ++i) {
-    const double u = out.units[static_cast<size_t>(i)];
-    out.y(i) = z(i) / u;
-    out.G(i) = (Pz(i) - z(i)) / u;
-  }
+  const Eigen::Map<const Eigen::VectorXd> u(chart.units().data(), z.size());
+  out.y = z.cwiseQuotient(u);
+  out.G = (Pz - z).cwiseQuotient(u);
   return out;
 }
 
-/// The metrics of the scene in `cx` measured on the orbit whose scaled chart state is `y`
-/// (placed through the seed's chart at that scene), at rtol × factor.
-std::optional<Metrics> measure_at(SteadyContext& cx, const OrbitSeed& seed, const Eigen::VectorXd& y, double factor,
-                                  std::string& failure) {
-  const std::optional<StartState> base = place_seed(cx.rm, seed);
-  if (!base) {
-    failure = "the seed does not fit the scene's mechanism";
-    return std::nullopt;
-  }
-  Chart chart(cx.rm, *base, cx.sim.shooting_coordinates);
-  Eigen::VectorXd z(y.size());
-  for (Eigen::Index i = 0; i < y.size(); ++i) z(i) = y(i) * chart.units()[static_cast<size_t>(i)];
-  StartState start = *base;
-  if (!chart.expand(base->t, z.data(), start.qv)) {
+/// The metrics of `side`'s scene measured on the orbit whose scaled chart state is `y`, at
+/// rtol × factor.
+std::optional<Metrics> measure_at(Side& side, const Eigen::VectorXd& y, double factor, std::string& failure) {
+  const Chart& chart = *side.chart;
+  const Eigen::VectorXd z = y.cwiseProduct(Eigen::Map<const Eigen::VectorXd>(chart.units().data(), y.size()));
+  StartState start = *side.base;
+  if (!side.chart->expand(side.base->t, z.data(), start.qv)) {
     failure = "the predicted orbit lies outside the chart";
     return std::nullopt;
   }
-  const SegmentResult m = cx.measure(start, factor, false);
+  const SegmentResult m = side.cx.measure(start, factor, false);
   if (m.res.status != RunStatus::ok) {
     failure = "the measurement failed: " + m.res.message;
     return std::nullopt;
@@ -97,7 +98,6 @@ struct Estimate {
   bool ok = false;
   std::string failure;
   std::vector<double> d_metric;
-  Eigen::VectorXd dy;  ///< dy*/dλ, scaled
 };
 
 Estimate estimate(const SensitivityParameter& p, const OrbitSeed& seed, const Eigen::MatrixXd& M_scaled, double delta,
@@ -105,12 +105,12 @@ Estimate estimate(const SensitivityParameter& p, const OrbitSeed& seed, const Ei
   Estimate e;
   const double h = delta * p.value;
   const Scene plus_scene = p.scene_at(p.value + h), minus_scene = p.scene_at(p.value - h);
-  SteadyContext plus(plus_scene, PeriodBudget(plus_scene.simulation.max_periods, 0));
-  SteadyContext minus(minus_scene, PeriodBudget(minus_scene.simulation.max_periods, 0));
-  const double tight = plus.tuning.tight_factor;
+  Side plus(plus_scene, seed), minus(minus_scene, seed);
+  const double tight = plus.cx.tuning.tight_factor;
+  const auto spent = [&] { return plus.cx.res.steady.periods_integrated + minus.cx.res.steady.periods_integrated; };
   const ScaledPeriod a = scaled_period(plus, seed, tight), b = scaled_period(minus, seed, tight);
-  periods += plus.res.steady.periods_integrated + minus.res.steady.periods_integrated;
   if (!a.failure.empty() || !b.failure.empty()) {
+    periods += spent();
     e.failure = !a.failure.empty() ? a.failure : b.failure;
     return e;
   }
@@ -118,12 +118,11 @@ Estimate estimate(const SensitivityParameter& p, const OrbitSeed& seed, const Ei
   const Eigen::MatrixXd J = M_scaled - Eigen::MatrixXd::Identity(n, n);  // ∂G/∂y
   // ∂G/∂λ: the two residuals, each carried to the same y (their charts' states may differ).
   const Eigen::VectorXd dG = (a.G - b.G - J * (a.y - b.y)) / (2.0 * h);
-  e.dy = -J.fullPivLu().solve(dG);
+  const Eigen::VectorXd dy = -J.fullPivLu().solve(dG);
   const Eigen::VectorXd y0 = 0.5 * (a.y + b.y);
-  const long long before = plus.res.steady.periods_integrated + minus.res.steady.periods_integrated;
-  const std::optional<Metrics> mp = measure_at(plus, seed, y0 + h * e.dy, tight, e.failure);
-  const std::optional<Metrics> mm = mp ? measure_at(minus, seed, y0 - h * e.dy, tight, e.failure) : std::nullopt;
-  periods += plus.res.steady.periods_integrated + minus.res.steady.periods_integrated - before;
+  const std::optional<Metrics> mp = measure_at(plus, y0 + h * dy, tight, e.failure);
+  const std::optional<Metrics> mm = mp ? measure_at(minus, y0 - h * dy, tight, e.failure) : std::nullopt;
+  periods += spent();
   if (!mp || !mm) return e;
   for (const SteadyMetric& sm : steady_metrics()) {
     double d = (*mp).*sm.value - (*mm).*sm.value;
@@ -178,7 +177,7 @@ std::vector<SensitivityParameter> sensitivity_parameters(const nlohmann::json& d
   return out;
 }
 
-std::vector<Sensitivity> steady_sensitivities(const Scene& /*scene*/, const RunResult& r,
+std::vector<Sensitivity> steady_sensitivities(const RunResult& r,
                                               const std::vector<SensitivityParameter>& parameters) {
   std::vector<Sensitivity> out;
   for (const SensitivityParameter& p : parameters) {
@@ -208,7 +207,6 @@ std::vector<Sensitivity> steady_sensitivities(const Scene& /*scene*/, const RunR
         } else {
           s.ok = true;
           s.d_metric = fine.d_metric;
-          s.d_orbit.assign(fine.dy.data(), fine.dy.data() + fine.dy.size());
           for (std::size_t i = 0; i < nm; ++i)
             s.d_metric_error[i] = coarse.ok ? std::abs(fine.d_metric[i] - coarse.d_metric[i]) : kNaN;
           if (!coarse.ok) s.message = "no error bar: " + coarse.failure;

@@ -326,7 +326,6 @@ struct Sensitivity {
   std::string message;               ///< why not, where !ok
   std::vector<double> d_metric;      ///< per steady_metrics(): [metric unit / parameter unit]
   std::vector<double> d_metric_error;
-  std::vector<double> d_orbit;       ///< dz*/dλ in the chart's coordinates, each in its unit / parameter unit
   long long periods = 0;             ///< periods integrated for it
 };
 
@@ -338,10 +337,10 @@ std::vector<SensitivityParameter> sensitivity_parameters(const nlohmann::json& d
                                                          const std::vector<std::string>& pointers,
                                                          const std::string& option);
 
-/// The sensitivities of `r`'s orbit (r ran `scene` and located an orbit: r.orbit_seed) to
-/// each parameter. A parameter whose value is 0, or an r without an orbit, gets !ok.
-std::vector<Sensitivity> steady_sensitivities(const Scene& scene, const RunResult& r,
-                                              const std::vector<SensitivityParameter>& parameters);
+/// The sensitivities of `r`'s orbit (r located an orbit: r.orbit_seed, placed in each
+/// parameter's scene_at) to each parameter. A parameter whose value is 0, or an r without an
+/// orbit, gets !ok.
+std::vector<Sensitivity> steady_sensitivities(const RunResult& r, const std::vector<SensitivityParameter>& parameters);
 
 /// Runs a validated scene from a neighbour's orbit: Newton on the period map from the
 /// seed (its monodromy the first Jacobian), stepping along the path when a step fails
