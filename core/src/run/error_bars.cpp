@@ -14,6 +14,21 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+/// Error bars that cannot be had at this rtol: their integrations would not be ten times
+/// tighter than the run's (SteadyContext::finer). A limit the user set, like a budget: the
+/// metrics keep NaN bars and the label stands.
+bool no_room(const SteadyContext& cx, ErrorBarEvidence& ev) {
+  if (cx.error_bars_have_room()) return false;
+  std::ostringstream why;
+  why << "solver.rtol = " << cx.scene.solver.rtol << " leaves no room below it (they integrate "
+      << 1.0 / cx.tuning.tight_factor << " times tighter, and the finest rtol the integrator reaches is "
+      << cx.tuning.finest_rtol << ")";
+  ev.outcome = ErrorBarEvidence::Outcome::failed;
+  ev.failure = why.str();
+  ev.budget = true;
+  return true;
+}
+
 /// Each steady metric's error bar: |metric − tight metric| (on the circle for an angle),
 /// plus `extra` (per metric: a transient's remaining change) on top.
 void set_errors(Metrics& m, const Metrics& tight, const Metrics* extra = nullptr) {
@@ -100,6 +115,19 @@ ErrorBarEvidence orbit_error_bars(SteadyContext& cx, Chart& chart, const StartSt
   // orbit to 1 % of its distance from z*, not to the tight map's noise.
   using Outcome = ErrorBarEvidence::Outcome;
   ErrorBarEvidence ev;
+  if (no_room(cx, ev)) {
+    // An ill-conditioned orbit is located only once it stops moving under refinement:
+    // without room for one, it is not (Newton stalls near the wall at residuals of the
+    // film's own drift, which the map resolves at this rtol: not its noise).
+    ev.conditioning = orbit_conditioning(cx.res.steady.multipliers);
+    if (ev.conditioning > cx.tuning.refine_conditioning) {
+      ev.budget = false;
+      std::ostringstream why;
+      why << "; an orbit with kappa " << ev.conditioning << " is located only where it stops moving under refinement";
+      ev.failure += why.str();
+    }
+    return ev;
+  }
   const Eigen::MatrixXd M_minus_I = monodromy - Eigen::MatrixXd::Identity(chart.size(), chart.size());
   const Eigen::FullPivLU<Eigen::MatrixXd> newton(M_minus_I);  // a Newton step: −newton.solve(P(z) − z)
   const steady::ShootingResult resolved = resolve_tight(cx, tight_period, z, M_minus_I, options);
@@ -175,6 +203,7 @@ ErrorBarEvidence orbit_error_bars(SteadyContext& cx, Chart& chart, const StartSt
 ErrorBarEvidence transient_error_bars(SteadyContext& cx) {
   using Outcome = ErrorBarEvidence::Outcome;
   ErrorBarEvidence ev;
+  if (no_room(cx, ev)) return ev;
   RunResult& res = cx.res;
   const int M = cx.sim.metric_cycles;
   const steady::ContractionEstimate est = contraction(cx);

@@ -106,7 +106,7 @@ Estimate estimate(const SensitivityParameter& p, const OrbitSeed& seed, const Ei
   const double h = delta * p.value;
   const Scene plus_scene = p.scene_at(p.value + h), minus_scene = p.scene_at(p.value - h);
   Side plus(plus_scene, seed), minus(minus_scene, seed);
-  const double tight = plus.cx.tuning.tight_factor;
+  const double tight = plus.cx.finer(plus.cx.tuning.tight_factor);
   const auto spent = [&] { return plus.cx.res.steady.periods_integrated + minus.cx.res.steady.periods_integrated; };
   const ScaledPeriod a = scaled_period(plus, seed, tight), b = scaled_period(minus, seed, tight);
   if (!a.failure.empty() || !b.failure.empty()) {

@@ -12,6 +12,11 @@ double SteadyContext::orbit_noise_floor() const {
   return std::max(tuning.noise_per_rtol * scene.solver.rtol, tuning.noise_per_tolerance * sim.steady_tolerance);
 }
 
+double SteadyContext::finer(double factor) const {
+  if (factor >= 1.0) return factor;
+  return std::min(1.0, std::max(factor, tuning.finest_rtol / scene.solver.rtol));
+}
+
 SegmentResult SteadyContext::measure(const StartState& s, double factor, bool series, int cycles) {
   SegmentOptions o;
   o.start = &s;
@@ -22,7 +27,7 @@ SegmentResult SteadyContext::measure(const StartState& s, double factor, bool se
     refused.res.message = "simulation.max_periods reached";
     return refused;
   }
-  o.rtol_factor = factor;
+  o.rtol_factor = finer(factor);
   o.series = series;
   // Bounded like a period map once a transient has set the pace: a measurement that crawls
   // near the wall (the printed law's kink where ε̇ and the wedge speed vanish: 2e7 steps in
@@ -38,10 +43,11 @@ SegmentResult SteadyContext::measure(const StartState& s, double factor, bool se
 void SteadyContext::period_maps(std::optional<PeriodMap>& period, std::optional<PeriodMap>& tight, Chart& chart,
                                 const StartState& base, const std::vector<double>& winding, double factor,
                                 long long steps) {
-  period.emplace(rm, chart, base, winding, factor, res.stats, res.steady.periods_integrated);
+  period.emplace(rm, chart, base, winding, finer(factor), res.stats, res.steady.periods_integrated);
   period->set_step_budget(steps);
   period->set_period_budget(budget.run_limit());
-  tight.emplace(rm, chart, base, winding, factor * tuning.tight_factor, res.stats, res.steady.periods_integrated);
+  tight.emplace(rm, chart, base, winding, finer(factor * tuning.tight_factor), res.stats,
+                res.steady.periods_integrated);
   tight->set_step_budget(tuning.tight_step_factor * steps);
   tight->set_period_budget(budget.run_limit());
 }
