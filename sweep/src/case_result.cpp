@@ -20,14 +20,59 @@ std::vector<ResultField> result_fields() {
   return f;
 }
 
+std::vector<ResultField> sensitivity_fields(const std::vector<AxisParameter>& parameters) {
+  std::vector<ResultField> out;
+  for (const AxisParameter& p : parameters)
+    for (const SteadyMetric& m : steady_metrics()) {
+      const std::string name = std::string("d_") + m.name + "_per_" + p.name;
+      const std::string unit = derivative_unit(m.unit, p.unit);
+      const std::string what = std::string("d ") + m.name + " / d " + p.name + " on the located orbit";
+      out.push_back({name, unit, false, nullptr, what, true});
+      out.push_back({name + "_error", unit, false, nullptr, "error bar of " + what, true});
+    }
+  return out;
+}
+
 namespace {
 
 using nlohmann::json;
 
+/// The sensitivities of r's located orbit to the task's parameters, into `out`
+/// (sensitivity_fields' layout; NaN where a parameter's could not be had).
+void add_sensitivities(const Task& task, const RunResult& r, CaseResult& out) {
+  if (task.parameters.empty()) return;
+  const std::size_t nm = steady_metrics().size();
+  out.sensitivities.assign(2 * nm * task.parameters.size(), std::numeric_limits<double>::quiet_NaN());
+  if (!has_orbit(out.classification) || !r.orbit_seed.valid()) return;
+  const json doc = json::parse(task.scene);
+  std::vector<SensitivityParameter> params;
+  for (const AxisParameter& a : task.parameters) {
+    const double base = a.base_pointer.empty() ? 0.0 : doc.at(json::json_pointer(a.base_pointer)).get<double>();
+    SensitivityParameter p;
+    p.name = a.name;
+    p.unit = a.unit;
+    p.value = (doc.at(json::json_pointer(a.pointer)).get<double>() - base) / a.sign;
+    p.scene_at = [doc, a, base](double v) {
+      json d = doc;
+      d[json::json_pointer(a.pointer)] = base + a.sign * v;
+      return parse_scene(d);
+    };
+    params.push_back(std::move(p));
+  }
+  const std::vector<Sensitivity> sens = steady_sensitivities(r, params);
+  for (std::size_t k = 0; k < sens.size(); ++k) {
+    out.sensitivity_periods += sens[k].periods;
+    for (std::size_t i = 0; i < nm; ++i) {
+      out.sensitivities[2 * (k * nm + i)] = sens[k].d_metric[i];
+      out.sensitivities[2 * (k * nm + i) + 1] = sens[k].d_metric_error[i];
+    }
+  }
+}
+
 /// Runs the scene `scene()` gives. Never throws: an InputError (the scene refused) is the
 /// status invalid_scene, any other exception error; values are NaN where not computed.
 template <class SceneOf, class Run>
-CaseResult run_guarded(int case_id, int rank, const SceneOf& scene, const Run& run) {
+CaseResult run_guarded(int case_id, int rank, const SceneOf& scene, const Run& run, const Task* task = nullptr) {
   CaseResult out;
   out.case_id = case_id;
   out.rank = rank;
@@ -49,6 +94,7 @@ CaseResult run_guarded(int case_id, int rank, const SceneOf& scene, const Run& r
     // (a transient the period map confirmed periodic, or a case without a steady cycle).
     out.series = steady && !r.orbit.names.empty() ? std::move(r.orbit) : std::move(r.series);
     if (r.orbit_seed.valid()) out.orbit_seed = pack_seed(r.orbit_seed);
+    if (task) add_sensitivities(*task, r, out);
   } catch (const InputError& e) {
     out.status = CaseStatus::invalid_scene;
     out.classification = CaseClass::invalid_scene;
@@ -93,12 +139,14 @@ CaseResult run_case(int case_id, const Scene& scene, int rank) {
 }
 
 CaseResult run_task(const Task& task, int rank) {
-  if (task.from_scene.empty() || task.from_orbit.empty()) return run_case(task.case_id, task.scene, rank);
+  if (task.from_scene.empty() || task.from_orbit.empty())
+    return run_guarded(
+        task.case_id, rank, [&] { return parse_scene(nlohmann::json::parse(task.scene)); }, kAlone, &task);
   const json from = json::parse(task.from_scene), to = json::parse(task.scene);
   auto path = [from, to](double lambda) { return parse_scene(between(from, to, lambda)); };
   CaseResult r = run_guarded(
       task.case_id, rank, [&] { return parse_scene(to); },
-      [&](const Scene& s) { return run_scene(s, ContinuationStart{unpack_seed(task.from_orbit), path}); });
+      [&](const Scene& s) { return run_scene(s, ContinuationStart{unpack_seed(task.from_orbit), path}); }, &task);
   r.continued_from = task.from_case;
   return r;
 }
@@ -148,7 +196,8 @@ std::string encode(const CaseResult& r) {
                   {"status", r.status.str()}, {"message", r.message}, {"values", r.values},
                   {"classification", r.classification.str()},
                   {"revision", r.revision},  {"series", std::move(series)},
-                  {"orbit_seed", r.orbit_seed}, {"continued_from", r.continued_from}};
+                  {"orbit_seed", r.orbit_seed}, {"continued_from", r.continued_from},
+                  {"sensitivities", r.sensitivities}, {"sensitivity_periods", r.sensitivity_periods}};
   const std::vector<std::uint8_t> bytes = json::to_msgpack(m);
   return std::string(bytes.begin(), bytes.end());
 }
@@ -173,6 +222,8 @@ CaseResult decode(const std::string& bytes) {
     r.revision = field<std::string>(m, "revision", &json::is_string, "a string");
     r.orbit_seed = field<std::vector<double>>(m, "orbit_seed", &json::is_array, "an array");
     r.continued_from = field<int>(m, "continued_from", &json::is_number_integer, "an integer");
+    r.sensitivities = field<std::vector<double>>(m, "sensitivities", &json::is_array, "an array");
+    r.sensitivity_periods = field<long long>(m, "sensitivity_periods", &json::is_number_integer, "an integer");
     for (const json& c : field<json>(m, "series", &json::is_array, "an array")) {
       if (!c.is_object()) throw std::runtime_error("malformed result message: a series is not a map");
       r.series.names.push_back(field<std::string>(c, "name", &json::is_string, "a string"));

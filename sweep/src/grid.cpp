@@ -186,7 +186,7 @@ json chosen_channels(ObjectReader& s, const json& base_channels) {
 }
 
 /// Applies grid.study to the base scene; returns the settings that are not scene values.
-void apply_study(const json& study, Context& cx, FailurePolicy& policy) {
+void apply_study(const json& study, Context& cx, FailurePolicy& policy, bool& sensitivities) {
   ObjectReader s(study, "grid.study");
   json& b = cx.base;
   if (s.has("max_cycles")) object_at(b, "simulation")["max_cycles"] = s.integer("max_cycles", 1, 1'000'000);
@@ -208,6 +208,7 @@ void apply_study(const json& study, Context& cx, FailurePolicy& policy) {
   policy = s.choice("on_failure", {"continue", "abort"}, std::string("continue")) == "abort"
                ? FailurePolicy::abort_on_failure
                : FailurePolicy::continue_on_failure;
+  sensitivities = s.boolean_or("sensitivities", true);
   s.finish();
 }
 
@@ -215,8 +216,8 @@ void apply_study(const json& study, Context& cx, FailurePolicy& policy) {
 /// an axis says, and where none says, the scene parser's default, as lubsim runs the scene:
 /// a grid that asks for steady cycles says so ("set": {"/simulation/steady": "auto"}, as
 /// the grids in configs/grids do; docs/theory/steady-cycles.md).
-void apply_study_settings(ObjectReader& r, Context& cx, FailurePolicy& policy) {
-  apply_study(r.has("study") ? r.raw("study") : json::object(), cx, policy);
+void apply_study_settings(ObjectReader& r, Context& cx, FailurePolicy& policy, bool& sensitivities) {
+  apply_study(r.has("study") ? r.raw("study") : json::object(), cx, policy, sensitivities);
   parse_case(cx.base, r.child("study"), r.has("study") ? r.raw("study") : json::object());
 }
 
@@ -332,12 +333,13 @@ Grid parse_grid(const std::string& text, const std::string& base_dir, const std:
   Context cx;
   read_base_scene(r, base_dir, g, cx);
   apply_set(r, cx);
-  apply_study_settings(r, cx, g.on_failure);
+  apply_study_settings(r, cx, g.on_failure, g.sensitivities);
   find_targets(r, cx);
   std::vector<PendingBlock> pending = read_blocks(r);
   r.finish();
   if (pending.empty()) throw InputError("grid: needs axes, cases or grids (docs/guide/grids.md)");
   expand_blocks(g, cx, pending);
+  if (g.sensitivities) g.parameters = detail::axis_parameters(g);
   return g;
 }
 

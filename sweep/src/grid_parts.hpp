@@ -61,6 +61,10 @@ void check_type(const Axis& axis, const nlohmann::json& v, const std::string& pa
 void apply_value(nlohmann::json& scene, const Axis& axis, const nlohmann::json& v, const std::string& path);
 /// The value an axis has in a scene: null if unset.
 nlohmann::json read_value(const nlohmann::json& scene, const Axis& axis);
+/// The grid's axes a located orbit's metrics are differentiated by: every numeric axis
+/// of a physical number (not under /solver, /simulation or /outputs, which are settings
+/// a result must not depend on) that is not a dimensionless count (integers without unit).
+std::vector<AxisParameter> axis_parameters(const Grid& g);
 /// How an axis value reaches the scene, where the scene parser's message needs it ("" if
 /// it is set as written).
 std::string applied_as(const Axis& axis, const nlohmann::json& v, const Context& cx);

@@ -112,6 +112,7 @@ class ContinuationOrder {
     Task t;
     t.case_id = c.id;
     t.scene = c.scene;
+    t.parameters = grid_.parameters;
     // The nearest ancestor with an orbit (a parent that found none passes on its own start).
     for (int p = parent(id); p >= 0; p = parent(p)) {
       const auto it = orbits_.find(p);

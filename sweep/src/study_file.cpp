@@ -102,6 +102,7 @@ void declare_missing_values(h5::Table& t, const Grid& g) {
     else
       d.set_attribute("_FillValue", kNaN);
   }
+  for (const auto& fld : sensitivity_fields(g.parameters)) t.column(fld.name).set_attribute("_FillValue", kNaN);
 }
 
 /// Which classifications a reader must tell apart, from CaseClass's table and has_orbit
@@ -289,6 +290,15 @@ void write_grid_results(h5::File& f, const Grid& g, const std::map<int, CaseResu
                                                              : ""));
       attach_like_index(bg, b, g, d);
     }
+    const auto sfields = sensitivity_fields(g.parameters);
+    for (std::size_t k = 0; k < sfields.size(); ++k) {
+      std::vector<double> v;
+      for (const CaseResult* r : rs) v.push_back(r != nullptr && k < r->sensitivities.size() ? r->sensitivities[k] : kNaN);
+      h5::Dataset d = bg.write_dataset(sfields[k].name, v, shape, sfields[k].unit, h5::WriteOptions{0});
+      d.set_attribute("_FillValue", kNaN);
+      d.set_attribute("long_name", sfields[k].long_name + " (NaN: no located orbit, see classification)");
+      attach_like_index(bg, b, g, d);
+    }
     std::vector<std::string> status, message, cls;
     for (const CaseResult* r : rs) {
       status.push_back(r ? r->status.str() : std::string(kNotRun));
@@ -353,6 +363,10 @@ std::vector<h5::Column> case_columns(const Grid& g) {
   c.push_back({"classification", ColumnType::String, "", kClassificationLongName});
   for (const auto& f : result_fields())
     c.push_back({f.name, f.integer ? ColumnType::Int64 : ColumnType::Float64, f.unit, f.long_name});
+  for (const auto& f : sensitivity_fields(g.parameters))
+    c.push_back({f.name, ColumnType::Float64, f.unit, f.long_name + " (NaN: no located orbit, or not computed)"});
+  if (!g.parameters.empty())
+    c.push_back({"sensitivity_periods", ColumnType::Int64, "1", "crank periods the sensitivities integrated"});
   c.push_back({"continued_from", ColumnType::Int64, "1",
                "case whose periodic orbit this case's Newton started from (simulation.steady = continuation); -1: none"});
   c.push_back({"orbit_seed", ColumnType::String, "",
@@ -378,6 +392,9 @@ h5::Row case_row(const Grid& g, const CaseResult& r) {
     else
       row.push_back(v);
   }
+  const std::size_t ns = sensitivity_fields(g.parameters).size();
+  for (std::size_t i = 0; i < ns; ++i) row.push_back(i < r.sensitivities.size() ? r.sensitivities[i] : std::nan(""));
+  if (!g.parameters.empty()) row.push_back(static_cast<std::int64_t>(r.sensitivity_periods));
   row.push_back(static_cast<std::int64_t>(r.continued_from));
   row.push_back(r.orbit_seed.empty() ? std::string() : nlohmann::json(r.orbit_seed).dump());
   row.push_back(static_cast<std::int64_t>(r.rank));

@@ -120,7 +120,7 @@ std::vector<E> named_column(const h5::Table& t, const char* column, const std::s
 
 /// The columns of /cases a resumed row is made of.
 struct EarlierRows {
-  EarlierRows(const h5::Table& t, const std::string& path)
+  EarlierRows(const h5::Table& t, const std::string& path, const Grid& grid)
       : hashes(t.read_strings("hash")),
         status(named_column<CaseStatus>(t, "status", path)),
         message(t.read_strings("message")),
@@ -136,6 +136,13 @@ struct EarlierRows {
         for (double& v : values.back())
           if (v == static_cast<double>(kMissingInteger)) v = std::numeric_limits<double>::quiet_NaN();
     }
+    // Sensitivities: a file written without them (another grid, an earlier build) resumes
+    // its rows with NaN ones.
+    for (const auto& fld : sensitivity_fields(grid.parameters))
+      if (t.has_column(fld.name)) sensitivities.push_back(t.read_doubles(fld.name));
+    if (t.has_column("sensitivity_periods")) sensitivity_periods = t.read_int64s("sensitivity_periods");
+    if (sensitivities.size() != sensitivity_fields(grid.parameters).size()) sensitivities.clear();
+    n_sensitivities = sensitivity_fields(grid.parameters).size();
   }
 
   /// Row `i` as the result of case `case_id`.
@@ -151,6 +158,11 @@ struct EarlierRows {
     if (i < orbit_seed.size() && !orbit_seed[i].empty())
       r.orbit_seed = nlohmann::json::parse(orbit_seed[i]).get<std::vector<double>>();
     if (i < continued_from.size()) r.continued_from = static_cast<int>(continued_from[i]);
+    if (n_sensitivities > 0) {
+      r.sensitivities.assign(n_sensitivities, std::numeric_limits<double>::quiet_NaN());
+      for (std::size_t k = 0; k < sensitivities.size(); ++k) r.sensitivities[k] = sensitivities[k][i];
+      if (i < sensitivity_periods.size()) r.sensitivity_periods = sensitivity_periods[i];
+    }
     return r;
   }
 
@@ -161,6 +173,9 @@ struct EarlierRows {
   std::vector<std::string> revision, orbit_seed;
   std::vector<std::int64_t> rank, continued_from;
   std::vector<std::vector<double>> values;  ///< per result field
+  std::vector<std::vector<double>> sensitivities;  ///< per sensitivity field (empty: the file has none)
+  std::vector<std::int64_t> sensitivity_periods;
+  std::size_t n_sensitivities = 0;
 };
 
 }  // namespace
@@ -186,7 +201,7 @@ ResumeState read_existing(const std::string& path, const Grid& grid, bool retry_
     st.incompatible_rows = n;
     return st;
   }
-  const EarlierRows rows(t, path);
+  const EarlierRows rows(t, path, grid);
   std::map<std::string, int> id_of;
   for (const Case& c : grid.cases) id_of[c.hash] = c.id;
   std::vector<std::size_t> other;

@@ -13,8 +13,13 @@ namespace lub::sweep {
 using nlohmann::json;
 
 std::string encode(const Task& t) {
-  const std::vector<std::uint8_t> bytes = json::to_msgpack(
-      {{"case_id", t.case_id}, {"scene", t.scene}, {"from_case", t.from_case}, {"from_scene", t.from_scene}, {"from_orbit", t.from_orbit}});
+  json parameters = json::array();
+  for (const AxisParameter& p : t.parameters)
+    parameters.push_back({{"name", p.name}, {"unit", p.unit}, {"pointer", p.pointer},
+                          {"base_pointer", p.base_pointer}, {"sign", p.sign}});
+  const std::vector<std::uint8_t> bytes =
+      json::to_msgpack({{"case_id", t.case_id}, {"scene", t.scene}, {"from_case", t.from_case},
+                        {"from_scene", t.from_scene}, {"from_orbit", t.from_orbit}, {"parameters", parameters}});
   return std::string(bytes.begin(), bytes.end());
 }
 
@@ -24,10 +29,15 @@ Task decode_task(const std::string& bytes) {
     if (!m.is_object() || !m.contains("case_id") || !m["case_id"].is_number_integer() || !m.contains("scene") ||
         !m["scene"].is_string())
       throw std::runtime_error("malformed task message: needs an integer case_id and a string scene");
-    Task t{m["case_id"].get<int>(), m["scene"].get<std::string>(), -1, "", {}};
+    Task t{m["case_id"].get<int>(), m["scene"].get<std::string>(), -1, "", {}, {}};
     if (m.contains("from_case")) t.from_case = m["from_case"].get<int>();
     if (m.contains("from_scene")) t.from_scene = m["from_scene"].get<std::string>();
     if (m.contains("from_orbit")) t.from_orbit = m["from_orbit"].get<std::vector<double>>();
+    if (m.contains("parameters"))
+      for (const json& p : m["parameters"])
+        t.parameters.push_back({p.at("name").get<std::string>(), p.at("unit").get<std::string>(),
+                                p.at("pointer").get<std::string>(), p.at("base_pointer").get<std::string>(),
+                                p.at("sign").get<double>()});
     return t;
   } catch (const json::exception& e) {
     throw std::runtime_error(std::string("malformed task message: ") + e.what());

@@ -278,7 +278,9 @@ void put(h5::Object& obj, const ResultField& f, const RunResult& r) {
 
 std::string derivative_unit(const std::string& metric_unit, const std::string& parameter_unit) {
   if (parameter_unit.empty() || parameter_unit == "1") return metric_unit;
-  if (parameter_unit.find(' ') == std::string::npos) return metric_unit + "/" + parameter_unit;
+  // A unit of one factor without exponent divides as it is ("m/m"); any other in
+  // parentheses ("m/(Pa s)", "m/(min-1)").
+  if (parameter_unit.find_first_of(" -0123456789") == std::string::npos) return metric_unit + "/" + parameter_unit;
   return metric_unit + "/(" + parameter_unit + ")";
 }
 

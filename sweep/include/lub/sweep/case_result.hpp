@@ -7,6 +7,7 @@
 #include "lub/run/run.hpp"
 #include "lub/run/run_io.hpp"
 #include "lub/sweep/case_outcome.hpp"
+#include "lub/sweep/grid.hpp"
 
 namespace lub::sweep {
 
@@ -17,6 +18,11 @@ std::vector<ResultField> result_fields();
 /// One case's outcome. `values` follow result_fields(); NaN where a case that could not
 /// run has no value.
 struct Task;
+
+/// The /cases columns of the sensitivities to `parameters`: for each parameter, each steady
+/// metric's derivative d_<metric>_per_<axis> [metric unit / axis unit], then its error bar
+/// (`_error`), in that order: CaseResult::sensitivities' layout.
+std::vector<ResultField> sensitivity_fields(const std::vector<AxisParameter>& parameters);
 
 struct CaseResult {
   int case_id = -1;
@@ -36,6 +42,10 @@ struct CaseResult {
   /// case continues from. Empty: none.
   std::vector<double> orbit_seed;
   int continued_from = -1;      ///< the case whose orbit it started from (-1: none)
+  /// A located orbit's sensitivities to the task's parameters, sensitivity_fields' layout
+  /// (NaN where not computed); empty where none were asked.
+  std::vector<double> sensitivities;
+  long long sensitivity_periods = 0;  ///< the periods they integrated
 
   bool ok() const { return status == CaseStatus::ok; }
 };

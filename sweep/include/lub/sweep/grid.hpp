@@ -68,6 +68,17 @@ struct Axis {
   bool numeric = true;  ///< every value a number: a float64 column (else strings)
 };
 
+/// A numeric axis of a grid as a parameter λ of the case's scene: the scene's number at
+/// `pointer` is base + sign λ, base the number at `base_pointer` ("": 0). A clearance c
+/// sets the journal radius R_B − c: base the bearing radius, sign −1.
+struct AxisParameter {
+  std::string name;          ///< the axis's column name (clearance_m, viscosity_Pa_s, ...)
+  std::string unit;          ///< its unit (CF)
+  std::string pointer;
+  std::string base_pointer;
+  double sign = 1.0;
+};
+
 /// One sub-grid: a full factorial over some axes, or an explicit list of cases.
 struct Block {
   std::string name;
@@ -107,6 +118,10 @@ struct Grid {
   /// The validity notes of its cases (Scene::validity_notes, lub/bearing/law_validity.hpp),
   /// each distinct note once, as the warnings. Informative: --strict does not refuse them.
   std::vector<std::string> notes;
+  /// grid.study.sensitivities (default true): each located orbit's steady metrics
+  /// differentiated by `parameters`, its numeric axes of physical numbers.
+  bool sensitivities = true;
+  std::vector<AxisParameter> parameters;
 };
 
 /// Reads, validates and expands a grid file. Throws lub::InputError naming the field, the

@@ -31,6 +31,9 @@ struct Task {
   int from_case = -1;               ///< the case it continues from (-1: none)
   std::string from_scene;           ///< "" : not continued
   std::vector<double> from_orbit;   ///< the packed seed of the case it continues from
+  /// The grid's numeric axes as parameters of the scene: a located orbit's steady metrics
+  /// are differentiated with respect to each (Grid::parameters; empty: none asked).
+  std::vector<AxisParameter> parameters;
 };
 
 /// Byte encoding of a task between processes (MessagePack, like a result). decode_task
