@@ -4,7 +4,8 @@
 
 On a small study lubsweep writes here (clearance x viscosity x two force laws, the channels
 the figures read) and on runs of the paper's scene: each figure is a Figure with the axes it
-promises, drawing the data it was given (no number of the engine is restated here).
+promises, drawing the data it was given (no number of the engine is restated here); and
+tools/plot/sweep_map.py, which draws with the module's cells.
 """
 
 import json
@@ -207,7 +208,7 @@ def test_a_grid_or_value_the_study_lacks_is_named(study):
         plot.envelope(study, fix={"viscosity_Pa_s": 0.3})
 
 
-# --- the package ---------------------------------------------------------------------------
+# --- the package and the tools -------------------------------------------------------------
 
 
 def test_import_lubjoint_needs_no_matplotlib_until_plot_is_used():
@@ -216,3 +217,10 @@ def test_import_lubjoint_needs_no_matplotlib_until_plot_is_used():
     p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert p.returncode == 0, p.stderr
 
+
+def test_sweep_map_draws_with_the_shared_cells(study, source_dir, tmp_path):
+    p = subprocess.run([sys.executable, str(source_dir / "tools" / "plot" / "sweep_map.py"), study.path,
+                        "-x", "clearance_m", "-y", "viscosity_Pa_s", "--fix", "force_law=frene_long",
+                        "-m", "max_eps", "-o", str(tmp_path)], capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    assert (tmp_path / "map_max_eps_clearance_m_viscosity_Pa_s.png").stat().st_size > 0
