@@ -226,7 +226,7 @@ def orbit(run, *, units="clearance", clearance_m=None):
     units : {"clearance", "um"}
         Eccentricity as a fraction of the radial clearance c (the circle of radius 1), or in µm.
     clearance_m : float, optional
-        c [m]; by default |e|/eps from the channels, else the scene's metric joint's (a
+        c [m]; by default ``|e|/eps`` from the channels, else the scene's metric joint's (a
         ``simulate`` result or run file).
 
     Returns
