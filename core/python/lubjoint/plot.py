@@ -278,8 +278,8 @@ def film(run, *, show=FILM_CHANNELS, safe_film_m=None):
     Returns
     -------
     matplotlib.figure.Figure
-        One axes per entry of ``show``, sharing the crank angle [deg] in [0, 360): each cycle
-        of the steady cycle is a line.
+        One axes per entry of ``show``, sharing the crank angle [deg] in [0, 360): each crank
+        cycle drawn is a line of its own (a periodic orbit's lie on one another).
     """
     show = [show] if isinstance(show, str) else list(show)
     if not show or any(s not in FILM_CHANNELS for s in show):
@@ -403,9 +403,9 @@ def classification_map(study, grid=None, x=None, y=None, *, fix=None):
     Returns
     -------
     matplotlib.figure.Figure
-        One axes per combination of the other axes' values (a row per value of the one before
-        the last, a column per value of the last), and a legend of the classifications drawn.
-        A case that is not ``ok`` is hatched and its status written in its cell.
+        One axes per combination of the other axes' values (a column per value of the last of
+        them with more than one, a row per combination of the others), and a legend of the
+        classifications drawn. A case that is not ``ok`` is hatched and its status written in it.
     """
     study, name, g = _grid(study, grid, [a for a in (x, y) if a])
     g = _sorted(_fixed(g, fix))
