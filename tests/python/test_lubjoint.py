@@ -399,6 +399,27 @@ def test_load_study(study_file):
     assert s.cases["max_eps"].values[0] != s.cases["max_eps"].values[1]
 
 
+def test_study_series_is_the_readers_series_by_id_or_name(study_file):
+    # Study.series reads through lubjoint.study.series: the same Dataset by the case's id or name.
+    s = lubjoint.load_study(study_file)
+    names = [str(n) for n in s.cases["name"].values]
+    for case, name in zip(s.cases["case"].values, names):
+        expected = lubjoint.study.series(study_file, name)
+        assert expected is not None and expected["h_min"].size > 1
+        for key in (int(case), case, name):  # an int, a NumPy integer, a str
+            assert s.series(key).identical(expected), key
+    assert not s.series(0)["h_min"].equals(s.series(1)["h_min"])  # two cases, two series
+
+
+@pytest.mark.parametrize("unknown", ["case_9999", 99, -1, "0", 1.0, True])
+def test_study_series_of_an_unknown_case_names_it(study_file, unknown):
+    s = lubjoint.load_study(study_file)
+    with pytest.raises(KeyError) as e:
+        s.series(unknown)
+    message = e.value.args[0]
+    assert repr(unknown) in message and "cases['case']" in message and "cases['name']" in message, message
+
+
 def test_load_study_reads_xarray_layout(tmp_path):
     # The reader alone, on a file in the layout issue 15 describes (netCDF-4 groups, written
     # here with xarray/h5netcdf): /grids/<name> labelled variables over the axes, /cases

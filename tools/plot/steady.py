@@ -28,11 +28,12 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 here = os.path.dirname(os.path.abspath(__file__))
+from lubjoint import plot as lubplot  # noqa: E402  (the classification colours of lubjoint.plot's maps)
 from lubjoint import study as study_reader  # noqa: E402  (PYTHONPATH=build/python: docs/guide/post-processing.md)
 
-CLASSES = ["periodic", "periodic_unstable", "drifting", "not_converged", "film_collapse", "solver_failure",
-           "budget_exceeded"]
-COLOURS = ["#2a9d8f", "#e9c46a", "#e76f51", "#8d99ae", "#6d597a", "#000000", "#444444"]
+# One colour per classification, the same in lubjoint.plot.classification_map.
+CLASSES = list(lubplot.CLASSIFICATION_COLOURS)
+COLOURS = list(lubplot.CLASSIFICATION_COLOURS.values())
 # The edges' marks (lubjoint.bifurcations.KINDS gives the letters).
 EDGE_COLOURS = {"fold": "#d62828", "period_doubling": "#1d3557", "neimark_sacker": "#7b2cbf",
                 "unclassified": "#555555", "orbit_lost": "#000000"}

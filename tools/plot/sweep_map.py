@@ -8,7 +8,8 @@ the value printed in each cell.
 
 Every other axis that varies among the rows must be fixed with --fix AXIS=VALUE (the
 message lists their values). `-m all` draws one map per metric column. Cases that are
-not ok are hatched and labelled with their status. Writes <outdir>/map_<metric>_<x>_<y>.png.
+not ok are hatched and labelled with their status (lubjoint.plot.cell_map, which draws the
+module's classification maps too). Writes <outdir>/map_<metric>_<x>_<y>.png.
 """
 import argparse
 import math
@@ -22,6 +23,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.colors import LogNorm  # noqa: E402
 
+from lubjoint import plot as lubplot  # noqa: E402  (the cells and labels lubjoint.plot draws its maps with)
 from lubjoint import study as study_reader  # noqa: E402  (PYTHONPATH=build/python: docs/guide/post-processing.md)
 
 
@@ -48,12 +50,6 @@ def ordered(col):
     return sorted(col.unique()) if col.dtype.kind != "O" else list(dict.fromkeys(col))
 
 
-def label(units, name):
-    u = units.get(name, "")
-    in_name = name.endswith(u.replace(" ", "_")) or name.endswith("_rpm")  # the unit is in the name
-    return f"{name} [{u}]" if u and u != "1" and not in_name else name
-
-
 def draw(rows, units, metric, x, y, fixed, outdir):
     xs, ys = ordered(rows[x]), ordered(rows[y])
     z = rows.pivot_table(index=y, columns=x, values=metric, aggfunc="first", dropna=False).reindex(index=ys, columns=xs)
@@ -64,24 +60,11 @@ def draw(rows, units, metric, x, y, fixed, outdir):
     if finite.size and finite.min() > 0 and finite.max() / finite.min() > 100:
         norm = LogNorm(vmin=finite.min(), vmax=finite.max())
     fig, ax = plt.subplots(figsize=(1.4 * len(xs) + 2.6, 0.9 * len(ys) + 1.9))
-    im = ax.imshow(np.ma.masked_invalid(z), origin="lower", cmap="viridis", norm=norm, aspect="auto")
-    for i in range(len(ys)):
-        for j in range(len(xs)):
-            txt = "" if not math.isfinite(z[i, j]) else f"{z[i, j]:.3g}"
-            if status[i, j] not in (None, "ok") and isinstance(status[i, j], str):
-                ax.add_patch(plt.Rectangle((j - 0.5, i - 0.5), 1, 1, fill=False, hatch="///", color="firebrick", lw=0))
-                txt = f"{txt}\n{status[i, j]}"
-            colour = "firebrick"
-            if math.isfinite(z[i, j]):
-                r, g, b, _ = im.cmap(im.norm(z[i, j]))
-                colour = "black" if 0.299 * r + 0.587 * g + 0.114 * b > 0.5 else "white"
-            ax.text(j, i, txt, ha="center", va="center", fontsize=7, color=colour,
-                    bbox=None if status[i, j] in (None, "ok") or not isinstance(status[i, j], str) else dict(fc="white", ec="none", alpha=0.7, pad=1))
-    ax.set_xticks(range(len(xs)), [f"{v:g}" if isinstance(v, float) else str(v) for v in xs], fontsize=8)
-    ax.set_yticks(range(len(ys)), [f"{v:g}" if isinstance(v, float) else str(v) for v in ys], fontsize=8)
-    ax.set_xlabel(label(units, x))
-    ax.set_ylabel(label(units, y))
-    fig.colorbar(im, ax=ax, label=label(units, metric))
+    text = [["" if not math.isfinite(v) else f"{v:.3g}" for v in row] for row in z]
+    im = lubplot.cell_map(ax, z, xs, ys, cmap="viridis", norm=norm, text=text, status=status)
+    ax.set_xlabel(lubplot.axis_label(x, units.get(x, "")))
+    ax.set_ylabel(lubplot.axis_label(y, units.get(y, "")))
+    fig.colorbar(im, ax=ax, label=lubplot.axis_label(metric, units.get(metric, "")))
     title = metric + ("" if not fixed else "  (" + ", ".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}"
                                                            for k, v in fixed.items()) + ")")
     ax.set_title(title, fontsize=9)

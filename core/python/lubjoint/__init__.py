@@ -11,7 +11,10 @@ argument with a unit names it (``radius_m``, ``viscosity_Pa_s``), every array ca
   -> ``FilmForce(radial_N, tangential_N)``: a force law over NumPy arrays (broadcasting).
 - ``steady_bearing(law, *, load_N, speed_rpm, radius_m, clearance_m, length_m, viscosity_Pa_s)``
   -> dict: the steadily loaded bearing, as ``lubbearing steady``.
-- ``load_study(path)`` -> ``Study``: a lubsweep study file as {grid name: Dataset} plus ``cases``.
+- ``load_study(path)`` -> ``Study``: a lubsweep study file as {grid name: Dataset} plus ``cases``;
+  ``Study.series(case)``: a case's recorded channels.
+- ``plot.orbit``, ``plot.film``, ``plot.classification_map``, ``plot.envelope``: figures of a run
+  or a study, each a ``matplotlib.figure.Figure``.
 
 Bad input raises ``InputError`` (a ``ValueError``; alias ``SceneError``) with the message
 the command line prints: the JSON path, the value and the rule. A run that cannot be
@@ -21,7 +24,8 @@ completed (film collapse, solver failure, budget) is a result, not an exception:
 
 By concern: ``lubjoint.run`` (``simulate``), ``lubjoint.bearing`` (``force``,
 ``steady_bearing``, ``FORCE_LAWS``), ``lubjoint.study`` (``load_study`` and the look-ups
-the tools share: the one reader of study files). This package face re-exports them.
+the tools share: the one reader of study files), ``lubjoint.plot`` (figures; imported on
+first use, so that ``import lubjoint`` needs no matplotlib). This package face re-exports them.
 
 ``lubjoint.study`` is pure Python: the compiled extension is imported only when a name that
 needs it is first used (``simulate``, ``force``, ``InputError``, ``__version__``, ...), so
@@ -38,7 +42,8 @@ import sys
 from .study import Study, StudyFormatError, load_study, study_format
 
 __all__ = ["simulate", "force", "pressure", "steady_bearing", "load_study", "study_format", "FilmForce", "Study",
-           "InputError", "SceneError", "PlausibilityWarning", "ValidityNote", "StudyFormatError", "FORCE_LAWS", "__version__"]
+           "InputError", "SceneError", "PlausibilityWarning", "ValidityNote", "StudyFormatError", "FORCE_LAWS",
+           "plot", "__version__"]
 
 # The names that need the compiled extension, and the submodule each comes from: imported
 # on first use (PEP 562), so that lubjoint.study does not need the extension.
@@ -50,7 +55,10 @@ _FROM_SUBMODULE = {
 
 
 def __getattr__(name):
-    """A name that needs the compiled extension, imported on first use (PEP 562)."""
+    """A name that needs the compiled extension, or the submodule ``plot`` (matplotlib), imported
+    on first use (PEP 562)."""
+    if name == "plot":
+        return importlib.import_module(f"{__name__}.plot")
     if name not in _FROM_SUBMODULE and name not in ("__version__", "__revision__"):
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
     try:

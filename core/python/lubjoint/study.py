@@ -295,7 +295,7 @@ class Study(Mapping):
     axes (dimension scales with ``units``). ``cases`` is the ``/cases`` group: one 1-D
     variable per column over the dimension ``case`` (``cases.to_dataframe()`` gives the
     pandas table). ``attrs`` are the file's root attributes (``format``, ``grid``,
-    ``complete``, ...).
+    ``complete``, ...). ``series(case)`` reads one case's recorded channels.
     """
 
     def __init__(self, path, grids, cases, attrs):
@@ -315,6 +315,39 @@ class Study(Mapping):
 
     def __repr__(self):
         return f"Study({self.path!r}, grids={list(self.grids)}, cases={self.cases.sizes.get('case', 0)})"
+
+    def series(self, case):
+        """One case's recorded channels: ``series(self.path, name)`` for the case ``case``.
+
+        Parameters
+        ----------
+        case : int or str
+            The case's id (an ``int``, the ``case`` coordinate of ``cases``, as ``scene`` and
+            ``orbit_seed`` take it) or its name (a ``str``, the ``name`` column, as ``series``
+            takes it: ``"case_0003"``).
+
+        Returns
+        -------
+        xarray.Dataset or None
+            The stored channels over ``t`` [s] (each with ``units`` and ``long_name``): a
+            periodic case's periodic orbit over the metric cycles, otherwise the run's last
+            cycles (docs/reference/study-file.md); None for a case that stored none (the
+            grid's ``study.channels`` empty).
+
+        Raises
+        ------
+        KeyError
+            For a case the study does not have, naming it and where the valid ids and names are.
+        """
+        ids = [int(i) for i in self.cases["case"].values]
+        names = [str(_text(n)) for n in self.cases["name"].values]
+        if isinstance(case, str) and case in names:
+            return series(self.path, case)
+        if not isinstance(case, (str, bool)) and hasattr(case, "__index__") and int(case) in ids:
+            return series(self.path, names[ids.index(int(case))])
+        first_last = [f"{v[0]} ... {v[-1]}" if v else "none" for v in (ids, names)]
+        raise KeyError(f"{self.path}: no case {case!r}: a case is an int id in cases['case'] (here {first_last[0]}) "
+                       f"or a str name in cases['name'] (here {first_last[1]})")
 
 
 def load_study(path):
