@@ -193,6 +193,23 @@ def test_envelope_draws_the_metric_per_force_law_with_error_bars_and_the_safe_fi
     assert "safe film thickness" not in legend_texts(eps) and eps.get_ylabel() == "max_eps [–]"
 
 
+def test_envelope_draws_each_orbits_tangent_from_the_study_sensitivity(study):
+    g = study["grid"].sortby("viscosity_Pa_s").sel(clearance_m=0.0005, force_law="pinkus_sternlicht")
+    ax = plot.envelope(study, axis="viscosity_Pa_s", fix={"clearance_m": 0.0005, "force_law": "pinkus_sternlicht"}).axes[0]
+    assert "tangent: d_min_film_thickness_m_per_viscosity_Pa_s" in legend_texts(ax)
+    film = g["min_film_thickness_m"].values * 1e6  # drawn in µm over Pa s
+    slope = g["d_min_film_thickness_m_per_viscosity_Pa_s"].values * 1e6
+    mu = g["viscosity_Pa_s"].values
+    dotted = [l for l in ax.get_lines() if l.get_linestyle() == ":" and len(l.get_xdata()) > 1]
+    orbits = np.flatnonzero(np.isfinite(film) & np.isfinite(slope))
+    assert len(orbits) and len(dotted) == len(orbits)
+    for i, line in zip(orbits, dotted):  # through the orbit's point, with the study's slope
+        x, y = np.asarray(line.get_xdata()), np.asarray(line.get_ydata())
+        assert x.min() <= mu[i] <= x.max() and x.max() > x.min()  # a quarter of the way to each neighbour
+        assert np.allclose(np.diff(y) / np.diff(x), slope[i], rtol=1e-9)
+        assert np.interp(mu[i], x, y) == pytest.approx(film[i], rel=1e-12)
+
+
 def test_envelope_over_an_axis_left_free_is_a_band(study):
     ax = plot.envelope(study, axis="clearance_m").axes[0]  # viscosity spans two values
     assert "band" in ax.get_title() and "viscosity_Pa_s" in ax.get_title()

@@ -462,7 +462,8 @@ def envelope(study, metric="min_film_thickness_m", axis=None, grid=None, *, fix=
     study : Study or str or os.PathLike
     metric : str
         A variable of the grid (``min_film_thickness_m`` [m, drawn in µm], ``max_eps`` [1],
-        ``peak_reaction_N`` [N], ...). Error bars where the grid has ``<metric>_error``; the
+        ``peak_reaction_N`` [N], ...). Error bars where the grid has ``<metric>_error``, and at
+        each orbit its tangent where it has the sensitivity ``d_<metric>_per_<axis>``; the
         safe film thickness (``safe_film_thickness_m``, the threshold of ``below_safe_film``)
         as a dashed line where the metric is a film thickness.
     axis : str, optional
@@ -500,6 +501,9 @@ def envelope(study, metric="min_film_thickness_m", axis=None, grid=None, *, fix=
     if metric in ("min_film_thickness_m", "last_cycle_min_film_m") and "safe_film_thickness_m" in g:
         safe = g["safe_film_thickness_m"].min([d for d in g["case_id"].dims if d != axis])
         ax.plot(xs, _along(safe, axis) * factor, "--", color="firebrick", lw=1.0, label="safe film thickness")
+    if f"d_{metric}_per_{axis}" in g and not [d for d in g["case_id"].dims if d not in (axis, "force_law")
+                                            and g.sizes[d] > 1]:
+        ax.plot([], [], ":", color="0.3", lw=1.6, label=f"tangent: d_{metric}_per_{axis}")
     if any(gaps):
         ax.plot([], [], "x", color="0.3", label="no value (no steady cycle)")
     _log_scales(ax, xs if _numeric(g, axis) else None)
@@ -533,11 +537,40 @@ def _envelope_line(ax, v, metric, axis, xs, factor, k, label):
             ok = np.isfinite(y)
             err = np.nan_to_num(_along(v[f"{metric}_error"], axis)[ok] * factor)
             ax.errorbar(np.asarray(xs)[ok], y[ok], yerr=err, fmt="none", ecolor=f"C{k}", capsize=3, lw=1.0)
+        if f"d_{metric}_per_{axis}" in v:
+            _tangents(ax, xs, y, _along(v[f"d_{metric}_per_{axis}"], axis) * factor / _display_factor(v, axis), k)
     ax.plot([], [], "o-", color=f"C{k}", label=label)
     missing = ~np.isfinite(y)
     ax.plot(np.asarray(xs)[missing], np.full(missing.sum(), 0.03 + 0.035 * k), "x", color=f"C{k}", ms=7,
             mew=1.5, transform=blended_transform_factory(ax.transData, ax.transAxes), clip_on=False)
     return bool(missing.any())
+
+
+def _display_factor(g, dim):
+    """How many drawn units an axis's SI unit is (µm per m: 1e6)."""
+    return display(g[dim].attrs.get("units", ""))[1]
+
+
+def _tangents(ax, xs, y, slope, k):
+    """The study's sensitivity at each orbit (``d_<metric>_per_<axis>``, in drawn units) as a
+    short dotted tangent, a quarter of the way to each neighbour (``_tangent_span``)."""
+    xs = np.asarray(xs, dtype=float)
+    for i in np.flatnonzero(np.isfinite(y) & np.isfinite(slope)):
+        lo, hi = _tangent_span(xs, i)
+        t = np.linspace(lo, hi, 9)  # points, so a log axis draws the straight tangent as it bends
+        ax.plot(t, y[i] + slope[i] * (t - xs[i]), ":", color=f"C{k}", lw=1.6)
+
+
+def _tangent_span(xs, i):
+    """From a quarter of the way to the lower neighbour to a quarter to the upper (geometric
+    where the values are positive, as a log axis draws them)."""
+    def toward(j):
+        if j < 0 or j >= len(xs):
+            return xs[i]
+        if xs[i] > 0 and xs[j] > 0:
+            return xs[i] * (xs[j] / xs[i]) ** 0.25
+        return xs[i] + 0.25 * (xs[j] - xs[i])
+    return toward(i - 1), toward(i + 1)
 
 
 def _log_scales(ax, xs):
