@@ -158,6 +158,19 @@ void print_notes(std::FILE* out, const h5::File& f, const h5::Table& t) {
                reversed, full);
 }
 
+/// What the sensitivities cost, where the study has them: their periods against the steady
+/// stages' (issue 44 bounds them at 30 %).
+void print_sensitivity_cost(std::FILE* out, const h5::Table& t) {
+  if (!t.has_column("sensitivity_periods") || !t.has_column("periods_integrated")) return;
+  double spent = 0.0, steady = 0.0;
+  for (std::int64_t p : t.read_int64s("sensitivity_periods")) spent += static_cast<double>(std::max<std::int64_t>(p, 0));
+  for (std::int64_t p : t.read_int64s("periods_integrated")) steady += static_cast<double>(std::max<std::int64_t>(p, 0));
+  fmt::print(out,
+             "sensitivities: d_<metric>_per_<axis> of each located orbit in /cases and /grids; {:.0f} periods, {:.1f} % "
+             "of the steady stages' {:.0f} (docs/theory/sensitivities.md)\n",
+             spent, steady > 0.0 ? 100.0 * spent / steady : 0.0, steady);
+}
+
 }  // namespace
 
 void print_summary(const std::string& path, std::FILE* out) {
@@ -186,6 +199,7 @@ void print_summary(const std::string& path, std::FILE* out) {
   const std::int64_t total = f.has_attribute("cases_total") ? f.attribute_int64("cases_total") : static_cast<std::int64_t>(n);
   print_counts(out, path, n, total, status, cls);
   print_table(out, cols, n);
+  print_sensitivity_cost(out, t);
   print_notes(out, f, t);
   for (std::size_t i = 0; i < n; ++i)
     if (!is_ok(status[i])) fmt::print(out, "{}: {}: {}\n", names[i], status[i], message[i]);
