@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <regex>
 #include <string>
@@ -129,6 +130,36 @@ TEST(ProgramsCli, LubsimRefusesASensitivityToWhatIsNotANumber) {
     EXPECT_EQ(r.status, 2) << ptr << "\n" << r.out;
     EXPECT_NE(r.out.find("--sensitivity " + ptr), std::string::npos) << r.out;
     EXPECT_FALSE(std::ifstream(out).good()) << ptr;
+  }
+}
+
+// A scene or grid file that cannot be read or parsed (issue 46): one line that names the file
+// once and says what is wrong (no such file; a directory; where the syntax breaks, without
+// the JSON library's echo of the text), exit 2, no output file.
+TEST(ProgramsCli, AnUnreadableInputFileIsNamedOnceAndSaidPlainly) {
+  const std::string dir = ::testing::TempDir() + "unreadable_input/";
+  std::system(("rm -rf '" + dir + "' && mkdir -p '" + dir + "'").c_str());
+  std::ofstream(dir + "bad.json") << "{\n  \"description\": \"" << std::string(250, 'x') << "\",\n  \"bodies\": [,]\n}\n";
+  const std::string out = dir + "out.h5";
+  const struct {
+    std::string name, path, input, message;
+  } cases[] = {
+      {"lubsim", "/core/lubsim", dir + "nope.json", "no such file"},
+      {"lubsim", "/core/lubsim", dir, "a directory, not a file"},
+      {"lubsim", "/core/lubsim", dir + "bad.json",
+       "line 3, column 14: not valid JSON: syntax error while parsing value - unexpected ','; expected '[', '{', or "
+       "a literal"},
+      {"lubsweep", "/sweep/lubsweep", dir + "nope.json", "no such file"},
+      {"lubsweep", "/sweep/lubsweep", dir, "a directory, not a file"},
+      {"lubsweep", "/sweep/lubsweep", dir + "bad.json",
+       "line 3, column 14: not valid JSON: syntax error while parsing value - unexpected ','; expected '[', '{', or "
+       "a literal"},
+  };
+  for (const auto& c : cases) {
+    const Result r = run(c.path, "'" + c.input + "' -o '" + out + "'", true);
+    EXPECT_EQ(r.status, 2) << c.name << " " << c.input << "\n" << r.out;
+    EXPECT_EQ(r.out, c.name + ": " + c.input + ": " + c.message + "\n");
+    EXPECT_FALSE(std::ifstream(out).good()) << c.name << " " << c.input;
   }
 }
 

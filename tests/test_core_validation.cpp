@@ -14,6 +14,7 @@
 #include <functional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lub/bearing/force_laws.hpp"
@@ -65,7 +66,8 @@ const std::vector<Case>& cases() {
       // Syntax and document shape.
       {"not JSON", "four_bar.json", nullptr,
        [](const std::string&) { return std::string("{ bodies: [] }"); },
-       {"not valid JSON", "parse error at line 1"}},
+       {"scene.json: line 1, column 3: not valid JSON: syntax error while parsing object key - invalid literal; "
+        "expected string literal"}},
       {"a number too large for a double", "four_bar.json", nullptr,
        [](const std::string& t) { return replace_once(t, "\"mass_kg\": 0.30", "\"mass_kg\": 1e999"); },
        {"not valid JSON", "number overflow", "1e999"}},
@@ -349,6 +351,61 @@ std::string test_name(const testing::TestParamInfo<size_t>& info) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Validation, MalformedScene, testing::Range<size_t>(0, cases().size()), test_name);
+
+// A syntax error is placed by line and column, with the library's reason and none of the
+// text around it (nlohmann-json's "last read: '...'" echoes up to a whole line).
+TEST(Validation, ASyntaxErrorSaysLineAndColumnAndEchoesNoText) {
+  const std::string long_value(300, 'x');
+  const std::string text = "{\n  \"description\": \"" + long_value + "\",\n  \"bodies\": [ {\"name\": crank} ]\n}\n";
+  // An unterminated string (the column: where its quote is missing): the library's message would
+  // echo all 300 characters of it.
+  try {
+    lub::parse_json_text("{\"description\": \"" + long_value, "scene.json");
+    ADD_FAILURE() << "accepted";
+  } catch (const lub::InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "scene.json: line 1, column 318: not valid JSON: syntax error while parsing "
+                                     "value - invalid string: missing closing quote");
+  }
+  try {
+    lub::parse_json_text(text, "scene.json");
+    FAIL() << "accepted";
+  } catch (const lub::InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "scene.json: line 3, column 24: not valid JSON: syntax error while parsing value - invalid literal");
+  }
+  // The column counts from the line's start, on the first line and after a last newline.
+  for (const auto& [bad, where] : {std::pair{std::string("{\"a\": }"), std::string("line 1, column 7")},
+                                   std::pair{std::string("{\n\n"), std::string("line 3, column 1")},
+                                   std::pair{std::string(""), std::string("line 1, column 1")}}) {
+    try {
+      lub::parse_json(bad);
+      ADD_FAILURE() << bad << ": accepted";
+    } catch (const lub::InputError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(where + ": not valid JSON: ", 0), 0u) << e.what();
+    }
+  }
+}
+
+// Files: one message a problem, without the path (the caller names it once), or with it
+// from read_json_file.
+TEST(Validation, AFileThatCannotBeReadIsSaidPlainly) {
+  const fs::path dir = fs::temp_directory_path() / ("lub_read_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  auto message = [](const std::function<void()>& read) {
+    try {
+      read();
+    } catch (const lub::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string missing = (dir / "nope.json").string();
+  EXPECT_EQ(message([&] { lub::read_text_file(missing); }), "no such file");
+  EXPECT_EQ(message([&] { lub::read_json_file(missing); }), missing + ": no such file");
+  EXPECT_EQ(message([&] { lub::read_text_file(dir.string()); }), "a directory, not a file");
+  EXPECT_EQ(message([&] { lub::read_json_file(dir.string()); }), dir.string() + ": a directory, not a file");
+  fs::remove_all(dir);
+}
 
 TEST(Validation, TheUnmodifiedBasesAreAccepted) {
   for (const std::string base : {"four_bar.json", "slider_crank.json", "slider_crank_two_lubricated.json"})

@@ -400,11 +400,15 @@ TEST(SweepGrid, SceneErrors) {
     return std::string();
   };
   EXPECT_EQ(err(R"({"scene": "missing.json", "axes": []})", "/nonexistent"),
-            "grid.scene = \"missing.json\": /nonexistent/missing.json: cannot open the file");
+            "grid.scene = \"missing.json\": /nonexistent/missing.json: no such file");
+  EXPECT_EQ(err(R"({"scene": "/", "axes": []})", "."), "grid.scene = \"/\": /: a directory, not a file");
   EXPECT_EQ(err(R"({"scene": 5, "axes": []})", "."),
             "grid.scene = 5: must name a scene file (relative to the grid) or be a scene object");
   EXPECT_EQ(err(R"({"axes": []})", "."), "grid.scene is missing: required");
-  EXPECT_EQ(err(R"({"scene": "slider_crank.json", "axes": [})", kScenes).substr(0, 25), "g.json: not valid JSON: [");
+  // The grid's own syntax: where, and why, without its text (the caller names the file).
+  EXPECT_EQ(err(R"({"scene": "slider_crank.json", "axes": [})", kScenes),
+            "line 1, column 41: not valid JSON: syntax error while parsing value - unexpected '}'; expected '[', "
+            "'{', or a literal");
   const std::string prefix = "grid.scene = {\"bodies\":[]}: gives an invalid scene: bodies";
   EXPECT_EQ(err(R"({"scene": {"bodies": []}, "axes": []})", ".").substr(0, prefix.size()), prefix);
   // A named axis needs the lubricated joint: this scene's metric joint is ideal.

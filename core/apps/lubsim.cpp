@@ -126,7 +126,7 @@ int main(int argc, char** argv) {
   std::string scene_text;
   std::vector<lub::SensitivityParameter> sens_params;
   try {
-    nlohmann::json doc = lub::read_json_file(scene_path);
+    nlohmann::json doc = lub::parse_json(lub::read_text_file(scene_path));  // messages: no path, added below
     for (const auto& s : sets) lub::apply_override(doc, s);
     scene = lub::parse_scene(doc);
     scene_text = doc.dump(2);

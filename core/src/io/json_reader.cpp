@@ -1,6 +1,10 @@
 #include "lub/io/json_reader.hpp"
 
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -206,7 +210,6 @@ namespace {
 // path of the current value while the parser reports its events.
 class DuplicateKeyCheck {
  public:
-  explicit DuplicateKeyCheck(std::string origin) : origin_(std::move(origin)) {}
   bool operator()(json::parse_event_t event, const json& parsed) {
     switch (event) {
       case json::parse_event_t::object_start:
@@ -222,7 +225,7 @@ class DuplicateKeyCheck {
         Frame& f = frames_.back();  // an object; the event's value is the key
         f.key = parsed.get<std::string>();
         if (!f.keys.insert(f.key).second)
-          throw InputError(origin_ + ": " + path() + ": duplicate key (a key may appear only once in an object)");
+          throw InputError(path() + ": duplicate key (a key may appear only once in an object)");
         break;
       }
       case json::parse_event_t::value:
@@ -252,33 +255,81 @@ class DuplicateKeyCheck {
     }
     return p;
   }
-  std::string origin_;
   std::vector<Frame> frames_;
 };
 
+// Where parsing stopped, from the byte count nlohmann-json reports (the characters read,
+// the offending one last): "line L, column C", both from 1.
+std::string text_position(const std::string& text, std::size_t byte) {
+  const std::size_t end = std::min(byte > 0 ? byte - 1 : 0, text.size());
+  std::size_t line = 1, line_start = 0;
+  for (std::size_t i = 0; i < end; ++i)
+    if (text[i] == '\n') ++line, line_start = i + 1;
+  return "line " + std::to_string(line) + ", column " + std::to_string(end - line_start + 1);
+}
+
+// The library's reason without its prefixes ("[json.exception.parse_error.101] parse error at
+// line 1, column 3: ") and without its "last read: '...'" echo of the input, which may be
+// hundreds of characters of the file.
+std::string parse_reason(const std::string& what) {
+  std::string r = what;
+  if (const auto id = r.find("] "); r.rfind("[json.exception.", 0) == 0 && id != std::string::npos)
+    r = r.substr(id + 2);
+  if (const auto colon = r.find(": "); r.rfind("parse error", 0) == 0 && colon != std::string::npos)
+    r = r.substr(colon + 2);
+  if (const auto echo = r.find("; last read: '"); echo != std::string::npos) {
+    const auto expected = r.rfind("'; expected ");
+    r = r.substr(0, echo) + (expected == std::string::npos || expected < echo ? "" : r.substr(expected + 1));
+  }
+  if (r.size() > 2 * kBriefChars) r = r.substr(0, 2 * kBriefChars - 3) + "...";
+  return r;
+}
+
 }  // namespace
 
-json parse_json_text(const std::string& text, const std::string& origin) {
-  DuplicateKeyCheck check(origin);
+json parse_json(const std::string& text) {
+  DuplicateKeyCheck check;
   const json::parser_callback_t cb = [&check](int /*depth*/, json::parse_event_t event, json& parsed) {
     return check(event, parsed);
   };
   try {
     return json::parse(text, cb);
   } catch (const json::parse_error& e) {
-    throw InputError(origin + ": not valid JSON: " + e.what());
+    throw InputError(text_position(text, e.byte) + ": not valid JSON: " + parse_reason(e.what()));
   } catch (const json::exception& e) {  // e.g. out_of_range.406: a number overflows a double
-    throw InputError(origin + ": not valid JSON for a scene: " + e.what());
+    throw InputError("not valid JSON (a number must fit a double): " + parse_reason(e.what()));
   }
 }
 
-json read_json_file(const std::string& path) {
+json parse_json_text(const std::string& text, const std::string& origin) {
+  try {
+    return parse_json(text);
+  } catch (const InputError& e) {
+    throw InputError(origin + ": " + e.what());
+  }
+}
+
+std::string read_text_file(const std::string& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (status.type() == std::filesystem::file_type::not_found) throw InputError("no such file");
+  if (status.type() == std::filesystem::file_type::directory) throw InputError("a directory, not a file");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open the file");
+  if (!in) throw InputError(std::string("cannot open the file: ") + std::strerror(errno));
   std::ostringstream text;
   text << in.rdbuf();
-  if (!in.good() && !in.eof()) throw InputError(path + ": cannot read the file");
-  return parse_json_text(text.str(), path);
+  if (!in.good() && !in.eof()) throw InputError("cannot read the file");
+  return text.str();
+}
+
+json read_json_file(const std::string& path) {
+  std::string text;
+  try {
+    text = read_text_file(path);
+  } catch (const InputError& e) {
+    throw InputError(path + ": " + e.what());
+  }
+  return parse_json_text(text, path);
 }
 
 void apply_override(json& doc, const std::string& assignment) {

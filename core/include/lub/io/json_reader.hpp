@@ -93,11 +93,17 @@ const nlohmann::json& require_array(const nlohmann::json& value, const std::stri
 inline bool positive(double v) { return v > 0.0; }
 inline bool non_negative(double v) { return v >= 0.0; }
 
-/// Reads a JSON file; errors (missing file, syntax, a key twice in one object, a number
-/// too large for a double) throw InputError naming the file.
-nlohmann::json read_json_file(const std::string& path);
-/// The same for JSON text; `origin` (a file name) prefixes the messages.
+/// The text of a file. InputError "no such file", "a directory, not a file" or "cannot open
+/// the file: <reason>": the message does not name the file (the caller does, once).
+std::string read_text_file(const std::string& path);
+/// JSON text; errors (syntax, a key twice in one object, a number too large for a double)
+/// throw InputError with no file name: "line 3, column 7: not valid JSON: <short reason>",
+/// "bodies[1].mass_kg: duplicate key (...)". The message never echoes the text.
+nlohmann::json parse_json(const std::string& text);
+/// parse_json, `origin` (a file name) prefixing the messages.
 nlohmann::json parse_json_text(const std::string& text, const std::string& origin);
+/// read_text_file then parse_json; every message starts with the path ("PATH: no such file").
+nlohmann::json read_json_file(const std::string& path);
 
 /// Applies `--set POINTER=VALUE`: VALUE parsed as JSON, or taken as a string if it is not
 /// JSON. The pointer must name an existing value or a new key of an existing object.
