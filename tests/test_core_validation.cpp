@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -88,14 +89,30 @@ const std::vector<Case>& cases() {
       {"unknown top-level key", "four_bar.json", [](json& d) { d["gravity_m_s2"] = {0, -9.81}; }, nullptr,
        {"gravity_m_s2 = [0,-9.81]: unknown key"}},
       {"typo in a body key", "four_bar.json", [](json& d) { d["bodies"][1]["mass_kgs"] = 0.4; }, nullptr,
-       {"bodies[1].mass_kgs = 0.4: unknown key"}},
+       {"bodies[1].mass_kgs = 0.4: unknown key; did you mean `mass_kg`?"}},
       {"typo in a lubricated joint key", "four_bar.json",
        [](json& d) { d["joints"][3]["viscosty_Pa_s"] = 0.4; }, nullptr,
-       {"joints[3].viscosty_Pa_s = 0.4: unknown key"}},
+       {"joints[3].viscosty_Pa_s = 0.4: unknown key; did you mean `viscosity_Pa_s`?"}},
+      // A misspelt required key is named, not the key it stands for as missing (issue 46)...
+      {"a required key misspelt", "four_bar.json",
+       [](json& d) {
+         d["joints"][3]["viscosty_Pa_s"] = d["joints"][3]["viscosity_Pa_s"];
+         d["joints"][3].erase("viscosity_Pa_s");
+       },
+       nullptr, {"joints[3].viscosty_Pa_s = 0.4: unknown key; did you mean `viscosity_Pa_s`?"}},
+      {"a top-level key misspelt", "four_bar.json",
+       [](json& d) { d["bodys"] = d["bodies"]; d.erase("bodies"); }, nullptr,
+       {"bodys = [", ": unknown key; did you mean `bodies`?"}},
+      {"a required key misspelt beside its sibling", "four_bar.json",
+       [](json& d) { d["joints"][0]["body_k"] = d["joints"][0]["body_i"]; d["joints"][0].erase("body_i"); }, nullptr,
+       {"joints[0].body_k = \"ground\": unknown key; did you mean `body_i`?"}},
+      // ... but a key of its own that is close to the missing one is no misspelling.
+      {"a required key missing beside its sibling", "four_bar.json", [](json& d) { d["joints"][0].erase("body_i"); },
+       nullptr, {"joints[0].body_i is missing: required"}},
       {"typo in an effect", "four_bar.json", [](json& d) { d["effects"]["gravity"] = {0, -9.81}; }, nullptr,
-       {"effects.gravity = [0,-9.81]: unknown key"}},
+       {"effects.gravity = [0,-9.81]: unknown key; did you mean `gravity_m_s2`?"}},
       {"typo in a channel", "four_bar.json", [](json& d) { chan(d, 0)["quantitiy"] = "x"; }, nullptr,
-       {"outputs.channels[0].quantitiy = \"x\": unknown key"}},
+       {"outputs.channels[0].quantitiy = \"x\": unknown key; did you mean `quantity`?"}},
       // Missing required keys.
       {"no bodies", "four_bar.json", [](json& d) { d.erase("bodies"); }, nullptr,
        {"bodies is missing: required"}},
@@ -405,6 +422,21 @@ TEST(Validation, AFileThatCannotBeReadIsSaidPlainly) {
   EXPECT_EQ(message([&] { lub::read_text_file(dir.string()); }), "a directory, not a file");
   EXPECT_EQ(message([&] { lub::read_json_file(dir.string()); }), dir.string() + ": a directory, not a file");
   fs::remove_all(dir);
+}
+
+// Edit distance and the closest name, for "did you mean".
+TEST(Validation, TheClosestNameIsOneThatIsClose) {
+  EXPECT_EQ(lub::edit_distance("viscosty_Pa_s", "viscosity_Pa_s"), 1u);
+  EXPECT_EQ(lub::edit_distance("viscoisty_Pa_s", "viscosity_Pa_s"), 1u);  // two neighbours swapped
+  EXPECT_EQ(lub::edit_distance("", "abc"), 3u);
+  EXPECT_EQ(lub::edit_distance("kitten", "sitting"), 3u);
+  const std::vector<std::string> keys = {"viscosity_Pa_s", "length_m", "max_cycles", "rtol", "atol"};
+  EXPECT_EQ(lub::closest_name("viscosty_Pa_s", keys), "viscosity_Pa_s");
+  EXPECT_EQ(lub::closest_name("cycles", keys), "max_cycles");  // a part of it
+  EXPECT_EQ(lub::closest_name("rtoll", keys), "rtol");
+  EXPECT_EQ(lub::closest_name("colour", keys), std::nullopt);
+  EXPECT_EQ(lub::closest_name("rtol", {"rtol"}), std::nullopt);  // never the word itself
+  EXPECT_EQ(lub::closest_name("rtol", keys), "atol");
 }
 
 TEST(Validation, TheUnmodifiedBasesAreAccepted) {

@@ -329,9 +329,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadGrid{one_axis(R"("name": "viscosity_Pa_s", "values": [])"), "grid.axes[0].values = []: must list at least one value"},
         BadGrid{one_axis(R"("name": "viscosity", "values": [0.4])"), "grid.axes[0].name = \"viscosity\": must be one of clearance_m, viscosity_Pa_s, speed_rpm, force_law, or the axis needs a pointer"},
         BadGrid{one_axis(R"("values": [0.4])"), "grid.axes[0]: needs a pointer (\"pointer\": \"/solver/rtol\") or a named axis (clearance_m, viscosity_Pa_s, speed_rpm, force_law)"},
-        BadGrid{one_axis(R"("name": "speed_rpm", "values": [50], "unit": "rpm")"), "grid.axes[0].unit = \"rpm\": unknown key (check the spelling; the keys: docs/reference/)"},
+        BadGrid{one_axis(R"("name": "speed_rpm", "values": [50], "unit": "rpm")"), "grid.axes[0].unit = \"rpm\": unknown key; did you mean `units`?"},
         BadGrid{one_axis(R"("pointer": "solver/rtol", "values": [1e-6])"), "grid.axes[0].pointer = \"solver/rtol\": must be a JSON Pointer (RFC 6901) starting with '/', e.g. /solver/rtol"},
-        BadGrid{one_axis(R"("pointer": "/solver/rtoll", "values": [1e-7])"), "grid.axes[0].values[0] = 1e-07: gives an invalid scene: solver.rtoll = 1e-07: unknown key (check the spelling; the keys: docs/reference/)"},
+        BadGrid{one_axis(R"("pointer": "/solver/rtoll", "values": [1e-7])"), "grid.axes[0].values[0] = 1e-07: gives an invalid scene: solver.rtoll = 1e-07: unknown key; did you mean `rtol`?"},
         BadGrid{one_axis(R"("pointer": "/joints/9/length_m", "values": [0.1])"), "grid.axes[0].values[0] = 0.1: /joints/9/length_m names no value of the scene, and its parent is not an object"},
         BadGrid{one_axis(R"("pointer": "/solver/rtol", "name": "speed_rpm", "values": [1e-7])"), "grid.axes[0].name = \"speed_rpm\": is a named axis: it takes no pointer (rename the pointer axis)"},
         BadGrid{one_axis(R"("pointer": "/solver/rtol", "name": "status", "values": [1e-7])"), "grid.axes[0].name = \"status\": is a column lubsweep writes itself: choose another name"},
@@ -388,7 +388,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadGrid{R"("study": {"metric_cycles": 9, "max_cycles": 4}, "axes": [])",
                 "grid.study = {\"max_cycles\":4,\"metric_cycles\":9}: gives an invalid scene: simulation.metric_cycles = 9: must be <= simulation.max_cycles = 4"},
         BadGrid{R"("study": {"cycles": 4}, "axes": [])",
-                "grid.study.cycles = 4: unknown key (check the spelling; the keys: docs/reference/)"}));
+                "grid.study.cycles = 4: unknown key; did you mean `max_cycles`?"}));
 
 TEST(SweepGrid, SceneErrors) {
   auto err = [](const std::string& text, const std::string& dir) {

@@ -59,10 +59,42 @@ void fail(const std::string& path, const json& value, const std::string& rule) {
   throw InputError(path + " = " + brief(value) + ": " + rule);
 }
 
-namespace {
-[[noreturn]] void fail_missing(const std::string& path, const std::string& rule) {
-  throw InputError(path + " is missing: " + rule);
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  // Optimal string alignment: insertions, deletions, substitutions and swaps of two
+  // neighbours ("viscoisty") each cost 1. Three rows of |b| + 1.
+  std::vector<std::size_t> before(b.size() + 1), last(b.size() + 1), row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) last[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      row[j] = std::min({last[j] + 1, row[j - 1] + 1, last[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) row[j] = std::min(row[j], before[j - 2] + 1);
+    }
+    std::swap(before, last);
+    std::swap(last, row);
+  }
+  return last[b.size()];
 }
+
+std::optional<std::string> closest_name(const std::string& word, const std::vector<std::string>& names) {
+  // Close: at most a third of the longer name's characters differ (at least 2 may), or one
+  // name is the other with something added ("cycles" in "max_cycles").
+  std::optional<std::string> best;
+  std::size_t best_d = 0;
+  for (const std::string& n : names) {
+    const std::size_t longer = std::max(n.size(), word.size());
+    const std::size_t limit = std::max<std::size_t>(2, longer / 3);
+    const std::size_t gap = n.size() > word.size() ? n.size() - word.size() : word.size() - n.size();
+    const bool contains = std::min(n.size(), word.size()) >= 4 &&
+                          (n.find(word) != std::string::npos || word.find(n) != std::string::npos);
+    if (n == word || (gap > limit && !contains)) continue;
+    const std::size_t d = edit_distance(word, n);
+    if ((d <= limit || contains) && (!best || d < best_d)) best = n, best_d = d;
+  }
+  return best;
+}
+
+namespace {
 std::string type_name(const json& v) { return v.type_name(); }
 }  // namespace
 
@@ -75,16 +107,33 @@ std::string ObjectReader::child(const std::string& key) const {
   return path_.empty() ? key : path_ + "." + key;
 }
 
-bool ObjectReader::has(const std::string& key) const { return object_.contains(key); }
+bool ObjectReader::has(const std::string& key) const {
+  asked_.insert(key);
+  return object_.contains(key);
+}
 
 const json& ObjectReader::raw(const std::string& key) {
+  asked_.insert(key);
   auto it = object_.find(key);
-  if (it == object_.end()) fail_missing(child(key), "required");
+  if (it == object_.end()) {
+    // A member not asked about so far whose name is close to the key: a misspelling of it,
+    // or a key of its own read later (body_j where body_i is missing), which only the rest
+    // of the parse knows (parse_scene asks it).
+    std::vector<std::string> unasked, near;
+    for (auto m = object_.begin(); m != object_.end(); ++m)
+      if (!asked_.count(m.key())) unasked.push_back(m.key());
+    while (const std::optional<std::string> n = closest_name(key, unasked)) {  // closest first
+      near.push_back(*n);
+      unasked.erase(std::find(unasked.begin(), unasked.end(), *n));
+    }
+    throw MissingKeyError(child(key) + " is missing: required", path_, key, near);
+  }
   read_.insert(key);
   return *it;
 }
 
 const json* ObjectReader::raw_optional(const std::string& key) {
+  asked_.insert(key);
   auto it = object_.find(key);
   if (it == object_.end()) return nullptr;
   read_.insert(key);
@@ -190,9 +239,14 @@ Eigen::Vector2d ObjectReader::vec2_or(const std::string& key, const Eigen::Vecto
 }
 
 void ObjectReader::finish() const {
+  // The keys this object may have are the ones the parser asked about (read or not).
+  const std::vector<std::string> known(asked_.begin(), asked_.end());
   for (auto it = object_.begin(); it != object_.end(); ++it) {
-    if (!read_.count(it.key()))
-      fail(child(it.key()), it.value(), "unknown key (check the spelling; the keys: docs/reference/)");
+    if (read_.count(it.key())) continue;
+    const std::optional<std::string> near = closest_name(it.key(), known);
+    const std::string rule = near ? "unknown key; did you mean `" + *near + "`?"
+                                  : "unknown key (check the spelling; the keys: docs/reference/)";
+    throw UnknownKeyError(child(it.key()) + " = " + brief(it.value()) + ": " + rule, path_, it.key());
   }
 }
 
