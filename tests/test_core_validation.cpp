@@ -313,6 +313,13 @@ const std::vector<Case>& cases() {
        {"--set /joints/9/x=1", "names no value of the scene"}, {"/joints/9/x=1"}},
       {"--set a number too large for a double", "four_bar.json", nullptr, nullptr,
        {"--set /solver/rtol=1e999", "not a usable JSON value"}, {"/solver/rtol=1e999"}},
+      // An element of joints, bodies, ... by its name (issue 46): one it has not, the names it has.
+      {"--set a joint by a name no joint has", "four_bar.json", nullptr, nullptr,
+       {"--set /joints/coupler_rockr/viscosity_Pa_s=0.1: /joints has no element named \"coupler_rockr\": did you mean "
+        "`coupler_rocker`? (its names: crank_pivot, crank_coupler, rocker_pivot, coupler_rocker; or an index 0-3)"},
+       {"/joints/coupler_rockr/viscosity_Pa_s=0.1"}},
+      {"--set by name validated like the file", "four_bar.json", nullptr, nullptr,
+       {"joints[3].viscosity_Pa_s = -0.4: must be > 0 Pa s"}, {"/joints/coupler_rocker/viscosity_Pa_s=-0.4"}},
   };
   return table;
 }
@@ -422,6 +429,32 @@ TEST(Validation, AFileThatCannotBeReadIsSaidPlainly) {
   EXPECT_EQ(message([&] { lub::read_text_file(dir.string()); }), "a directory, not a file");
   EXPECT_EQ(message([&] { lub::read_json_file(dir.string()); }), dir.string() + ": a directory, not a file");
   fs::remove_all(dir);
+}
+
+// resolve_pointer: an element of an array of objects by its "name" as well as by its index.
+TEST(Overrides, ArrayElementsAreAddressedByNameOrIndex) {
+  json doc = lub::read_json_file(kScenes + "four_bar.json");
+  auto resolved = [&](const std::string& p) { return lub::resolve_pointer(doc, p).to_string(); };
+  EXPECT_EQ(resolved("/joints/coupler_rocker/viscosity_Pa_s"), "/joints/3/viscosity_Pa_s");
+  EXPECT_EQ(resolved("/bodies/rocker/mass_kg"), "/bodies/2/mass_kg");
+  EXPECT_EQ(resolved("/joints/3/viscosity_Pa_s"), "/joints/3/viscosity_Pa_s");
+  EXPECT_EQ(resolved("/joints/coupler_rocker/new_key"), "/joints/3/new_key");  // the rules of --set decide
+  EXPECT_EQ(resolved("/joints/coupler_rocker/journal_point_m/1"), "/joints/3/journal_point_m/1");
+  EXPECT_EQ(resolved("/joints/-"), "/joints/-");
+  EXPECT_EQ(resolved("/nowhere/x/y"), "/nowhere/x/y");
+  EXPECT_EQ(resolved("/joints/3/journal_point_m/x"), "/joints/3/journal_point_m/x");  // no names: the pointer's own rules
+  lub::apply_override(doc, "/joints/coupler_rocker/viscosity_Pa_s=0.1");
+  lub::apply_override(doc, "/drivers/crank_speed/speed_rpm=120");
+  EXPECT_EQ(doc["joints"][3]["viscosity_Pa_s"], 0.1);
+  EXPECT_EQ(doc["drivers"][0]["speed_rpm"], 120);
+  EXPECT_NO_THROW(lub::parse_scene(doc));
+  try {
+    lub::apply_override(doc, "/bodies/rod/mass_kg=1");
+    FAIL() << "accepted";
+  } catch (const lub::InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "--set /bodies/rod/mass_kg=1: /bodies has no element named \"rod\" (its names: "
+                                     "crank, coupler, rocker; or an index 0-2)");
+  }
 }
 
 // Edit distance and the closest name, for "did you mean".

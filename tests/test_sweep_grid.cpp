@@ -134,6 +134,33 @@ TEST(SweepGrid, PointerAxesAndExplicitCases) {
   EXPECT_EQ(g.cases[0].axis_values[2], "pinkus_sternlicht");
 }
 
+// An element of joints (bodies, drivers, ...) by its name in "set", an axis's pointer and an
+// explicit case's key, as lubsim --set takes it (lub::resolve_pointer): the same value as by
+// its index, so /joints/3/length_m and /joints/rod_slider/length_m are one axis.
+TEST(SweepGrid, PointersNameArrayElementsByTheirName) {
+  const Grid g = parse(R"("set": {"/joints/rod_slider/viscosity_Pa_s": 0.05, "/bodies/slider/mass_kg": 0.6},
+                         "axes": [{"pointer": "/joints/rod_slider/length_m", "values": [0.02, 0.03]}],
+                         "cases": [{"/joints/3/length_m": 0.04}, {"/joints/rod_slider/length_m": 0.05}])");
+  ASSERT_EQ(g.axes.size(), 1u);
+  EXPECT_EQ(g.axes[0].pointer, "/joints/3/length_m");
+  EXPECT_EQ(g.axes[0].name, "joints.rod_slider.length_m");  // as written
+  EXPECT_EQ(g.axes[0].units, "m");
+  ASSERT_EQ(g.cases.size(), 4u);
+  for (int id = 0; id < 4; ++id) {
+    const json s = scene_of(g, id);
+    EXPECT_EQ(s["joints"][3]["viscosity_Pa_s"].get<double>(), 0.05);
+    EXPECT_EQ(s["bodies"][2]["mass_kg"].get<double>(), 0.6);
+    EXPECT_DOUBLE_EQ(s["joints"][3]["length_m"].get<double>(), 0.02 + 0.01 * id);
+    EXPECT_FALSE(s["joints"][3].contains("rod_slider"));
+  }
+  EXPECT_EQ(error_of(R"("axes": [{"pointer": "/joints/rod_slidr/length_m", "values": [0.02]}])"),
+            "grid.axes[0].pointer = \"/joints/rod_slidr/length_m\": /joints has no element named \"rod_slidr\": did "
+            "you mean `rod_slider`? (its names: crank_pivot, crank_rod, slider_guide, rod_slider; or an index 0-3)");
+  EXPECT_EQ(error_of(R"("set": {"/bodies/piston/mass_kg": 1}, "axes": [])"),
+            "grid.set[\"/bodies/piston/mass_kg\"] = \"/bodies/piston/mass_kg\": /bodies has no element named "
+            "\"piston\" (its names: crank, rod, slider; or an index 0-2)");
+}
+
 TEST(SweepGrid, PointerToAnUnsetValueShowsNull) {
   const Grid g = parse(R"("cases": [{"/solver/max_step_s": 1e-4}, {"/solver/rtol": 1e-7}])");
   ASSERT_EQ(g.axes.size(), 2u);

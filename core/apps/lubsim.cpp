@@ -59,7 +59,8 @@ int parse_options(int argc, char** argv, Options& o) {
   app.add_option("--set", o.sets,
                  "override one scene value by JSON Pointer (RFC 6901), repeatable, applied in order; VALUE is "
                  "parsed as JSON, a bare word is a string, e.g. --set /joints/3/viscosity_Pa_s=0.04 "
-                 "--set /joints/3/force_law=frene_long")
+                 "--set /joints/3/force_law=frene_long; an element of joints, bodies, ... by its index or its name: "
+                 "/joints/rod_slider/viscosity_Pa_s")
       ->type_name("POINTER=VALUE")
       ->allow_extra_args(false);
   app.add_option("--sensitivity", o.sensitivities,

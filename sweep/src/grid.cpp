@@ -29,13 +29,18 @@ std::string key_path(const std::string& path, const std::string& key) {
   return path + "[" + json(key).dump() + "]";
 }
 
-json::json_pointer make_pointer(const std::string& text, const std::string& path) {
+json::json_pointer make_pointer(const json& doc, const std::string& text, const std::string& path) {
   if (text.empty() || text.front() != '/')
     fail(path, json(text), "must be a JSON Pointer (RFC 6901) starting with '/', e.g. /solver/rtol");
   try {
-    return json::json_pointer(text);
+    json::json_pointer syntax_only(text);
   } catch (const json::exception& e) {
     fail(path, json(text), std::string("is not a JSON Pointer (RFC 6901): ") + e.what());
+  }
+  try {
+    return resolve_pointer(doc, text);  // /joints/rod_slider/... is /joints/3/...
+  } catch (const InputError& e) {
+    fail(path, json(text), e.what());
   }
 }
 
@@ -125,7 +130,7 @@ void apply_set(ObjectReader& r, Context& cx) {
   if (!set->is_object()) fail(r.child("set"), *set, "must be an object {\"/json/pointer\": value, ...}");
   for (auto it = set->begin(); it != set->end(); ++it) {
     const std::string p = detail::key_path(r.child("set"), it.key());
-    detail::set_pointer(cx.base, detail::make_pointer(it.key(), p), it.value(), p, it.value());
+    detail::set_pointer(cx.base, detail::make_pointer(cx.base, it.key(), p), it.value(), p, it.value());
   }
   parse_case(cx.base, r.child("set"), *set);
 }

@@ -386,6 +386,63 @@ json read_json_file(const std::string& path) {
   return parse_json_text(text, path);
 }
 
+namespace {
+
+// "0", "12", or "-" (past the end): what addresses an array element by position.
+bool is_array_index(const std::string& token) {
+  const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  return token == "-" || (!token.empty() && std::all_of(token.begin(), token.end(), digit));
+}
+
+// The index (as a token) of the element of `array` whose "name" is `name`; `name` itself if
+// no element has a name (the pointer then names nothing, as before); an error listing the
+// names if some have one but none this. `where`: the array's pointer.
+std::string element_named(const json& array, const std::string& name, const json::json_pointer& where) {
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < array.size(); ++i) {
+    const json& e = array[i];
+    if (!e.is_object() || !e.contains("name") || !e["name"].is_string()) continue;
+    if (e["name"].get<std::string>() == name) return std::to_string(i);
+    names.push_back(e["name"].get<std::string>());
+  }
+  if (names.empty()) return name;
+  const std::optional<std::string> near = closest_name(name, names);
+  std::string list;
+  for (std::size_t i = 0; i < names.size() && i < 12; ++i) list += (i ? ", " : "") + names[i];
+  if (names.size() > 12) list += ", ... (" + std::to_string(names.size()) + " names)";
+  throw InputError((where.empty() ? std::string("the document") : where.to_string()) + " has no element named " +
+                   json(name).dump(-1, ' ', false, json::error_handler_t::replace) +
+                   (near ? ": did you mean `" + *near + "`?" : "") + " (its names: " + list + "; or an index 0-" +
+                   std::to_string(array.size() - 1) + ")");
+}
+
+}  // namespace
+
+json::json_pointer resolve_pointer(const json& doc, const std::string& text) {
+  json::json_pointer ptr;
+  try {
+    ptr = json::json_pointer(text);
+  } catch (const json::exception& e) {
+    throw InputError(text + " is not a JSON Pointer (RFC 6901): " + parse_reason(e.what()));
+  }
+  std::vector<std::string> tokens;
+  for (json::json_pointer p = ptr; !p.empty(); p.pop_back()) tokens.insert(tokens.begin(), p.back());
+  json::json_pointer out;
+  const json* at = &doc;
+  for (std::string& token : tokens) {
+    if (at && at->is_array() && !is_array_index(token)) token = element_named(*at, token, out);
+    out.push_back(token);
+    if (at && at->is_object() && at->contains(token))
+      at = &(*at)[token];
+    else if (at && at->is_array() && token != "-" && is_array_index(token) && token.size() < 10 &&
+             std::stoul(token) < at->size())
+      at = &(*at)[std::stoul(token)];
+    else
+      at = nullptr;  // a new key, or nothing: the caller's rules say
+  }
+  return out;
+}
+
 void apply_override(json& doc, const std::string& assignment) {
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0)
@@ -394,9 +451,9 @@ void apply_override(json& doc, const std::string& assignment) {
   const std::string value_text = assignment.substr(eq + 1);
   json::json_pointer ptr;
   try {
-    ptr = json::json_pointer(ptr_text);
-  } catch (const json::exception& e) {
-    throw InputError("--set " + assignment + ": " + ptr_text + " is not a JSON Pointer (RFC 6901): " + e.what());
+    ptr = resolve_pointer(doc, ptr_text);  // /joints/rod_slider/... is /joints/3/...
+  } catch (const InputError& e) {
+    throw InputError("--set " + assignment + ": " + e.what());
   }
   if (ptr.empty()) throw InputError("--set " + assignment + ": the pointer must not be empty");
   json value;

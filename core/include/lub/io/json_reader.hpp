@@ -133,8 +133,16 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& origi
 /// read_text_file then parse_json; every message starts with the path ("PATH: no such file").
 nlohmann::json read_json_file(const std::string& path);
 
+/// `text` as a JSON Pointer (RFC 6901) into `doc`, where an element of an array of objects
+/// may be named by its "name" instead of its index: /joints/rod_slider/viscosity_Pa_s is
+/// /joints/3/viscosity_Pa_s where joints[3].name is "rod_slider" (a number is an index).
+/// The result has indices only. InputError if `text` is not a pointer, or names an element
+/// that no element of a named array has (the message lists the names).
+nlohmann::json::json_pointer resolve_pointer(const nlohmann::json& doc, const std::string& text);
+
 /// Applies `--set POINTER=VALUE`: VALUE parsed as JSON, or taken as a string if it is not
-/// JSON. The pointer must name an existing value or a new key of an existing object.
+/// JSON. The pointer (resolve_pointer: elements by name too) must name an existing value or
+/// a new key of an existing object.
 void apply_override(nlohmann::json& doc, const std::string& assignment);
 
 }  // namespace lub
