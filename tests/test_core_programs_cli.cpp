@@ -5,12 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <regex>
 #include <string>
 #include <vector>
 
 #include "fixtures/run_command.hpp"
+#include "lub/io/json_reader.hpp"
 
 namespace {
 
@@ -42,8 +44,8 @@ TEST(ProgramsCli, EveryProgramAndSubcommandAnswersHelpWithItsOptions) {
     std::vector<std::string> mentions;  // options (and files) the help must name
   } cases[] = {
       {"/core/lubsim", "--help",
-       {"SCENE.json", "-o,--output", "--set", "--strict", "-q,--quiet", "--version", "/series", "/metrics",
-        "/solver", "/cycles", "Exit status"}},
+       {"SCENE.json", "-o,--output", "--set", "--strict", "--check", "--print-scene", "-q,--quiet", "--version",
+        "/series", "/metrics", "/solver", "/cycles", "Exit status"}},
       {"/core/lubsim", "-h", {"--output"}},
       {"/core/lubbearing", "--help", {"force", "steady", "--version", "Exit status"}},
       {"/core/lubbearing", "force --help",
@@ -99,6 +101,8 @@ TEST(ProgramsCli, UsageErrorsHaveOneFormat) {
       {"lubsim", "/core/lubsim", "-o x.h5", "no scene given", "lubsim"},
       {"lubsim", "/core/lubsim", "a.json", "no output file given (-o RUN.h5)", "lubsim"},
       {"lubsim", "/core/lubsim", "a.json b.json -o x.h5", "more than one scene given (a.json, b.json)", "lubsim"},
+      {"lubsim", "/core/lubsim", "a.json --check --print-scene", "--check and --print-scene exclude each other",
+       "lubsim"},
       {"lubbearing", "/core/lubbearing", "", "a command is required (force or steady)", "lubbearing"},
       {"lubbearing", "/core/lubbearing", "spin", "unknown command spin (must be force or steady)", "lubbearing"},
       {"lubbearing", "/core/lubbearing", "force --bogus 1", "unknown argument --bogus", "lubbearing force"},
@@ -130,6 +134,73 @@ TEST(ProgramsCli, LubsimRefusesASensitivityToWhatIsNotANumber) {
     EXPECT_NE(r.out.find("--sensitivity " + ptr), std::string::npos) << r.out;
     EXPECT_FALSE(std::ifstream(out).good()) << ptr;
   }
+}
+
+// A scene or grid file that cannot be read or parsed (issue 46): one line that names the file
+// once and says what is wrong (no such file; a directory; where the syntax breaks, without
+// the JSON library's echo of the text), exit 2, no output file.
+TEST(ProgramsCli, AnUnreadableInputFileIsNamedOnceAndSaidPlainly) {
+  const std::string dir = ::testing::TempDir() + "unreadable_input/";
+  std::system(("rm -rf '" + dir + "' && mkdir -p '" + dir + "'").c_str());
+  std::ofstream(dir + "bad.json") << "{\n  \"description\": \"" << std::string(250, 'x') << "\",\n  \"bodies\": [,]\n}\n";
+  const std::string out = dir + "out.h5";
+  const struct {
+    std::string name, path, input, message;
+  } cases[] = {
+      {"lubsim", "/core/lubsim", dir + "nope.json", "no such file"},
+      {"lubsim", "/core/lubsim", dir, "a directory, not a file"},
+      {"lubsim", "/core/lubsim", dir + "bad.json",
+       "line 3, column 14: not valid JSON: syntax error while parsing value - unexpected ','; expected '[', '{', or "
+       "a literal"},
+      {"lubsweep", "/sweep/lubsweep", dir + "nope.json", "no such file"},
+      {"lubsweep", "/sweep/lubsweep", dir, "a directory, not a file"},
+      {"lubsweep", "/sweep/lubsweep", dir + "bad.json",
+       "line 3, column 14: not valid JSON: syntax error while parsing value - unexpected ','; expected '[', '{', or "
+       "a literal"},
+  };
+  for (const auto& c : cases) {
+    const Result r = run(c.path, "'" + c.input + "' -o '" + out + "'", true);
+    EXPECT_EQ(r.status, 2) << c.name << " " << c.input << "\n" << r.out;
+    EXPECT_EQ(r.out, c.name + ": " + c.input + ": " + c.message + "\n");
+    EXPECT_FALSE(std::ifstream(out).good()) << c.name << " " << c.input;
+  }
+}
+
+// lubsim --check: the scene (after --set) valid or not, "ok" or the error, nothing run or
+// written; --print-scene: the effective scene as JSON. Both take an element by its name in
+// --set, as every --set does (issue 46).
+TEST(ProgramsCli, LubsimChecksOrPrintsTheSceneWithoutRunningIt) {
+  const std::string scene = std::string(LUB_SOURCE_DIR) + "/configs/scenes/slider_crank.json";
+  const std::string out = ::testing::TempDir() + "check_only.h5";
+  std::remove(out.c_str());
+  const std::string by_name = " --set /joints/rod_slider/viscosity_Pa_s=0.125";
+  Result r = run("/core/lubsim", scene + " --check" + by_name, true);
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(r.out, "ok\n");
+  r = run("/core/lubsim", scene + " --check -o " + out + " --set /joints/rod_slider/viscosity_Pa_s=-1", true);
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_EQ(r.out, "lubsim: " + scene + ": joints[3].viscosity_Pa_s = -1: must be > 0 Pa s\n");
+  // A plausibility warning: said, not refused; refused under --strict.
+  r = run("/core/lubsim", scene + " --check --set /joints/3/viscosity_Pa_s=400", true);
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(r.out.rfind("lubsim: warning: /joints/3/viscosity_Pa_s = 400 Pa s is outside", 0), 0u) << r.out;
+  EXPECT_EQ(r.out.substr(r.out.size() - 3), "ok\n") << r.out;
+  EXPECT_EQ(run("/core/lubsim", scene + " --check --strict --set /joints/3/viscosity_Pa_s=400").status, 2);
+  // A mechanism that cannot assemble is bad input too, as a run would find it.
+  const std::string four_bar = std::string(LUB_SOURCE_DIR) + "/configs/scenes/four_bar.json";
+  r = run("/core/lubsim", four_bar + " --check --set /joints/rocker_pivot/point_i_m=[0.6,0.0]", true);
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_EQ(r.out.rfind("lubsim: " + four_bar + ": assembly: ", 0), 0u) << r.out;
+  EXPECT_NE(r.out.find("cannot close the mechanism"), std::string::npos) << r.out;
+
+  r = run("/core/lubsim", scene + " --print-scene" + by_name);
+  EXPECT_EQ(r.status, 0) << r.out;
+  const nlohmann::json printed = nlohmann::json::parse(r.out);
+  nlohmann::json want = lub::read_json_file(scene);
+  want["joints"][3]["viscosity_Pa_s"] = 0.125;
+  EXPECT_EQ(printed, want);
+  EXPECT_EQ(run("/core/lubsim", scene + " --print-scene --set /joints/rod/viscosity_Pa_s=1").status, 2);
+  EXPECT_FALSE(std::ifstream(out).good());
 }
 
 }  // namespace

@@ -12,8 +12,10 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lub/bearing/force_laws.hpp"
@@ -65,7 +67,8 @@ const std::vector<Case>& cases() {
       // Syntax and document shape.
       {"not JSON", "four_bar.json", nullptr,
        [](const std::string&) { return std::string("{ bodies: [] }"); },
-       {"not valid JSON", "parse error at line 1"}},
+       {"scene.json: line 1, column 3: not valid JSON: syntax error while parsing object key - invalid literal; "
+        "expected string literal"}},
       {"a number too large for a double", "four_bar.json", nullptr,
        [](const std::string& t) { return replace_once(t, "\"mass_kg\": 0.30", "\"mass_kg\": 1e999"); },
        {"not valid JSON", "number overflow", "1e999"}},
@@ -86,14 +89,30 @@ const std::vector<Case>& cases() {
       {"unknown top-level key", "four_bar.json", [](json& d) { d["gravity_m_s2"] = {0, -9.81}; }, nullptr,
        {"gravity_m_s2 = [0,-9.81]: unknown key"}},
       {"typo in a body key", "four_bar.json", [](json& d) { d["bodies"][1]["mass_kgs"] = 0.4; }, nullptr,
-       {"bodies[1].mass_kgs = 0.4: unknown key"}},
+       {"bodies[1].mass_kgs = 0.4: unknown key; did you mean `mass_kg`?"}},
       {"typo in a lubricated joint key", "four_bar.json",
        [](json& d) { d["joints"][3]["viscosty_Pa_s"] = 0.4; }, nullptr,
-       {"joints[3].viscosty_Pa_s = 0.4: unknown key"}},
+       {"joints[3].viscosty_Pa_s = 0.4: unknown key; did you mean `viscosity_Pa_s`?"}},
+      // A misspelt required key is named, not the key it stands for as missing (issue 46)...
+      {"a required key misspelt", "four_bar.json",
+       [](json& d) {
+         d["joints"][3]["viscosty_Pa_s"] = d["joints"][3]["viscosity_Pa_s"];
+         d["joints"][3].erase("viscosity_Pa_s");
+       },
+       nullptr, {"joints[3].viscosty_Pa_s = 0.4: unknown key; did you mean `viscosity_Pa_s`?"}},
+      {"a top-level key misspelt", "four_bar.json",
+       [](json& d) { d["bodys"] = d["bodies"]; d.erase("bodies"); }, nullptr,
+       {"bodys = [", ": unknown key; did you mean `bodies`?"}},
+      {"a required key misspelt beside its sibling", "four_bar.json",
+       [](json& d) { d["joints"][0]["body_k"] = d["joints"][0]["body_i"]; d["joints"][0].erase("body_i"); }, nullptr,
+       {"joints[0].body_k = \"ground\": unknown key; did you mean `body_i`?"}},
+      // ... but a key of its own that is close to the missing one is no misspelling.
+      {"a required key missing beside its sibling", "four_bar.json", [](json& d) { d["joints"][0].erase("body_i"); },
+       nullptr, {"joints[0].body_i is missing: required"}},
       {"typo in an effect", "four_bar.json", [](json& d) { d["effects"]["gravity"] = {0, -9.81}; }, nullptr,
-       {"effects.gravity = [0,-9.81]: unknown key"}},
+       {"effects.gravity = [0,-9.81]: unknown key; did you mean `gravity_m_s2`?"}},
       {"typo in a channel", "four_bar.json", [](json& d) { chan(d, 0)["quantitiy"] = "x"; }, nullptr,
-       {"outputs.channels[0].quantitiy = \"x\": unknown key"}},
+       {"outputs.channels[0].quantitiy = \"x\": unknown key; did you mean `quantity`?"}},
       // Missing required keys.
       {"no bodies", "four_bar.json", [](json& d) { d.erase("bodies"); }, nullptr,
        {"bodies is missing: required"}},
@@ -294,6 +313,13 @@ const std::vector<Case>& cases() {
        {"--set /joints/9/x=1", "names no value of the scene"}, {"/joints/9/x=1"}},
       {"--set a number too large for a double", "four_bar.json", nullptr, nullptr,
        {"--set /solver/rtol=1e999", "not a usable JSON value"}, {"/solver/rtol=1e999"}},
+      // An element of joints, bodies, ... by its name (issue 46): one it has not, the names it has.
+      {"--set a joint by a name no joint has", "four_bar.json", nullptr, nullptr,
+       {"--set /joints/coupler_rockr/viscosity_Pa_s=0.1: /joints has no element named \"coupler_rockr\": did you mean "
+        "`coupler_rocker`? (its names: crank_pivot, crank_coupler, rocker_pivot, coupler_rocker; or an index 0-3)"},
+       {"/joints/coupler_rockr/viscosity_Pa_s=0.1"}},
+      {"--set by name validated like the file", "four_bar.json", nullptr, nullptr,
+       {"joints[3].viscosity_Pa_s = -0.4: must be > 0 Pa s"}, {"/joints/coupler_rocker/viscosity_Pa_s=-0.4"}},
   };
   return table;
 }
@@ -349,6 +375,102 @@ std::string test_name(const testing::TestParamInfo<size_t>& info) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Validation, MalformedScene, testing::Range<size_t>(0, cases().size()), test_name);
+
+// A syntax error is placed by line and column, with the library's reason and none of the
+// text around it (nlohmann-json's "last read: '...'" echoes up to a whole line).
+TEST(Validation, ASyntaxErrorSaysLineAndColumnAndEchoesNoText) {
+  const std::string long_value(300, 'x');
+  const std::string text = "{\n  \"description\": \"" + long_value + "\",\n  \"bodies\": [ {\"name\": crank} ]\n}\n";
+  // An unterminated string (the column: where its quote is missing): the library's message would
+  // echo all 300 characters of it.
+  try {
+    lub::parse_json_text("{\"description\": \"" + long_value, "scene.json");
+    ADD_FAILURE() << "accepted";
+  } catch (const lub::InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "scene.json: line 1, column 318: not valid JSON: syntax error while parsing "
+                                     "value - invalid string: missing closing quote");
+  }
+  try {
+    lub::parse_json_text(text, "scene.json");
+    FAIL() << "accepted";
+  } catch (const lub::InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "scene.json: line 3, column 24: not valid JSON: syntax error while parsing value - invalid literal");
+  }
+  // The column counts from the line's start, on the first line and after a last newline.
+  for (const auto& [bad, where] : {std::pair{std::string("{\"a\": }"), std::string("line 1, column 7")},
+                                   std::pair{std::string("{\n\n"), std::string("line 3, column 1")},
+                                   std::pair{std::string(""), std::string("line 1, column 1")}}) {
+    try {
+      lub::parse_json(bad);
+      ADD_FAILURE() << bad << ": accepted";
+    } catch (const lub::InputError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(where + ": not valid JSON: ", 0), 0u) << e.what();
+    }
+  }
+}
+
+// Files: one message a problem, without the path (the caller names it once), or with it
+// from read_json_file.
+TEST(Validation, AFileThatCannotBeReadIsSaidPlainly) {
+  const fs::path dir = fs::temp_directory_path() / ("lub_read_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  auto message = [](const std::function<void()>& read) {
+    try {
+      read();
+    } catch (const lub::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string missing = (dir / "nope.json").string();
+  EXPECT_EQ(message([&] { lub::read_text_file(missing); }), "no such file");
+  EXPECT_EQ(message([&] { lub::read_json_file(missing); }), missing + ": no such file");
+  EXPECT_EQ(message([&] { lub::read_text_file(dir.string()); }), "a directory, not a file");
+  EXPECT_EQ(message([&] { lub::read_json_file(dir.string()); }), dir.string() + ": a directory, not a file");
+  fs::remove_all(dir);
+}
+
+// resolve_pointer: an element of an array of objects by its "name" as well as by its index.
+TEST(Overrides, ArrayElementsAreAddressedByNameOrIndex) {
+  json doc = lub::read_json_file(kScenes + "four_bar.json");
+  auto resolved = [&](const std::string& p) { return lub::resolve_pointer(doc, p).to_string(); };
+  EXPECT_EQ(resolved("/joints/coupler_rocker/viscosity_Pa_s"), "/joints/3/viscosity_Pa_s");
+  EXPECT_EQ(resolved("/bodies/rocker/mass_kg"), "/bodies/2/mass_kg");
+  EXPECT_EQ(resolved("/joints/3/viscosity_Pa_s"), "/joints/3/viscosity_Pa_s");
+  EXPECT_EQ(resolved("/joints/coupler_rocker/new_key"), "/joints/3/new_key");  // the rules of --set decide
+  EXPECT_EQ(resolved("/joints/coupler_rocker/journal_point_m/1"), "/joints/3/journal_point_m/1");
+  EXPECT_EQ(resolved("/joints/-"), "/joints/-");
+  EXPECT_EQ(resolved("/nowhere/x/y"), "/nowhere/x/y");
+  EXPECT_EQ(resolved("/joints/3/journal_point_m/x"), "/joints/3/journal_point_m/x");  // no names: the pointer's own rules
+  lub::apply_override(doc, "/joints/coupler_rocker/viscosity_Pa_s=0.1");
+  lub::apply_override(doc, "/drivers/crank_speed/speed_rpm=120");
+  EXPECT_EQ(doc["joints"][3]["viscosity_Pa_s"], 0.1);
+  EXPECT_EQ(doc["drivers"][0]["speed_rpm"], 120);
+  EXPECT_NO_THROW(lub::parse_scene(doc));
+  try {
+    lub::apply_override(doc, "/bodies/rod/mass_kg=1");
+    FAIL() << "accepted";
+  } catch (const lub::InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "--set /bodies/rod/mass_kg=1: /bodies has no element named \"rod\" (its names: "
+                                     "crank, coupler, rocker; or an index 0-2)");
+  }
+}
+
+// Edit distance and the closest name, for "did you mean".
+TEST(Validation, TheClosestNameIsOneThatIsClose) {
+  EXPECT_EQ(lub::edit_distance("viscosty_Pa_s", "viscosity_Pa_s"), 1u);
+  EXPECT_EQ(lub::edit_distance("viscoisty_Pa_s", "viscosity_Pa_s"), 1u);  // two neighbours swapped
+  EXPECT_EQ(lub::edit_distance("", "abc"), 3u);
+  EXPECT_EQ(lub::edit_distance("kitten", "sitting"), 3u);
+  const std::vector<std::string> keys = {"viscosity_Pa_s", "length_m", "max_cycles", "rtol", "atol"};
+  EXPECT_EQ(lub::closest_name("viscosty_Pa_s", keys), "viscosity_Pa_s");
+  EXPECT_EQ(lub::closest_name("cycles", keys), "max_cycles");  // a part of it
+  EXPECT_EQ(lub::closest_name("rtoll", keys), "rtol");
+  EXPECT_EQ(lub::closest_name("colour", keys), std::nullopt);
+  EXPECT_EQ(lub::closest_name("rtol", {"rtol"}), std::nullopt);  // never the word itself
+  EXPECT_EQ(lub::closest_name("rtol", keys), "atol");
+}
 
 TEST(Validation, TheUnmodifiedBasesAreAccepted) {
   for (const std::string base : {"four_bar.json", "slider_crank.json", "slider_crank_two_lubricated.json"})

@@ -134,6 +134,33 @@ TEST(SweepGrid, PointerAxesAndExplicitCases) {
   EXPECT_EQ(g.cases[0].axis_values[2], "pinkus_sternlicht");
 }
 
+// An element of joints (bodies, drivers, ...) by its name in "set", an axis's pointer and an
+// explicit case's key, as lubsim --set takes it (lub::resolve_pointer): the same value as by
+// its index, so /joints/3/length_m and /joints/rod_slider/length_m are one axis.
+TEST(SweepGrid, PointersNameArrayElementsByTheirName) {
+  const Grid g = parse(R"("set": {"/joints/rod_slider/viscosity_Pa_s": 0.05, "/bodies/slider/mass_kg": 0.6},
+                         "axes": [{"pointer": "/joints/rod_slider/length_m", "values": [0.02, 0.03]}],
+                         "cases": [{"/joints/3/length_m": 0.04}, {"/joints/rod_slider/length_m": 0.05}])");
+  ASSERT_EQ(g.axes.size(), 1u);
+  EXPECT_EQ(g.axes[0].pointer, "/joints/3/length_m");
+  EXPECT_EQ(g.axes[0].name, "joints.rod_slider.length_m");  // as written
+  EXPECT_EQ(g.axes[0].units, "m");
+  ASSERT_EQ(g.cases.size(), 4u);
+  for (int id = 0; id < 4; ++id) {
+    const json s = scene_of(g, id);
+    EXPECT_EQ(s["joints"][3]["viscosity_Pa_s"].get<double>(), 0.05);
+    EXPECT_EQ(s["bodies"][2]["mass_kg"].get<double>(), 0.6);
+    EXPECT_DOUBLE_EQ(s["joints"][3]["length_m"].get<double>(), 0.02 + 0.01 * id);
+    EXPECT_FALSE(s["joints"][3].contains("rod_slider"));
+  }
+  EXPECT_EQ(error_of(R"("axes": [{"pointer": "/joints/rod_slidr/length_m", "values": [0.02]}])"),
+            "grid.axes[0].pointer = \"/joints/rod_slidr/length_m\": /joints has no element named \"rod_slidr\": did "
+            "you mean `rod_slider`? (its names: crank_pivot, crank_rod, slider_guide, rod_slider; or an index 0-3)");
+  EXPECT_EQ(error_of(R"("set": {"/bodies/piston/mass_kg": 1}, "axes": [])"),
+            "grid.set[\"/bodies/piston/mass_kg\"] = \"/bodies/piston/mass_kg\": /bodies has no element named "
+            "\"piston\" (its names: crank, rod, slider; or an index 0-2)");
+}
+
 TEST(SweepGrid, PointerToAnUnsetValueShowsNull) {
   const Grid g = parse(R"("cases": [{"/solver/max_step_s": 1e-4}, {"/solver/rtol": 1e-7}])");
   ASSERT_EQ(g.axes.size(), 2u);
@@ -329,9 +356,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadGrid{one_axis(R"("name": "viscosity_Pa_s", "values": [])"), "grid.axes[0].values = []: must list at least one value"},
         BadGrid{one_axis(R"("name": "viscosity", "values": [0.4])"), "grid.axes[0].name = \"viscosity\": must be one of clearance_m, viscosity_Pa_s, speed_rpm, force_law, or the axis needs a pointer"},
         BadGrid{one_axis(R"("values": [0.4])"), "grid.axes[0]: needs a pointer (\"pointer\": \"/solver/rtol\") or a named axis (clearance_m, viscosity_Pa_s, speed_rpm, force_law)"},
-        BadGrid{one_axis(R"("name": "speed_rpm", "values": [50], "unit": "rpm")"), "grid.axes[0].unit = \"rpm\": unknown key (check the spelling; the keys: docs/reference/)"},
+        BadGrid{one_axis(R"("name": "speed_rpm", "values": [50], "unit": "rpm")"), "grid.axes[0].unit = \"rpm\": unknown key; did you mean `units`?"},
         BadGrid{one_axis(R"("pointer": "solver/rtol", "values": [1e-6])"), "grid.axes[0].pointer = \"solver/rtol\": must be a JSON Pointer (RFC 6901) starting with '/', e.g. /solver/rtol"},
-        BadGrid{one_axis(R"("pointer": "/solver/rtoll", "values": [1e-7])"), "grid.axes[0].values[0] = 1e-07: gives an invalid scene: solver.rtoll = 1e-07: unknown key (check the spelling; the keys: docs/reference/)"},
+        BadGrid{one_axis(R"("pointer": "/solver/rtoll", "values": [1e-7])"), "grid.axes[0].values[0] = 1e-07: gives an invalid scene: solver.rtoll = 1e-07: unknown key; did you mean `rtol`?"},
         BadGrid{one_axis(R"("pointer": "/joints/9/length_m", "values": [0.1])"), "grid.axes[0].values[0] = 0.1: /joints/9/length_m names no value of the scene, and its parent is not an object"},
         BadGrid{one_axis(R"("pointer": "/solver/rtol", "name": "speed_rpm", "values": [1e-7])"), "grid.axes[0].name = \"speed_rpm\": is a named axis: it takes no pointer (rename the pointer axis)"},
         BadGrid{one_axis(R"("pointer": "/solver/rtol", "name": "status", "values": [1e-7])"), "grid.axes[0].name = \"status\": is a column lubsweep writes itself: choose another name"},
@@ -388,7 +415,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadGrid{R"("study": {"metric_cycles": 9, "max_cycles": 4}, "axes": [])",
                 "grid.study = {\"max_cycles\":4,\"metric_cycles\":9}: gives an invalid scene: simulation.metric_cycles = 9: must be <= simulation.max_cycles = 4"},
         BadGrid{R"("study": {"cycles": 4}, "axes": [])",
-                "grid.study.cycles = 4: unknown key (check the spelling; the keys: docs/reference/)"}));
+                "grid.study.cycles = 4: unknown key; did you mean `max_cycles`?"}));
 
 TEST(SweepGrid, SceneErrors) {
   auto err = [](const std::string& text, const std::string& dir) {
@@ -400,11 +427,15 @@ TEST(SweepGrid, SceneErrors) {
     return std::string();
   };
   EXPECT_EQ(err(R"({"scene": "missing.json", "axes": []})", "/nonexistent"),
-            "grid.scene = \"missing.json\": /nonexistent/missing.json: cannot open the file");
+            "grid.scene = \"missing.json\": /nonexistent/missing.json: no such file");
+  EXPECT_EQ(err(R"({"scene": "/", "axes": []})", "."), "grid.scene = \"/\": /: a directory, not a file");
   EXPECT_EQ(err(R"({"scene": 5, "axes": []})", "."),
             "grid.scene = 5: must name a scene file (relative to the grid) or be a scene object");
   EXPECT_EQ(err(R"({"axes": []})", "."), "grid.scene is missing: required");
-  EXPECT_EQ(err(R"({"scene": "slider_crank.json", "axes": [})", kScenes).substr(0, 25), "g.json: not valid JSON: [");
+  // The grid's own syntax: where, and why, without its text (the caller names the file).
+  EXPECT_EQ(err(R"({"scene": "slider_crank.json", "axes": [})", kScenes),
+            "line 1, column 41: not valid JSON: syntax error while parsing value - unexpected '}'; expected '[', "
+            "'{', or a literal");
   const std::string prefix = "grid.scene = {\"bodies\":[]}: gives an invalid scene: bodies";
   EXPECT_EQ(err(R"({"scene": {"bodies": []}, "axes": []})", ".").substr(0, prefix.size()), prefix);
   // A named axis needs the lubricated joint: this scene's metric joint is ideal.

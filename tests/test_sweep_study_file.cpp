@@ -382,6 +382,48 @@ TEST_F(StudyFile, SummarySaysWhereACaseWithoutAnOrbitGotTo) {
   }
 }
 
+TEST_F(StudyFile, SummaryShowsANegativeNumberThatRoundsToZeroAsZero) {
+  // A metric of -3e-7 rounds to "-0.0000" in {:.4f}: shown as 0.0000 (issue 46), in every
+  // column and format ({:.4f}, {:.2e}, {:.3g} of -0.0); a negative number that does
+  // not round to zero keeps its sign.
+  const Grid g = small_grid();
+  const std::string path = file("negative_zero.h5");
+  const auto fields = result_fields();
+  auto at = [&](const std::string& name) {
+    std::size_t i = 0;
+    while (fields[i].name != name) ++i;
+    return i;
+  };
+  CaseResult r = fake(g, 0);
+  r.values[at("max_eps")] = -3e-7;
+  r.values[at("periodicity")] = -0.0;
+  r.values[at("orbit_conditioning")] = -0.0;
+  r.values[at("wall_time_s")] = -0.25;
+  write_study(path, g, {r}, true);
+  std::FILE* out = std::tmpfile();
+  ASSERT_NE(out, nullptr);
+  print_summary(path, out);
+  std::rewind(out);
+  std::vector<std::vector<std::string>> rows;
+  char line[4096];
+  while (std::fgets(line, sizeof line, out)) {
+    std::istringstream words(line);
+    rows.emplace_back(std::istream_iterator<std::string>(words), std::istream_iterator<std::string>());
+  }
+  std::fclose(out);
+  ASSERT_GE(rows.size(), 4u);
+  const std::vector<std::string>& head = rows[2];
+  ASSERT_EQ(head.front(), "case");
+  auto cell = [&](const std::string& column) {
+    const auto k = std::find(head.begin(), head.end(), column);
+    return k == head.end() ? std::string("(no column)") : rows[3].at(static_cast<std::size_t>(k - head.begin()));
+  };
+  EXPECT_EQ(cell("max_eps"), "0.0000");
+  EXPECT_EQ(cell("periodicity"), "0.00e+00");
+  EXPECT_EQ(cell("kappa"), "0");
+  EXPECT_EQ(cell("wall[s]"), "-0.25");
+}
+
 TEST_F(StudyFile, OlderFormatIsRefusedWithAClearMessage) {
   const Grid g = small_grid();
   const std::string path = file("old.h5");

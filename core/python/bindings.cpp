@@ -80,7 +80,8 @@ py::dict simulate(const std::optional<std::string>& scene_path, const std::optio
       if (const auto problem = lub::output_path_problem(*output, "output")) throw lub::InputError(*problem);
     lub::Scene scene;
     try {
-      nlohmann::json doc = scene_path ? lub::read_json_file(*scene_path) : lub::parse_json_text(*scene_text, origin);
+      // The messages name no file: `origin` prefixes them once, below.
+      nlohmann::json doc = lub::parse_json(scene_path ? lub::read_text_file(*scene_path) : *scene_text);
       for (const auto& s : assignments) lub::apply_override(doc, s);
       scene = lub::parse_scene(doc);
       warnings = scene.warnings;

@@ -6,8 +6,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <fstream>
-#include <sstream>
 #include <utility>
 
 #include <fmt/format.h>
@@ -31,13 +29,18 @@ std::string key_path(const std::string& path, const std::string& key) {
   return path + "[" + json(key).dump() + "]";
 }
 
-json::json_pointer make_pointer(const std::string& text, const std::string& path) {
+json::json_pointer make_pointer(const json& doc, const std::string& text, const std::string& path) {
   if (text.empty() || text.front() != '/')
     fail(path, json(text), "must be a JSON Pointer (RFC 6901) starting with '/', e.g. /solver/rtol");
   try {
-    return json::json_pointer(text);
+    json::json_pointer syntax_only(text);
   } catch (const json::exception& e) {
     fail(path, json(text), std::string("is not a JSON Pointer (RFC 6901): ") + e.what());
+  }
+  try {
+    return resolve_pointer(doc, text);  // /joints/rod_slider/... is /joints/3/...
+  } catch (const InputError& e) {
+    fail(path, json(text), e.what());
   }
 }
 
@@ -75,14 +78,6 @@ namespace {
 using detail::Context;
 using detail::index_path;
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open the file");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 std::string dir_of(const std::string& path) {
   const auto slash = path.find_last_of('/');
   if (slash == std::string::npos) return ".";
@@ -103,15 +98,6 @@ Scene parse_case(const json& scene, const std::string& what, const json& shown) 
   return parse_case(scene, what + " = " + brief(shown));
 }
 
-/// The grid's text as JSON; an error names the grid's file.
-json parse_grid_json(const std::string& text, const std::string& file) {
-  try {
-    return json::parse(text);
-  } catch (const json::exception& e) {  // parse_error, or out_of_range.406: a number overflows a double
-    throw InputError((file.empty() ? std::string("grid") : file) + ": not valid JSON: " + e.what());
-  }
-}
-
 /// grid.scene: a scene file (relative to the grid's folder `base_dir`) or an inline scene
 /// object, checked by the scene parser; it becomes the base of every case.
 void read_base_scene(ObjectReader& r, const std::string& base_dir, Grid& g, Context& cx) {
@@ -122,12 +108,10 @@ void read_base_scene(ObjectReader& r, const std::string& base_dir, Grid& g, Cont
     if (p.front() != '/') p = base_dir + "/" + p;
     g.base_scene_file = p;
     try {
-      g.base_scene_text = read_text(p);
-      cx.base = json::parse(g.base_scene_text);
-    } catch (const json::exception& e) {  // parse_error, or a number that overflows a double
-      fail(r.child("scene"), sc, p + ": not valid JSON: " + e.what());
-    } catch (const InputError& e) {
-      fail(r.child("scene"), sc, e.what());
+      g.base_scene_text = read_text_file(p);
+      cx.base = parse_json(g.base_scene_text);
+    } catch (const InputError& e) {  // no such file, syntax, a key twice, a number beyond a double
+      fail(r.child("scene"), sc, p + ": " + e.what());
     }
   } else if (sc.is_object()) {
     cx.base = sc;
@@ -146,7 +130,7 @@ void apply_set(ObjectReader& r, Context& cx) {
   if (!set->is_object()) fail(r.child("set"), *set, "must be an object {\"/json/pointer\": value, ...}");
   for (auto it = set->begin(); it != set->end(); ++it) {
     const std::string p = detail::key_path(r.child("set"), it.key());
-    detail::set_pointer(cx.base, detail::make_pointer(it.key(), p), it.value(), p, it.value());
+    detail::set_pointer(cx.base, detail::make_pointer(cx.base, it.key(), p), it.value(), p, it.value());
   }
   parse_case(cx.base, r.child("set"), *set);
 }
@@ -327,7 +311,7 @@ Grid parse_grid(const std::string& text, const std::string& base_dir, const std:
   Grid g;
   g.file = file;
   g.text = text;
-  const json doc = parse_grid_json(text, file);
+  const json doc = parse_json(text);  // its messages name no file: the caller names it
   ObjectReader r(doc, "grid");
   g.description = r.string_or("description", "");
   Context cx;
@@ -344,7 +328,7 @@ Grid parse_grid(const std::string& text, const std::string& base_dir, const std:
 }
 
 Grid load_grid(const std::string& path) {
-  const std::string text = read_text(path);
+  const std::string text = read_text_file(path);
   return parse_grid(text, dir_of(path), path);
 }
 

@@ -115,11 +115,11 @@ Axis named_axis(AxisKind kind, const Context& cx, const std::string& path) {
   return axis;
 }
 
-Axis pointer_axis(const std::string& pointer, const std::string& name) {
+Axis pointer_axis(const std::string& pointer, const std::string& name, const std::string& as_written) {
   Axis axis;
   axis.kind = AxisKind::pointer;
   axis.pointer = pointer;
-  axis.name = name.empty() ? default_axis_name(pointer) : name;
+  axis.name = name.empty() ? default_axis_name(as_written) : name;
   axis.units = unit_of_key(pointer);
   return axis;
 }

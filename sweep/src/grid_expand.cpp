@@ -46,8 +46,7 @@ int Expander::parse_axis(const json& spec, const std::string& path, std::vector<
     a = named_axis(*named, cx_, r.child("name"));
   } else {
     if (named) fail(r.child("name"), json(name), "is a named axis: it takes no pointer (rename the pointer axis)");
-    make_pointer(pointer, r.child("pointer"));
-    a = pointer_axis(pointer, name);
+    a = pointer_axis(make_pointer(cx_.base, pointer, r.child("pointer")).to_string(), name, pointer);
   }
   if (!valid_name(a.name))
     fail(r.child("name"), json(a.name), "must be 1-64 letters, digits, '_', '-' or '.' (it names a column and a dataset)");
@@ -117,10 +116,10 @@ int Expander::key_axis(const std::string& key, const std::string& path) {
   if (const std::optional<AxisKind> named = parse_name<AxisKind>(key)) {
     a = named_axis(*named, cx_, path);
   } else if (!key.empty() && key.front() == '/') {
-    make_pointer(key, path);
+    const std::string pointer = make_pointer(cx_.base, key, path).to_string();
     for (std::size_t i = 0; i < g_.axes.size(); ++i)
-      if (g_.axes[i].kind == AxisKind::pointer && g_.axes[i].pointer == key) return static_cast<int>(i);
-    a = pointer_axis(key, "");
+      if (g_.axes[i].kind == AxisKind::pointer && g_.axes[i].pointer == pointer) return static_cast<int>(i);
+    a = pointer_axis(pointer, "", key);
     if (!valid_name(a.name)) fail(path, json(key), "gives the column name \"" + a.name + "\", which is not valid: declare the axis with a name");
   } else {
     fail(path, json(key), "unknown key: must be a named axis (" + names_list<AxisKind>() +

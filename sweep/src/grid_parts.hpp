@@ -23,8 +23,10 @@ inline constexpr std::size_t kMaxCases = 1'000'000;
 std::string index_path(const std::string& path, std::size_t i);
 /// grid.set["/a/b"]: a member whose key is a pointer.
 std::string key_path(const std::string& path, const std::string& key);
-/// The JSON Pointer `text`; an error names `path` if it is not one.
-nlohmann::json::json_pointer make_pointer(const std::string& text, const std::string& path);
+/// The JSON Pointer `text` into `doc`, an element of an array of objects named by its index
+/// or its "name" (lub::resolve_pointer: the result has indices only); an error names `path`
+/// if it is not a pointer or names an element no element has.
+nlohmann::json::json_pointer make_pointer(const nlohmann::json& doc, const std::string& text, const std::string& path);
 /// Sets the value at `ptr`: it must name an existing value, or a new key of an existing
 /// object (the rule of lubsim's --set). `what` = `shown` names the source in an error.
 void set_pointer(nlohmann::json& doc, const nlohmann::json::json_pointer& ptr, const nlohmann::json& value,
@@ -50,9 +52,10 @@ struct Context {
 /// A named axis resolved against the base scene: its pointer (into the metric joint or the
 /// driver), unit and column type. `path` names the axis for errors.
 Axis named_axis(AxisKind kind, const Context& cx, const std::string& path);
-/// An axis at `pointer`: column `name` ("" gives the pointer's default name), the unit of
-/// the pointer's key.
-Axis pointer_axis(const std::string& pointer, const std::string& name);
+/// An axis at `pointer` (indices only: make_pointer): column `name` ("" gives the default
+/// name of the pointer `as_written`, "/joints/rod_slider/x" → joints.rod_slider.x), the
+/// unit of the pointer's key.
+Axis pointer_axis(const std::string& pointer, const std::string& name, const std::string& as_written);
 /// What an axis varies, for a message: its pointer, or the named axis's name.
 std::string axis_origin(const Axis& axis);
 /// Checks one value of an axis for what the grid itself needs (see grid_axis.cpp).

@@ -4,8 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <system_error>
 #include <map>
+#include <string>
+#include <system_error>
 
 #include <fmt/format.h>
 
@@ -32,6 +33,14 @@ bool is_orbit(const std::string& cls) {
   return c && has_orbit(*c);
 }
 
+/// `x` in `format` ("{:.4f}"), a negative number that rounds to zero shown as zero: "0.0000",
+/// not "-0.0000" (a metric of -3e-7 is no sign of anything).
+std::string formatted(const char* format, double x) {
+  std::string s = fmt::format(fmt::runtime(format), x);
+  const std::size_t mantissa_end = std::min(s.find_first_of("eE"), s.size());
+  if (!s.empty() && s[0] == '-' && s.find_first_not_of("0.", 1) >= mantissa_end) s.erase(0, 1);
+  return s;
+}
 
 /// The columns of the table after `case`: the axes (numbers in {:g}, "-" where unset), status,
 /// classification (`cls`), then the key metrics that `t` has, each scaled and formatted.
@@ -44,7 +53,7 @@ void add_columns(const h5::Table& t, const std::vector<std::string>& status, con
     if (column.type == h5::ColumnType::String) {
       c.cells = t.read_strings(a);
     } else {
-      for (double v : t.read_doubles(a)) c.cells.push_back(std::isnan(v) ? "-" : fmt::format("{:g}", v));
+      for (double v : t.read_doubles(a)) c.cells.push_back(std::isnan(v) ? "-" : formatted("{:g}", v));
     }
     cols.push_back(std::move(c));
   }
@@ -61,7 +70,7 @@ void add_columns(const h5::Table& t, const std::vector<std::string>& status, con
     if (if_used && std::none_of(v.begin(), v.end(), [](double x) { return std::isfinite(x) && x != 0.0; })) return;
     for (std::size_t i = 0; i < v.size(); ++i) {
       const bool shown = !without_orbit || (!is_orbit(cls[i]) && v[i] != 0.0);
-      c.cells.push_back(shown && std::isfinite(v[i]) ? fmt::format(fmt::runtime(format), v[i] * scale) : "-");
+      c.cells.push_back(shown && std::isfinite(v[i]) ? formatted(format, v[i] * scale) : "-");
     }
     cols.push_back(std::move(c));
   };

@@ -465,6 +465,20 @@ def test_the_study_reader_reads_one_format_and_says_what_to_do(tmp_path):
         lubjoint.load_study(tmp_path / "text.h5")
 
 
+def test_the_study_reader_says_when_there_is_no_file(tmp_path, monkeypatch):
+    # A path that names no file is not "not an HDF5 file": FileNotFoundError, as open() says it.
+    monkeypatch.chdir(tmp_path)
+    for read in (lubjoint.load_study, lubjoint.study.check):
+        with pytest.raises(FileNotFoundError) as e:
+            read("nope.h5")
+        assert str(e.value) == "no such file: nope.h5"
+    with pytest.raises(SystemExit) as e:
+        lubjoint.study.check_or_exit(Path("nope.h5"))
+    assert str(e.value) == "no such file: nope.h5"
+    with pytest.raises(IsADirectoryError, match="^a directory, not a study file: "):
+        lubjoint.load_study(tmp_path)
+
+
 def test_the_study_reader_needs_no_compiled_extension(tmp_path):
     # The package's Python files alone (a build without LUB_BUILD_PYTHON): lubjoint.study
     # imports and reads; what needs the extension fails only when it is used.

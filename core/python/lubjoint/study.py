@@ -7,7 +7,7 @@ adds the format check and the look-ups the tools share:
 
     from lubjoint import study
     s = study.load_study("out/study.h5")          # {grid name: Dataset}, .cases, .attrs
-    study.check("out/study.h5")                   # root attributes, or StudyFormatError
+    study.check("out/study.h5")                   # root attributes, or StudyFormatError (FileNotFoundError)
     cases = study.cases("out/study.h5")           # pandas DataFrame, index: case id
     ds = study.grid("out/study.h5", "clearance")  # xarray Dataset over the sub-grid's axes
     s = study.series("out/study.h5", "case_0003") # xarray Dataset indexed by t, or None
@@ -78,9 +78,15 @@ def study_format(path):
 
 
 def check(path):
-    """Root attributes of a study file of ``STUDY_FORMAT``; ``StudyFormatError`` with the reason otherwise."""
+    """Root attributes of a study file of ``STUDY_FORMAT``; ``StudyFormatError`` with the reason otherwise,
+    ``FileNotFoundError`` ("no such file: PATH") or ``IsADirectoryError`` for a path that is no file."""
     import h5py
 
+    path = os.fspath(path)
+    if not os.path.exists(path):
+        raise FileNotFoundError(f"no such file: {path}")
+    if os.path.isdir(path):
+        raise IsADirectoryError(f"a directory, not a study file: {path}")
     try:
         with h5py.File(path, "r") as f:
             attrs = {k: _text(v) for k, v in f.attrs.items()}
@@ -95,10 +101,11 @@ def check(path):
 
 
 def check_or_exit(path):
-    """``check`` for command-line tools: a ``StudyFormatError`` becomes ``SystemExit`` with its message (exit 1)."""
+    """``check`` for command-line tools: a ``StudyFormatError``, or a path that is no file, becomes
+    ``SystemExit`` with its message (exit 1)."""
     try:
         return check(path)
-    except StudyFormatError as e:
+    except (StudyFormatError, FileNotFoundError, IsADirectoryError) as e:
         raise SystemExit(str(e)) from None
 
 
@@ -361,6 +368,8 @@ def load_study(path):
 
     Raises
     ------
+    FileNotFoundError
+        "no such file: PATH" (``IsADirectoryError`` for a directory).
     StudyFormatError
         (a ``ValueError``) for a file that is not HDF5, not a lubsweep study, or of a format
         not in ``ACCEPTED_FORMATS`` (the message says: re-run the sweep with ``--restart``).

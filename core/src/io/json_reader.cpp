@@ -1,6 +1,10 @@
 #include "lub/io/json_reader.hpp"
 
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -55,10 +59,42 @@ void fail(const std::string& path, const json& value, const std::string& rule) {
   throw InputError(path + " = " + brief(value) + ": " + rule);
 }
 
-namespace {
-[[noreturn]] void fail_missing(const std::string& path, const std::string& rule) {
-  throw InputError(path + " is missing: " + rule);
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  // Optimal string alignment: insertions, deletions, substitutions and swaps of two
+  // neighbours ("viscoisty") each cost 1. Three rows of |b| + 1.
+  std::vector<std::size_t> before(b.size() + 1), last(b.size() + 1), row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) last[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      row[j] = std::min({last[j] + 1, row[j - 1] + 1, last[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) row[j] = std::min(row[j], before[j - 2] + 1);
+    }
+    std::swap(before, last);
+    std::swap(last, row);
+  }
+  return last[b.size()];
 }
+
+std::optional<std::string> closest_name(const std::string& word, const std::vector<std::string>& names) {
+  // Close: at most a third of the longer name's characters differ (at least 2 may), or one
+  // name is the other with something added ("cycles" in "max_cycles").
+  std::optional<std::string> best;
+  std::size_t best_d = 0;
+  for (const std::string& n : names) {
+    const std::size_t longer = std::max(n.size(), word.size());
+    const std::size_t limit = std::max<std::size_t>(2, longer / 3);
+    const std::size_t gap = n.size() > word.size() ? n.size() - word.size() : word.size() - n.size();
+    const bool contains = std::min(n.size(), word.size()) >= 4 &&
+                          (n.find(word) != std::string::npos || word.find(n) != std::string::npos);
+    if (n == word || (gap > limit && !contains)) continue;
+    const std::size_t d = edit_distance(word, n);
+    if ((d <= limit || contains) && (!best || d < best_d)) best = n, best_d = d;
+  }
+  return best;
+}
+
+namespace {
 std::string type_name(const json& v) { return v.type_name(); }
 }  // namespace
 
@@ -71,16 +107,33 @@ std::string ObjectReader::child(const std::string& key) const {
   return path_.empty() ? key : path_ + "." + key;
 }
 
-bool ObjectReader::has(const std::string& key) const { return object_.contains(key); }
+bool ObjectReader::has(const std::string& key) const {
+  asked_.insert(key);
+  return object_.contains(key);
+}
 
 const json& ObjectReader::raw(const std::string& key) {
+  asked_.insert(key);
   auto it = object_.find(key);
-  if (it == object_.end()) fail_missing(child(key), "required");
+  if (it == object_.end()) {
+    // A member not asked about so far whose name is close to the key: a misspelling of it,
+    // or a key of its own read later (body_j where body_i is missing), which only the rest
+    // of the parse knows (parse_scene asks it).
+    std::vector<std::string> unasked, near;
+    for (auto m = object_.begin(); m != object_.end(); ++m)
+      if (!asked_.count(m.key())) unasked.push_back(m.key());
+    while (const std::optional<std::string> n = closest_name(key, unasked)) {  // closest first
+      near.push_back(*n);
+      unasked.erase(std::find(unasked.begin(), unasked.end(), *n));
+    }
+    throw MissingKeyError(child(key) + " is missing: required", path_, key, near);
+  }
   read_.insert(key);
   return *it;
 }
 
 const json* ObjectReader::raw_optional(const std::string& key) {
+  asked_.insert(key);
   auto it = object_.find(key);
   if (it == object_.end()) return nullptr;
   read_.insert(key);
@@ -186,9 +239,14 @@ Eigen::Vector2d ObjectReader::vec2_or(const std::string& key, const Eigen::Vecto
 }
 
 void ObjectReader::finish() const {
+  // The keys this object may have are the ones the parser asked about (read or not).
+  const std::vector<std::string> known(asked_.begin(), asked_.end());
   for (auto it = object_.begin(); it != object_.end(); ++it) {
-    if (!read_.count(it.key()))
-      fail(child(it.key()), it.value(), "unknown key (check the spelling; the keys: docs/reference/)");
+    if (read_.count(it.key())) continue;
+    const std::optional<std::string> near = closest_name(it.key(), known);
+    const std::string rule = near ? "unknown key; did you mean `" + *near + "`?"
+                                  : "unknown key (check the spelling; the keys: docs/reference/)";
+    throw UnknownKeyError(child(it.key()) + " = " + brief(it.value()) + ": " + rule, path_, it.key());
   }
 }
 
@@ -206,7 +264,6 @@ namespace {
 // path of the current value while the parser reports its events.
 class DuplicateKeyCheck {
  public:
-  explicit DuplicateKeyCheck(std::string origin) : origin_(std::move(origin)) {}
   bool operator()(json::parse_event_t event, const json& parsed) {
     switch (event) {
       case json::parse_event_t::object_start:
@@ -222,7 +279,7 @@ class DuplicateKeyCheck {
         Frame& f = frames_.back();  // an object; the event's value is the key
         f.key = parsed.get<std::string>();
         if (!f.keys.insert(f.key).second)
-          throw InputError(origin_ + ": " + path() + ": duplicate key (a key may appear only once in an object)");
+          throw InputError(path() + ": duplicate key (a key may appear only once in an object)");
         break;
       }
       case json::parse_event_t::value:
@@ -252,33 +309,138 @@ class DuplicateKeyCheck {
     }
     return p;
   }
-  std::string origin_;
   std::vector<Frame> frames_;
 };
 
+// Where parsing stopped, from the byte count nlohmann-json reports (the characters read,
+// the offending one last): "line L, column C", both from 1.
+std::string text_position(const std::string& text, std::size_t byte) {
+  const std::size_t end = std::min(byte > 0 ? byte - 1 : 0, text.size());
+  std::size_t line = 1, line_start = 0;
+  for (std::size_t i = 0; i < end; ++i)
+    if (text[i] == '\n') ++line, line_start = i + 1;
+  return "line " + std::to_string(line) + ", column " + std::to_string(end - line_start + 1);
+}
+
+// The library's reason without its prefixes ("[json.exception.parse_error.101] parse error at
+// line 1, column 3: ") and without its "last read: '...'" echo of the input, which may be
+// hundreds of characters of the file.
+std::string parse_reason(const std::string& what) {
+  std::string r = what;
+  if (const auto id = r.find("] "); r.rfind("[json.exception.", 0) == 0 && id != std::string::npos)
+    r = r.substr(id + 2);
+  if (const auto colon = r.find(": "); r.rfind("parse error", 0) == 0 && colon != std::string::npos)
+    r = r.substr(colon + 2);
+  if (const auto echo = r.find("; last read: '"); echo != std::string::npos) {
+    const auto expected = r.rfind("'; expected ");
+    r = r.substr(0, echo) + (expected == std::string::npos || expected < echo ? "" : r.substr(expected + 1));
+  }
+  if (r.size() > 2 * kBriefChars) r = r.substr(0, 2 * kBriefChars - 3) + "...";
+  return r;
+}
+
 }  // namespace
 
-json parse_json_text(const std::string& text, const std::string& origin) {
-  DuplicateKeyCheck check(origin);
+json parse_json(const std::string& text) {
+  DuplicateKeyCheck check;
   const json::parser_callback_t cb = [&check](int /*depth*/, json::parse_event_t event, json& parsed) {
     return check(event, parsed);
   };
   try {
     return json::parse(text, cb);
   } catch (const json::parse_error& e) {
-    throw InputError(origin + ": not valid JSON: " + e.what());
+    throw InputError(text_position(text, e.byte) + ": not valid JSON: " + parse_reason(e.what()));
   } catch (const json::exception& e) {  // e.g. out_of_range.406: a number overflows a double
-    throw InputError(origin + ": not valid JSON for a scene: " + e.what());
+    throw InputError("not valid JSON (a number must fit a double): " + parse_reason(e.what()));
   }
 }
 
-json read_json_file(const std::string& path) {
+json parse_json_text(const std::string& text, const std::string& origin) {
+  try {
+    return parse_json(text);
+  } catch (const InputError& e) {
+    throw InputError(origin + ": " + e.what());
+  }
+}
+
+std::string read_text_file(const std::string& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (status.type() == std::filesystem::file_type::not_found) throw InputError("no such file");
+  if (status.type() == std::filesystem::file_type::directory) throw InputError("a directory, not a file");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open the file");
+  if (!in) throw InputError(std::string("cannot open the file: ") + std::strerror(errno));
   std::ostringstream text;
   text << in.rdbuf();
-  if (!in.good() && !in.eof()) throw InputError(path + ": cannot read the file");
-  return parse_json_text(text.str(), path);
+  if (!in.good() && !in.eof()) throw InputError("cannot read the file");
+  return text.str();
+}
+
+json read_json_file(const std::string& path) {
+  std::string text;
+  try {
+    text = read_text_file(path);
+  } catch (const InputError& e) {
+    throw InputError(path + ": " + e.what());
+  }
+  return parse_json_text(text, path);
+}
+
+namespace {
+
+// "0", "12", or "-" (past the end): what addresses an array element by position.
+bool is_array_index(const std::string& token) {
+  const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  return token == "-" || (!token.empty() && std::all_of(token.begin(), token.end(), digit));
+}
+
+// The index (as a token) of the element of `array` whose "name" is `name`; `name` itself if
+// no element has a name (the pointer then names nothing, as before); an error listing the
+// names if some have one but none this. `where`: the array's pointer.
+std::string element_named(const json& array, const std::string& name, const json::json_pointer& where) {
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < array.size(); ++i) {
+    const json& e = array[i];
+    if (!e.is_object() || !e.contains("name") || !e["name"].is_string()) continue;
+    if (e["name"].get<std::string>() == name) return std::to_string(i);
+    names.push_back(e["name"].get<std::string>());
+  }
+  if (names.empty()) return name;
+  const std::optional<std::string> near = closest_name(name, names);
+  std::string list;
+  for (std::size_t i = 0; i < names.size() && i < 12; ++i) list += (i ? ", " : "") + names[i];
+  if (names.size() > 12) list += ", ... (" + std::to_string(names.size()) + " names)";
+  throw InputError((where.empty() ? std::string("the document") : where.to_string()) + " has no element named " +
+                   json(name).dump(-1, ' ', false, json::error_handler_t::replace) +
+                   (near ? ": did you mean `" + *near + "`?" : "") + " (its names: " + list + "; or an index 0-" +
+                   std::to_string(array.size() - 1) + ")");
+}
+
+}  // namespace
+
+json::json_pointer resolve_pointer(const json& doc, const std::string& text) {
+  json::json_pointer ptr;
+  try {
+    ptr = json::json_pointer(text);
+  } catch (const json::exception& e) {
+    throw InputError(text + " is not a JSON Pointer (RFC 6901): " + parse_reason(e.what()));
+  }
+  std::vector<std::string> tokens;
+  for (json::json_pointer p = ptr; !p.empty(); p.pop_back()) tokens.insert(tokens.begin(), p.back());
+  json::json_pointer out;
+  const json* at = &doc;
+  for (std::string& token : tokens) {
+    if (at && at->is_array() && !is_array_index(token)) token = element_named(*at, token, out);
+    out.push_back(token);
+    if (at && at->is_object() && at->contains(token))
+      at = &(*at)[token];
+    else if (at && at->is_array() && token != "-" && is_array_index(token) && token.size() < 10 &&
+             std::stoul(token) < at->size())
+      at = &(*at)[std::stoul(token)];
+    else
+      at = nullptr;  // a new key, or nothing: the caller's rules say
+  }
+  return out;
 }
 
 void apply_override(json& doc, const std::string& assignment) {
@@ -289,9 +451,9 @@ void apply_override(json& doc, const std::string& assignment) {
   const std::string value_text = assignment.substr(eq + 1);
   json::json_pointer ptr;
   try {
-    ptr = json::json_pointer(ptr_text);
-  } catch (const json::exception& e) {
-    throw InputError("--set " + assignment + ": " + ptr_text + " is not a JSON Pointer (RFC 6901): " + e.what());
+    ptr = resolve_pointer(doc, ptr_text);  // /joints/rod_slider/... is /joints/3/...
+  } catch (const InputError& e) {
+    throw InputError("--set " + assignment + ": " + e.what());
   }
   if (ptr.empty()) throw InputError("--set " + assignment + ": the pointer must not be empty");
   json value;

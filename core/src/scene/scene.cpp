@@ -544,7 +544,10 @@ std::string channel_unit(const ChannelSpec& c) {
   return "?";
 }
 
-Scene parse_scene(const json& doc) {
+namespace {
+
+// The scene at `doc`, every rule checked (parse_scene, less its search for a misspelt key).
+Scene parse_scene_once(const json& doc) {
   Scene scene;
   ObjectReader top(doc, "");
   if (const json* schema = top.raw_optional("$schema"); schema && !schema->is_string())
@@ -634,6 +637,71 @@ Scene parse_scene(const json& doc) {
   scene.warnings = plausibility_warnings(scene);
   scene.validity_notes = validity_notes(scene);
   return scene;
+}
+
+// The JSON Pointer of a reader's path: "joints[3]" → /joints/3, "effects.contact" →
+// /effects/contact (the scene's keys have no '.' or '[').
+json::json_pointer pointer_of(const std::string& path) {
+  json::json_pointer p;
+  std::string token;
+  for (const char c : path + ".") {
+    if (c == '.' || c == '[') {
+      if (!token.empty()) p.push_back(token);
+      token.clear();
+    } else if (c != ']') {
+      token += c;
+    }
+  }
+  return p;
+}
+
+// Whether no value of `v` is nested deeper than `limit` (without recursion: a copy of a
+// deeper document would recurse as deep).
+bool nested_at_most(const json& v, std::size_t limit) {
+  std::vector<std::pair<const json*, std::size_t>> todo{{&v, 1}};
+  while (!todo.empty()) {
+    const auto [node, depth] = todo.back();
+    todo.pop_back();
+    if (depth > limit) return false;
+    if (node->is_structured())
+      for (const json& child : *node) todo.emplace_back(&child, depth + 1);
+  }
+  return true;
+}
+
+// A required key K is missing and its object has members M close to it that had not been
+// read: a misspelling of K, or a key of its own read after K (body_j where body_i is
+// missing)? The scene is parsed again with K added, M's value, and M kept: if the parser then
+// calls a member of that object unknown, that is the message ("M = ...: unknown key; did you
+// mean `K`?"), else the missing key is. The three closest members are tried, closest first.
+[[noreturn]] void blame_misspelling(const json& doc, const MissingKeyError& missing) {
+  const json::json_pointer at = pointer_of(missing.object_path);
+  if (!nested_at_most(doc, 64) || !doc.contains(at) || !doc.at(at).is_object()) throw missing;
+  for (std::size_t k = 0; k < missing.near.size() && k < 3; ++k) {
+    json retry = doc;
+    json& object = retry[at];
+    if (!object.contains(missing.near[k])) break;
+    json value = object[missing.near[k]];
+    object[missing.key] = std::move(value);
+    try {
+      parse_scene_once(retry);
+    } catch (const UnknownKeyError& e) {
+      if (e.object_path == missing.object_path) throw e;
+    } catch (const InputError&) {
+    }
+  }
+  throw missing;
+}
+
+}  // namespace
+
+Scene parse_scene(const json& doc) {
+  try {
+    return parse_scene_once(doc);
+  } catch (const MissingKeyError& e) {
+    if (e.near.empty()) throw;
+    blame_misspelling(doc, e);
+  }
 }
 
 }  // namespace lub

@@ -342,7 +342,9 @@ struct Scene {
   std::optional<double> cycle_period_s() const;
 };
 
-/// Parses and validates a scene. Throws InputError naming the JSON path, value and rule.
+/// Parses and validates a scene. Throws InputError naming the JSON path, value and rule; a
+/// misspelt key is named with the known key closest to it, also where it leaves a required
+/// key missing ("joints[3].viscosty_Pa_s = 0.4: unknown key; did you mean `viscosity_Pa_s`?").
 Scene parse_scene(const nlohmann::json& doc);
 
 /// The plausibility warnings of a parsed scene (Scene::warnings): for each lubricated joint

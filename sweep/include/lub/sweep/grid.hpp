@@ -128,7 +128,8 @@ struct Grid {
 /// value and the rule. The grid checks its own shape and the types of the named axes'
 /// values; every scene rule is the scene parser's, run on each case's scene, its message
 /// prefixed with the grid's value that breaks it ("grid.axes[0].values[2] = 0: gives an
-/// invalid scene: joints[3].viscosity_Pa_s = 0: must be > 0 Pa s").
+/// invalid scene: joints[3].viscosity_Pa_s = 0: must be > 0 Pa s"). The messages do not name
+/// the grid's file ("no such file", "line 3, column 7: not valid JSON: ..."): the caller does.
 Grid load_grid(const std::string& path);
 
 /// The same from the grid's text; relative scene paths are resolved against `base_dir`,
