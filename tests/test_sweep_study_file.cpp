@@ -14,6 +14,7 @@
 #include <iterator>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -71,6 +72,30 @@ CaseResult fake(const Grid& g, int id, CaseStatus status = CaseStatus::ok) {
   }
   (void)g;
   return r;
+}
+
+/// The index of result field `name` in CaseResult::values.
+std::size_t at(const std::string& name) {
+  const auto fields = result_fields();
+  std::size_t i = 0;
+  while (fields[i].name != name) ++i;
+  return i;
+}
+
+/// `lubsweep --summary` of `path`, each line split into its words.
+std::vector<std::vector<std::string>> summary_words(const std::string& path) {
+  std::FILE* out = std::tmpfile();
+  if (!out) throw std::runtime_error("no temporary file");
+  print_summary(path, out);
+  std::rewind(out);
+  std::vector<std::vector<std::string>> rows;
+  char line[4096];
+  while (std::fgets(line, sizeof line, out)) {
+    std::istringstream words(line);
+    rows.emplace_back(std::istream_iterator<std::string>(words), std::istream_iterator<std::string>());
+  }
+  std::fclose(out);
+  return rows;
 }
 
 /// Writes a new study file at `path` holding `results`, in the order given. `finalize`: the
@@ -289,12 +314,6 @@ TEST_F(StudyFile, OneMissingValueConventionNaNForFloatsADeclaredSentinelForInteg
   // column's missing_value, NaN in /grids; every float column declares _FillValue = NaN.
   const Grid g = small_grid();
   const std::string path = file("m.h5");
-  const auto fields = result_fields();
-  auto at = [&](const std::string& name) {
-    std::size_t i = 0;
-    while (fields[i].name != name) ++i;
-    return i;
-  };
   CaseResult r = fake(g, 0);
   r.values[at("periodicity")] = std::nan("");
   r.values[at("cycles_to_steady")] = std::nan("");
@@ -307,7 +326,7 @@ TEST_F(StudyFile, OneMissingValueConventionNaNForFloatsADeclaredSentinelForInteg
     EXPECT_EQ(t.read_int64s("cycles_to_steady")[1], static_cast<std::int64_t>(fake(g, 1).values[at("cycles_to_steady")]));
     EXPECT_TRUE(std::isnan(f.open_dataset("grids/main/periodicity").read_doubles()[0]));
     EXPECT_TRUE(std::isnan(f.open_dataset("grids/main/cycles_to_steady").read_doubles()[0]));
-    for (const auto& fld : fields) {
+    for (const auto& fld : result_fields()) {
       SCOPED_TRACE(fld.name);
       const auto col = t.column(fld.name);
       if (fld.integer) {
@@ -351,17 +370,7 @@ TEST_F(StudyFile, SummarySaysWhereACaseWithoutAnOrbitGotTo) {
   orbit.classification = CaseClass::periodic;
   drifting.classification = CaseClass::drifting;
   write_study(path, g, {orbit, drifting, fake(g, 2), fake(g, 3), fake(g, 4)}, true);
-  std::FILE* out = std::tmpfile();
-  ASSERT_NE(out, nullptr);
-  print_summary(path, out);
-  std::rewind(out);
-  std::vector<std::vector<std::string>> rows;
-  char line[4096];
-  while (std::fgets(line, sizeof line, out)) {
-    std::istringstream words(line);
-    rows.emplace_back(std::istream_iterator<std::string>(words), std::istream_iterator<std::string>());
-  }
-  std::fclose(out);
+  const std::vector<std::vector<std::string>> rows = summary_words(path);
   ASSERT_GE(rows.size(), 5u);
   const std::vector<std::string>& head = rows[2];  // after the counts and the classification line
   ASSERT_EQ(head.front(), "case");
@@ -388,29 +397,13 @@ TEST_F(StudyFile, SummaryShowsANegativeNumberThatRoundsToZeroAsZero) {
   // not round to zero keeps its sign.
   const Grid g = small_grid();
   const std::string path = file("negative_zero.h5");
-  const auto fields = result_fields();
-  auto at = [&](const std::string& name) {
-    std::size_t i = 0;
-    while (fields[i].name != name) ++i;
-    return i;
-  };
   CaseResult r = fake(g, 0);
   r.values[at("max_eps")] = -3e-7;
   r.values[at("periodicity")] = -0.0;
   r.values[at("orbit_conditioning")] = -0.0;
   r.values[at("wall_time_s")] = -0.25;
   write_study(path, g, {r}, true);
-  std::FILE* out = std::tmpfile();
-  ASSERT_NE(out, nullptr);
-  print_summary(path, out);
-  std::rewind(out);
-  std::vector<std::vector<std::string>> rows;
-  char line[4096];
-  while (std::fgets(line, sizeof line, out)) {
-    std::istringstream words(line);
-    rows.emplace_back(std::istream_iterator<std::string>(words), std::istream_iterator<std::string>());
-  }
-  std::fclose(out);
+  const std::vector<std::vector<std::string>> rows = summary_words(path);
   ASSERT_GE(rows.size(), 4u);
   const std::vector<std::string>& head = rows[2];
   ASSERT_EQ(head.front(), "case");
