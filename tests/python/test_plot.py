@@ -241,3 +241,27 @@ def test_sweep_map_draws_with_the_shared_cells(study, source_dir, tmp_path):
                         "-m", "max_eps", "-o", str(tmp_path)], capture_output=True, text=True)
     assert p.returncode == 0, p.stderr
     assert (tmp_path / "map_max_eps_clearance_m_viscosity_Pa_s.png").stat().st_size > 0
+
+
+def test_safe_envelope_draws_cells_and_the_located_boundaries(study):
+    import pandas as pd
+
+    # A boundary handed in (safe_film_boundaries runs scenes): on the viscosity axis of the
+    # Pinkus–Sternlicht plane at 0.5 mm, drawn in µm and Pa s.
+    b = pd.DataFrame([{"axis": "viscosity_Pa_s", "value": 0.07, "error": 1e-4, "unit": "Pa s", "kind": "safe_film",
+                       "force_law": "pinkus_sternlicht", "clearance_m": 0.0005},
+                      {"axis": "clearance_m", "value": 0.0003, "error": 1e-7, "unit": "m", "kind": "safe_film",
+                       "force_law": "pinkus_sternlicht", "viscosity_Pa_s": 0.04}])
+    fig = plot.safe_envelope(study, "clearance_m", "viscosity_Pa_s", boundaries=b)
+    assert len(fig.axes) == len(LAWS)
+    ax = fig.axes[0]
+    assert ax.get_title() == "pinkus_sternlicht" and ax.get_xlabel() == "clearance [µm]"
+    curve = [l for l in ax.get_lines() if l.get_label() == "safe film reached (located)"]
+    assert len(curve) == 1
+    assert sorted(zip(curve[0].get_xdata(), curve[0].get_ydata())) == [(300.0, 0.04), (500.0, 0.07)]
+    g = study["grid"].sel(force_law="pinkus_sternlicht")
+    cells = sum(len(l.get_xdata()) for l in ax.get_lines() if l.get_label() in
+                ("safe", "below the safe film", "no located orbit"))
+    assert cells == g.sizes["clearance_m"] * g.sizes["viscosity_Pa_s"]
+    assert not [l for l in fig.axes[1].get_lines() if l.get_label() == "safe film reached (located)"]
+    assert "safe film reached (located)" in legend_texts(fig.axes[-1])

@@ -33,7 +33,7 @@ import os
 import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.patches import Rectangle
-from matplotlib.ticker import FuncFormatter
+from matplotlib.ticker import FuncFormatter, NullLocator
 from matplotlib.transforms import blended_transform_factory
 
 #: How values in a unit are shown on an axis: (unit shown, factor from the stored value).
@@ -584,3 +584,119 @@ def _log_scales(ax, xs):
     if low > 0 and high / low >= 100:
         ax.set_yscale("log")
         ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+
+
+def safe_envelope(study, x, y, grid=None, *, fix=None, boundaries=None):
+    """The safe operating envelope over two axes of a sub-grid, one panel per force law: each
+    grid cell a point (safe, below the safe film, or without a located orbit), the safe-film
+    boundaries located between them (``lubjoint.boundaries.safe_film_boundaries``) joined into
+    a curve, and the unsafe side of it shaded.
+
+    Parameters
+    ----------
+    study : Study or str or os.PathLike
+    x, y : str
+        Two numeric axes of the grid (drawn in µm, rpm, Pa s; log scales where the values span
+        a factor of 10).
+    grid : str, optional
+        The sub-grid; by default the one with both axes.
+    fix : dict, optional
+        ``{axis: value}`` for the grid's other numeric axes (each must be held at one value).
+    boundaries : pandas.DataFrame, optional
+        ``safe_film_boundaries(study)``'s result, if computed already (it runs the scenes).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    study, name, g = _grid(study, grid, [x, y])
+    g = _sorted(_fixed(g, fix))
+    spanned = [d for d in g["case_id"].dims if d not in (x, y, "force_law") and g.sizes[d] > 1]
+    if spanned:
+        raise ValueError(f"{study.path}: grid {name!r}: hold {', '.join(spanned)} at one value (fix=)")
+    if boundaries is None:
+        from .boundaries import safe_film_boundaries
+
+        boundaries = safe_film_boundaries(study)
+    laws = list(g["force_law"].values) if "force_law" in g.dims else [None]
+    fig = Figure(figsize=(4.2 * len(laws), 4.0), layout="constrained")
+    axes = fig.subplots(1, len(laws), squeeze=False)[0]
+    for ax, law in zip(axes, laws):
+        v = g if law is None else g.sel(force_law=[law])
+        for axis, values, setter in ((ax.xaxis, _shown(g, x)[0], ax.set_xscale), (ax.yaxis, _shown(g, y)[0], ax.set_yscale)):
+            if np.min(values) > 0 and np.max(values) / np.min(values) >= 10:
+                setter("log")
+                axis.set_ticks(values, [_tick(t) for t in values])
+                axis.set_minor_locator(NullLocator())
+        _envelope_cells(ax, v, x, y)
+        _envelope_curve(ax, v, x, y, _plane_boundaries(boundaries, v, x, y, law))
+        ax.set_title(str(law if law is not None else _law_of(study, g) or name), fontsize=9)
+        ax.set_xlabel(_shown(g, x)[1])
+        ax.set_ylabel(_shown(g, y)[1])
+    legend = {}
+    for ax in axes:  # every panel's entries, once each (a panel without a boundary has no curve)
+        for handle, label in zip(*ax.get_legend_handles_labels()):
+            legend.setdefault(label, handle)
+    axes[-1].legend(legend.values(), legend.keys(), fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0),
+                    borderaxespad=0)
+    at = [_value_text(g, d, g[d].values[0]) for d in g["case_id"].dims if d not in (x, y, "force_law")]
+    fig.suptitle(f"where the film is safe ({os.path.basename(study.path)}, grid {name})"
+                 + (f": {', '.join(at)}" if at else ""), fontsize=9)
+    return fig
+
+
+def _plane(v, x, y):
+    """One force law's plane: the drawn axis values as a mesh (X, Y), and per cell whether it
+    has a located orbit and whether that orbit is below the safe film (over y, x)."""
+    def cells(name):
+        da = v[name]
+        return da.squeeze([d for d in da.dims if d not in (x, y)]).transpose(y, x).values
+
+    X, Y = np.meshgrid(_shown(v, x)[0], _shown(v, y)[0])
+    orbit = np.isin(cells("classification").astype(str), ("periodic", "periodic_unstable"))
+    return X, Y, orbit, orbit & (cells("below_safe_film") == 1)
+
+
+def _envelope_cells(ax, v, x, y):
+    """Each cell of one force law's plane as a point: safe, below the safe film, no located orbit."""
+    X, Y, orbit, below = _plane(v, x, y)
+    kinds = (("safe", orbit & ~below, "o", "seagreen"), ("below the safe film", below, "o", "firebrick"),
+             ("no located orbit", ~orbit, "x", "0.45"))
+    for label, where, marker, colour in kinds:
+        ax.plot(X[where], Y[where], marker, color=colour, ms=6, ls="none", label=label)
+
+
+def _plane_boundaries(boundaries, v, x, y, law):
+    """The boundaries that lie in this plane, as drawn points (x, y) sorted along x."""
+    if boundaries is None or len(boundaries) == 0:
+        return np.empty((0, 2))
+    fx, fy = _display_factor(v, x), _display_factor(v, y)
+    points = []
+    for _, b in boundaries.iterrows():
+        if law is not None and b.get("force_law") != law:
+            continue
+        held = [d for d in v["case_id"].dims if d not in (x, y, "force_law")]
+        if any(d in b and not (b[d] == v[d].values[0]) for d in held):
+            continue
+        if b["axis"] == x and y in b:
+            points.append((b["value"] * fx, b[y] * fy))
+        elif b["axis"] == y and x in b:
+            points.append((b[x] * fx, b["value"] * fy))
+    return np.array(sorted(points)) if points else np.empty((0, 2))
+
+
+def _envelope_curve(ax, v, x, y, points):
+    """The boundary curve through ``points``, the side of it where cells are below the safe film shaded."""
+    if len(points) == 0:
+        return
+    ax.plot(points[:, 0], points[:, 1], "-", color="firebrick", lw=1.5, marker="D", ms=4,
+            label="safe film reached (located)")
+    X, Y, _, below = _plane(v, x, y)
+    inside = below & (X >= points[0, 0]) & (X <= points[-1, 0])  # the cells the curve spans
+    if not inside.any() or len(points) < 2:
+        return
+    under = np.mean(Y[inside] < np.interp(X[inside], points[:, 0], points[:, 1])) > 0.5
+    limits = ax.get_ylim()
+    ax.fill_between(points[:, 0], points[:, 1], limits[0] if under else limits[1], color="firebrick", alpha=0.12,
+                    lw=0, label="unsafe side")
+    ax.set_ylim(limits)
