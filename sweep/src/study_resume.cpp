@@ -138,11 +138,12 @@ struct EarlierRows {
     }
     // Sensitivities: a file written without them (another grid, an earlier build) resumes
     // its rows with NaN ones.
-    for (const auto& fld : sensitivity_fields(grid.parameters))
+    const auto fields = sensitivity_fields(grid.parameters);
+    n_sensitivities = fields.size();
+    for (const auto& fld : fields)
       if (t.has_column(fld.name)) sensitivities.push_back(t.read_doubles(fld.name));
     if (t.has_column("sensitivity_periods")) sensitivity_periods = t.read_int64s("sensitivity_periods");
-    if (sensitivities.size() != sensitivity_fields(grid.parameters).size()) sensitivities.clear();
-    n_sensitivities = sensitivity_fields(grid.parameters).size();
+    if (sensitivities.size() != n_sensitivities) sensitivities.clear();
   }
 
   /// Row `i` as the result of case `case_id`.

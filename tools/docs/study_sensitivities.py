@@ -26,6 +26,7 @@ import warnings
 import numpy as np
 
 import lubjoint  # PYTHONPATH=build/python
+from lubjoint import boundaries
 
 METRICS = ["min_film_thickness_m", "max_eps", "peak_reaction_N", "film_power_loss_W"]
 # Where in the cycle a metric that is an extremum over it sits: ends whose extremum lies
@@ -40,34 +41,16 @@ ORBITS = ("periodic", "periodic_unstable")
 
 def axis_pointers(study):
     """{axis: the scene pointer it sets} of the study's numeric axes with sensitivities."""
-    out = {}
-    for g in study.values():
-        for d in g.dims:
-            pointer = g[d].attrs.get("pointer")
-            if pointer and any(str(v).endswith(f"_per_{d}") for v in study.cases.variables):
-                out[d] = pointer
-    return out
-
-
-def at(doc, pointer):
-    """The value a JSON Pointer names in a scene (a dict)."""
-    for token in pointer.lstrip("/").split("/"):
-        doc = doc[int(token)] if isinstance(doc, list) else doc[token]
-    return doc
+    return {a: p for a, p in boundaries.axis_pointers(study).items()
+            if any(str(v).endswith(f"_per_{a}") for v in study.cases.variables)}
 
 
 def ends(scene, axis, pointer, value, step):
     """The scene's steady runs at the axis value × (1 ± step) (a clearance c: the journal
     radius R − c(1 ± step), R held)."""
-    out = []
-    for f in (1.0 + step, 1.0 - step):
-        if axis == "clearance_m":
-            radius = at(scene, pointer.rsplit("/", 1)[0] + "/bearing_radius_m")
-            over = {pointer: radius - value * f}
-        else:
-            over = {pointer: value * f}
-        out.append(lubjoint.simulate(scene, {**over, "/outputs/channels": []}))
-    return out
+    return [lubjoint.simulate(scene, {**boundaries.axis_override(scene, axis, pointer, value * f)[0],
+                                      "/outputs/channels": []})
+            for f in (1.0 + step, 1.0 - step)]
 
 
 def check(study, case, axis, pointer):

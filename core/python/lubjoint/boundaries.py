@@ -19,6 +19,21 @@ def _at(doc, pointer):
     return doc
 
 
+def axis_pointers(study):
+    """``{axis: the scene pointer it sets}`` of the study's numeric axes (a clearance's is
+    the journal radius), from the grids' dimension scales (attribute ``pointer``)."""
+    return {d: g[d].attrs["pointer"] for g in study.values() for d in g.dims if g[d].attrs.get("pointer")}
+
+
+def axis_override(scene, axis, pointer, value):
+    """The override (``{pointer: scene value}``, for ``simulate``) that puts a scene at the axis
+    value ``value``: the value itself, or for a clearance c the journal radius R − c, the
+    scene's bearing radius R held. Returns the override and d(scene value)/d(axis value)."""
+    if axis == "clearance_m":
+        return {pointer: _at(scene, pointer.rsplit("/", 1)[0] + "/bearing_radius_m") - value}, -1.0
+    return {pointer: value}, 1.0
+
+
 class _Line:
     """One lattice edge's axis as a function λ ↦ (h_min − safe film, d/dλ, its run) of the
     scene of ``case``: the axis's pointer set to λ (a clearance c: the journal radius R − c)."""
@@ -28,21 +43,20 @@ class _Line:
 
         self.scene = st.scene(study.path, case)
         self.axis, self.pointer = axis, pointer
-        self.radius = _at(self.scene, pointer.rsplit("/", 1)[0] + "/bearing_radius_m") if axis == "clearance_m" else None
         self.runs = 0
 
     def __call__(self, value):
         from .run import simulate
 
-        scene_value = self.radius - value if self.radius is not None else value
+        override, sign = axis_override(self.scene, self.axis, self.pointer, value)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            ds = simulate(self.scene, {self.pointer: scene_value, "/outputs/channels": []}, sensitivity=[self.pointer])
+            ds = simulate(self.scene, {**override, "/outputs/channels": []}, sensitivity=[self.pointer])
         self.runs += 1
         if ds.attrs["classification"] not in _ORBITS:
             return None
         key = "d_min_film_thickness_m_per_" + self.pointer.lstrip("/").replace("/", "_")
-        slope = float(ds[key]) * (-1.0 if self.radius is not None else 1.0)
+        slope = float(ds[key]) * sign
         gap = float(ds["min_film_thickness_m"]) - float(ds["safe_film_thickness_m"])
         return gap, slope, float(ds["min_film_thickness_m_error"])
 
@@ -102,11 +116,7 @@ def safe_film_boundaries(study, tolerance=5e-3, max_runs=8):
 
     cases = study.cases
     df = st.cases(study.path)  # with the lattice in its attrs
-    pointers = {}
-    for g in study.values():
-        for d in g.dims:
-            if g[d].attrs.get("pointer"):
-                pointers[d] = g[d].attrs["pointer"]
+    pointers = axis_pointers(study)
     rows = []
     for a, b, axis in st.lattice_edges(df):
         ra, rb = df.loc[a], df.loc[b]

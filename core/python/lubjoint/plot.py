@@ -628,8 +628,9 @@ def safe_envelope(study, x, y, grid=None, *, fix=None, boundaries=None):
                 setter("log")
                 axis.set_ticks(values, [_tick(t) for t in values])
                 axis.set_minor_locator(NullLocator())
-        _envelope_cells(ax, v, x, y)
-        _envelope_curve(ax, v, x, y, _plane_boundaries(boundaries, v, x, y, law))
+        plane = _plane(v, x, y)
+        _envelope_cells(ax, plane)
+        _envelope_curve(ax, plane, _plane_boundaries(boundaries, v, x, y, law))
         ax.set_title(str(law if law is not None else _law_of(study, g) or name), fontsize=9)
         ax.set_xlabel(_shown(g, x)[1])
         ax.set_ylabel(_shown(g, y)[1])
@@ -657,9 +658,10 @@ def _plane(v, x, y):
     return X, Y, orbit, orbit & (cells("below_safe_film") == 1)
 
 
-def _envelope_cells(ax, v, x, y):
-    """Each cell of one force law's plane as a point: safe, below the safe film, no located orbit."""
-    X, Y, orbit, below = _plane(v, x, y)
+def _envelope_cells(ax, plane):
+    """Each cell of one force law's plane (``_plane``) as a point: safe, below the safe film, no
+    located orbit."""
+    X, Y, orbit, below = plane
     kinds = (("safe", orbit & ~below, "o", "seagreen"), ("below the safe film", below, "o", "firebrick"),
              ("no located orbit", ~orbit, "x", "0.45"))
     for label, where, marker, colour in kinds:
@@ -685,13 +687,14 @@ def _plane_boundaries(boundaries, v, x, y, law):
     return np.array(sorted(points)) if points else np.empty((0, 2))
 
 
-def _envelope_curve(ax, v, x, y, points):
-    """The boundary curve through ``points``, the side of it where cells are below the safe film shaded."""
+def _envelope_curve(ax, plane, points):
+    """The boundary curve through ``points``, the side of it where the plane's (``_plane``) cells
+    are below the safe film shaded."""
     if len(points) == 0:
         return
     ax.plot(points[:, 0], points[:, 1], "-", color="firebrick", lw=1.5, marker="D", ms=4,
             label="safe film reached (located)")
-    X, Y, _, below = _plane(v, x, y)
+    X, Y, _, below = plane
     inside = below & (X >= points[0, 0]) & (X <= points[-1, 0])  # the cells the curve spans
     if not inside.any() or len(points) < 2:
         return
