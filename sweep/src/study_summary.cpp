@@ -99,6 +99,11 @@ void add_columns(const h5::Table& t, const std::vector<std::string>& status, con
   numeric("dh/cycle[nm]", "min_film_drift_m_per_cycle", "{:.3g}", 1e9, true);
   numeric("dh_error[nm]", "min_film_drift_m_per_cycle_error", "{:.3g}", 1e9, true);
   numeric("flow[cycles]", "slow_flow_cycles", "{:.0f}", 1.0, true);
+  // Where it drifts toward the wall: its law's exponent, and the cycle at which its film
+  // crosses the safe film by that law, with the error bar (docs/theory/drift-law.md).
+  numeric("p_drift", "drift_exponent", "{:.3g}", 1.0, true);
+  numeric("unsafe_at[cycle]", "safe_film_cycle", "{:.0f}", 1.0, true);
+  numeric("unsafe_error", "safe_film_cycle_error", "{:.0f}", 1.0, true);
   numeric("periods", "periods_integrated", "{:.0f}", 1.0);
   numeric("steps", "steps", "{:.0f}", 1.0);
   numeric("wall[s]", "wall_time_s", "{:.2f}", 1.0);

@@ -4,7 +4,9 @@
 // got to measured.
 #include <algorithm>
 #include <cmath>
+#include <map>
 
+#include "lub/steady/drift_law.hpp"
 #include "run/steady_strategies.hpp"
 #include "run/verdict.hpp"
 
@@ -21,6 +23,13 @@ struct SlowFlowWay {
   long long maps = 0;
   bool run_budget = false;    ///< the last leg was cut short by simulation.max_periods, not slow_periods
   bool newton_tried = false;  ///< a Newton where the flow stopped found no orbit
+  /// Every leg's points, at their cycles after the transient (the drift law's samples)
+  std::vector<double> trail_cycles;
+  std::vector<Eigen::VectorXd> trail;
+  /// How far off its cycle count may be, relatively: each jump's error is held to this
+  /// share of the jump (SlowManifoldOptions::jump_relative), an error in when it gets there
+  double cycles_relative_error = 0.0;
+  double first_cycle = 0.0;  ///< the crank cycles before the flow (its start's time over the period)
 };
 
 enum class SlowNewton {
@@ -168,6 +177,72 @@ double drift_error(SteadyContext& cx, const StartState& at) {
   return c * std::max(d1.norm(), (d3 - d1).norm() / (kPeriods - 1));
 }
 
+/// The film's drift law along the flow (steady/drift_law.hpp), where it nears the wall:
+/// the film one cycle on from points of the flow's trail, a period each. First up to
+/// kLawPoints evenly spaced in the trail's index (its jumps grow, so roughly evenly in the
+/// logarithm of the cycles) over the whole flow; then as many over the stretch from the
+/// last of them whose film is above kNearEnd × the last film (the law is the wall's, not
+/// the transient's). Then the cycles until the film crosses the safe film.
+void fit_flow_drift_law(SteadyContext& cx, Chart& chart, const StartState& from, const SlowFlowWay& way,
+                        SlowFlowEvidence& ev) {
+  constexpr size_t kLawPoints = 12;
+  constexpr double kNearEnd = 2.0;
+  SteadyCycle& steady = cx.res.steady;
+  const size_t n = way.trail.size();
+  if (n < 6) {
+    ev.no_law = "fewer than 6 points along the flow";
+    return;
+  }
+  std::map<size_t, double> film;  // by the trail's index
+  auto sample = [&](size_t lo, size_t hi) {
+    const size_t count = std::min(kLawPoints, hi - lo + 1);
+    for (size_t k = 0; k < count; ++k) {
+      const size_t i = lo + (k * (hi - lo)) / (count - 1);
+      if (film.count(i)) continue;
+      StartState at = from;
+      double h = kNaN;
+      if (chart.expand(from.t, way.trail[i].data(), at.qv)) {
+        const SegmentResult one = cx.measure(at, 1.0, false, 1);
+        if (one.res.status == RunStatus::ok && !one.res.cycles.empty()) h = one.res.cycles.back().min_film_thickness_m;
+      }
+      film[i] = h;
+    }
+  };
+  // The first point (two periods into the flow) still carries the transient's wobble.
+  sample(1, n - 1);
+  const double last = film.rbegin()->second;
+  size_t lo = 1;
+  for (const auto& [i, h] : film)
+    if (h > kNearEnd * last) lo = i;
+  sample(lo, n - 1);
+  std::vector<double> cycles, films;
+  for (const auto& [i, h] : film) {
+    if (i < lo || !std::isfinite(h)) continue;
+    cycles.push_back(way.trail_cycles[i]);
+    films.push_back(h);
+  }
+  const steady::DriftLaw law = steady::fit_drift_law(cycles, films);
+  if (!law.known) {
+    ev.no_law = law.why;
+    return;
+  }
+  steady.drift_exponent = law.exponent;
+  steady.drift_exponent_error = 2.0 * std::sqrt(law.covariance(1, 1));
+  ev.law_film_low = law.film_low_m;
+  ev.law_film_high = law.film_high_m;
+  // The drift's relative error: its period map's own a cycle, and the flow's cycle count's.
+  const double drift = steady.min_film_drift_m_per_cycle, error = steady.min_film_drift_error_m_per_cycle;
+  const double map_error = std::isfinite(error) ? std::abs(error / drift) : 0.0;
+  const steady::DriftCrossing to_safe = steady::cycles_to_film(law, films.back(), cx.res.metrics.safe_film_thickness_m,
+                                                               std::hypot(map_error, way.cycles_relative_error));
+  ev.safe_beyond_reach = to_safe.beyond_reach;
+  if (std::isfinite(to_safe.cycles)) {
+    // The flow's own cycles carry its cycle count's error (2σ, as ΔN's).
+    steady.safe_film_cycle = way.first_cycle + cycles.back() + to_safe.cycles;
+    steady.safe_film_cycle_error = std::hypot(to_safe.error, 2.0 * way.cycles_relative_error * cycles.back());
+  }
+}
+
 /// Where the flow got to: measured, and what it says (or, off any slow manifold, the case
 /// as shooting left it: `before`).
 void report_slow_flow(SteadyContext& cx, const RunResult& before, Chart& chart, const StartState& from,
@@ -220,6 +295,8 @@ void report_slow_flow(SteadyContext& cx, const RunResult& before, Chart& chart, 
     if (ev.outcome == Outcome::moving) {
       res.steady.min_film_drift_error_m_per_cycle = drift_error(cx, at);
       ev.flow_rtol = cx.scene.solver.rtol * cx.tuning.tighten_factor;
+      if (res.steady.min_film_drift_m_per_cycle < 0.0)
+        fit_flow_drift_law(cx, chart, from, way, ev);
     }
   }
 }
@@ -257,11 +334,20 @@ SlowFlowEvidence follow_slow_flow(SteadyContext& cx) {
   o.jump_tolerance = o.still;
   SlowFlowWay way;
   way.shooting = before.message;
+  way.cycles_relative_error = o.jump_relative;
+  if (!cx.res.cycles.empty()) {
+    const CycleMetrics& last = cx.res.cycles.back();
+    way.first_cycle = std::round(from.t / (last.t_end_s - last.t_start_s));
+  }
   Eigen::VectorXd z = chart.reduce(from.qv);
   for (int attempt = 0;; ++attempt) {
     way.run_budget = cx.budget.left(cx.spent()) < t.slow_periods - way.maps;
     o.max_maps = std::min<long long>(t.slow_periods - way.maps, cx.budget.left(cx.spent()));
     way.flow = steady::follow_slow_manifold(*period, z, o);
+    for (size_t i = 0; i < way.flow.trail.size(); ++i) {
+      way.trail_cycles.push_back(way.cycles + way.flow.trail_cycles[i]);
+      way.trail.push_back(way.flow.trail[i]);
+    }
     way.cycles += way.flow.cycles;
     way.maps += way.flow.maps;
     z = way.flow.z;

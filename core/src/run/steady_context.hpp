@@ -203,6 +203,10 @@ struct SlowFlowEvidence {
   bool measured = false;        ///< the cycles where it got to measured (metrics taken)
   double film_at_end = kNaN;    ///< the transient's last film [m] (before the flow's metrics)
   double flow_rtol = kNaN;      ///< moving: the rtol its periods ran at (the drift's error bar's)
+  /// moving: why no drift law was fitted along the flow (empty: fitted, in res.steady)
+  std::string no_law;
+  double law_film_low = kNaN, law_film_high = kNaN;  ///< the films the law was fitted over [m]
+  bool safe_beyond_reach = false;  ///< the safe film lies beyond the law's reach (no crossing)
 };
 
 }  // namespace lub::detail

@@ -259,6 +259,36 @@ bool shooting(RunResult& res, const ShootingEvidence& ev) {
   return orbit(res, ev.orbit);
 }
 
+namespace {
+
+/// A drifting case's law of approach to the wall and when its film crosses the safe film.
+void drift_law(std::ostringstream& msg, const RunResult& res, const SlowFlowEvidence& ev) {
+  const SteadyCycle& steady = res.steady;
+  if (!ev.no_law.empty()) {
+    msg << "; no drift law: " << ev.no_law;
+    return;
+  }
+  if (!std::isfinite(steady.drift_exponent)) return;
+  msg << "; its film falls as dh/dN = -a h^p, p = " << steady.drift_exponent << " ± " << steady.drift_exponent_error
+      << " (fitted over films " << ev.law_film_low << " to " << ev.law_film_high << " m)";
+  if (std::isfinite(steady.safe_film_cycle)) {
+    msg << ": it crosses the safe film " << res.metrics.safe_film_thickness_m << " m at about "
+        << "cycle " << std::lround(steady.safe_film_cycle) << " ± " << std::lround(steady.safe_film_cycle_error);
+    if (!res.cycles.empty()) {
+      const double period = res.cycles.back().t_end_s - res.cycles.back().t_start_s;
+      msg << " (t = " << steady.safe_film_cycle * period << " s)";
+    }
+  } else if (ev.safe_beyond_reach) {
+    msg << ": the safe film " << res.metrics.safe_film_thickness_m << " m lies "
+        << std::round(10.0 * ev.law_film_low / res.metrics.safe_film_thickness_m) / 10.0
+        << " times below the films it was fitted over, beyond its reach (its exponent grows toward the wall)";
+  } else if (res.metrics.below_safe_film) {
+    msg << ", already below the safe film";
+  }
+}
+
+}  // namespace
+
 void slow_flow(RunResult& res, const SlowFlowEvidence& ev) {
   using Outcome = SlowFlowEvidence::Outcome;
   SteadyCycle& steady = res.steady;
@@ -329,6 +359,7 @@ void slow_flow(RunResult& res, const SlowFlowEvidence& ev) {
         msg << ", the drift within it: where it goes is not resolved at this rtol";
       }
     }
+    if (steady.kind == SteadyClass::drifting && ev.outcome == Outcome::moving) drift_law(msg, res, ev);
   }
   msg << " (" << ev.periods << " periods, " << name_of(ev.flow) << "); from the transient: " << ev.shooting;
   res.message = msg.str();

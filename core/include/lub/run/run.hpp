@@ -178,6 +178,16 @@ struct SteadyCycle {
   /// Cycles of the slow flow followed by projective steps after the transient, where
   /// shooting from the transient found no orbit (steady/slow_manifold.hpp; 0: not followed)
   double slow_flow_cycles = 0.0;
+  /// Where the slow flow drifts toward the wall: p of its law dh/dN = −a h^p fitted to the
+  /// films along the flow (steady/drift_law.hpp), and twice its standard error (NaN: no law)
+  double drift_exponent = std::numeric_limits<double>::quiet_NaN();
+  double drift_exponent_error = std::numeric_limits<double>::quiet_NaN();
+  /// The crank cycle, counted from the run's start, at which the film crosses the safe
+  /// film by that law (the flow's cycles, then the law's ΔN from where it stopped), and its
+  /// error bar (NaN: no law, the film not falling or already below, or the safe film
+  /// beyond the law's reach)
+  double safe_film_cycle = std::numeric_limits<double>::quiet_NaN();
+  double safe_film_cycle_error = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Steady-cycle metrics: extremes over the last `metric_cycles` cycles.
