@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds the documentation site: docs/ (Markdown, MyST) and the Python API from lubjoint's
 # docstrings (autodoc, the module built into BUILD/python) into BUILD/docs/html with Sphinx,
-# warnings as errors. ctest runs it (docs_site).
+# warnings as errors, then checks that it works offline (tools/docs/check_site.py: no script
+# from the network, MathJax bundled). ctest runs it (docs_site).
 #   bash tools/docs/site.sh [--build-dir BUILD] [--no-setup] [--no-build]
 # --no-setup skips tools/setup.sh (Debian packages); --no-build skips building the module.
 set -euo pipefail
@@ -29,4 +30,5 @@ export PYTHONDONTWRITEBYTECODE=1
 rm -rf "$build/docs/html" "$build/docs/doctrees"
 /usr/bin/python3 -m sphinx -b html -W --keep-going -q -j 1 \
   -d "$build/docs/doctrees" "$root/docs" "$build/docs/html"
+/usr/bin/python3 "$root/tools/docs/check_site.py" "$build/docs/html"
 echo "site.sh: $build/docs/html/index.html" >&2
