@@ -1,6 +1,6 @@
 """Sphinx configuration of the lubjoint documentation site (built by tools/docs/site.sh).
 
-The pages are Markdown (MyST); the Python API comes from lubjoint's docstrings (autodoc),
+The pages are Markdown (MyST), the tutorials Jupyter notebooks; the Python API comes from lubjoint's docstrings (autodoc),
 imported from the build tree: LUB_PYTHON_DIR (tools/docs/site.sh sets it), else ../build/python.
 
 Formulas ($...$, $$...$$: MyST's dollarmath) are typeset in the browser by MathJax 2 from
@@ -13,15 +13,19 @@ import sys
 
 _here = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.environ.get("LUB_PYTHON_DIR", os.path.join(_here, "..", "build", "python")))
+sys.path.insert(0, os.path.join(_here, "_ext"))
 
 project = "lubjoint"
 author = "the lubjoint developers"
 copyright = "the lubjoint developers"
 
-extensions = ["myst_parser", "sphinx.ext.autodoc", "sphinx.ext.napoleon", "sphinx.ext.mathjax"]
+# notebook_page (docs/_ext): the tutorial notebooks as pages, with the outputs of the copies
+# tools/docs/site.sh executes into LUB_NOTEBOOK_DIR.
+extensions = ["myst_parser", "sphinx.ext.autodoc", "sphinx.ext.napoleon", "sphinx.ext.mathjax",
+              "notebook_page"]
 source_suffix = {".md": "markdown"}
 root_doc = "index"
-exclude_patterns = ["_build", "**/.ipynb_checkpoints", "**/*.ipynb"]
+exclude_patterns = ["_build", "_ext", "**/.ipynb_checkpoints"]
 
 # Links to "page.md#a-heading" (GitHub's anchors) resolve on the site too.
 myst_heading_anchors = 3

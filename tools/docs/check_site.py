@@ -5,9 +5,11 @@
 - every script a page loads is in the site;
 - MathJax (docs/conf.py copies it from Debian's libjs-mathjax) is there with its TeX fonts,
   and the pages with formulas load it: at least the force-law page, whose formulas must be
-  typeset.
+  typeset;
+- the tutorial's page shows the notebook's outputs, its figures included (unless
+  --no-notebook: the site was built without running it).
 
-    /usr/bin/python3 tools/docs/check_site.py BUILD/docs/html
+    /usr/bin/python3 tools/docs/check_site.py [--no-notebook] BUILD/docs/html
 """
 import pathlib
 import re
@@ -19,9 +21,10 @@ MATHJAX_FILES = ["MathJax.js", "config/TeX-AMS_CHTML.js", "jax/input/TeX/config.
                  "jax/output/CommonHTML/jax.js", "fonts/HTML-CSS/TeX/woff/MathJax_Main-Regular.woff",
                  "fonts/HTML-CSS/TeX/woff/MathJax_Math-Italic.woff"]
 MUST_TYPESET = ["theory/force-laws.html", "theory/steady-cycles.html"]
+NOTEBOOK_PAGES = {"tutorials/first-study.html": 2}   # page: figures it must show
 
 
-def check(site: pathlib.Path) -> list:
+def check(site: pathlib.Path, notebooks: bool = True) -> list:
     problems = []
     pages = sorted(site.rglob("*.html"))
     if not pages:
@@ -49,21 +52,33 @@ def check(site: pathlib.Path) -> list:
             problems.append(f"{rel}: does not load the site's MathJax")
         elif 'class="math' not in (site / rel).read_text(encoding="utf-8"):
             problems.append(f"{rel}: has no formula for MathJax to typeset")
+    for rel, figures in NOTEBOOK_PAGES.items():
+        page = site / rel
+        if not page.is_file():
+            problems.append(f"{rel}: missing (the tutorial notebook's page)")
+        elif notebooks:
+            shown = page.read_text(encoding="utf-8").count('src="data:image/png;base64,')
+            if shown < figures:
+                problems.append(f"{rel}: shows {shown} of the notebook's {figures} figures "
+                                "(tools/docs/site.sh runs it first)")
     return problems
 
 
 def main(argv):
-    if len(argv) != 2:
+    args = argv[1:]
+    notebooks = "--no-notebook" not in args
+    args = [a for a in args if a != "--no-notebook"]
+    if len(args) != 1:
         print(__doc__.strip().splitlines()[-1].strip(), file=sys.stderr)
         return 2
-    site = pathlib.Path(argv[1])
-    problems = check(site)
+    site = pathlib.Path(args[0])
+    problems = check(site, notebooks)
     for p in problems:
         print(f"check_site: {p}", file=sys.stderr)
     if problems:
         return 1
-    print(f"check_site: {site}: no network scripts, MathJax bundled and loaded by the pages with formulas",
-          file=sys.stderr)
+    print(f"check_site: {site}: no network scripts, MathJax bundled and loaded by the pages with formulas"
+          + (", the notebook's outputs shown" if notebooks else ""), file=sys.stderr)
     return 0
 
 
