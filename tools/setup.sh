@@ -20,7 +20,7 @@ PACKAGES=(
   python3-jsonschema python3-jsonpatch
   clang libclang-rt-14-dev clang-tidy
   help2man valgrind
-  python3-sphinx python3-myst-parser
+  python3-sphinx python3-myst-parser libjs-mathjax
   python3-nbconvert python3-ipykernel python3-nbformat jupyter-core jupyter-nbconvert
 )
 
