@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The test install_consumer: `cmake --install` of a build tree into a fresh prefix P, then
-# what a downstream user does with P: the consumer project (tests/install) configured with
+# what a downstream user does with P: the C++-only consumer project (tests/install) configured with
 # -DCMAKE_PREFIX_PATH=P, built and run on one cycle of a scene; P/bin/lubsim --help; the
 # man page; `import lubjoint` from P's site-packages with /usr/bin/python3, and the
 # message a Python without NumPy gets.
@@ -15,9 +15,13 @@ step() { echo "install_consumer: $*"; }
 step "cmake --install $build --prefix $prefix"
 cmake --install "$build" --prefix "$prefix" >"$work/install.log"
 
-step "consumer: configure and build against $prefix"
+step "consumer (project(... CXX)): configure and build against $prefix"
 cmake -S "$src/tests/install" -B "$work/consumer" -DCMAKE_BUILD_TYPE=Release \
       -DCMAKE_PREFIX_PATH="$prefix" >"$work/consumer_configure.log"
+# The package enabled no C language behind the project's back.
+if grep -q '^CMAKE_C_COMPILER:' "$work/consumer/CMakeCache.txt"; then
+  echo "install_consumer: the consumer has a C compiler" >&2; exit 1
+fi
 cmake --build "$work/consumer" -j2 >"$work/consumer_build.log"
 
 step "consumer: one cycle of slider_crank.json"
