@@ -2,7 +2,7 @@
 # The test install_consumer: `cmake --install` of a build tree into a fresh prefix P, then
 # what a downstream user does with P: the C++-only consumer project (tests/install) configured with
 # -DCMAKE_PREFIX_PATH=P, built and run on one cycle of a scene; P/bin/lubsim --help; the
-# man page; `import lubjoint` from P's site-packages with /usr/bin/python3, and the
+# man page; `import lubjoint` with /usr/bin/python3 from P/lib/python3.X/dist-packages, and the
 # message a Python without NumPy gets.
 # Usage: check_install.sh SOURCE_DIR BUILD_DIR WORK_DIR
 set -euo pipefail
@@ -36,8 +36,16 @@ done
 "$prefix/bin/lubsim" --help >/dev/null
 [ -s "$prefix/share/man/man1/lubsim.1" ] || { echo "install_consumer: no lubsim.1" >&2; exit 1; }
 
-step "import lubjoint from $prefix/lib/python3/dist-packages"
-site=$prefix/lib/python3/dist-packages
+xy=$(/usr/bin/python3 -c 'import sys; print("%d.%d" % sys.version_info[:2])')
+site=$prefix/lib/python$xy/dist-packages
+step "import lubjoint from $site"
+# The default prefix's directory is one /usr/bin/python3 searches (Debian: /usr/local/lib/...).
+/usr/bin/python3 -c "import site, sys; assert sys.argv[1] in site.getsitepackages(), site.getsitepackages()" \
+  "/usr/local/lib/python$xy/dist-packages"
+# The install prints the one line another prefix needs.
+if ! grep -qF "export PYTHONPATH=$site" "$work/install.log"; then
+  echo "install_consumer: no 'export PYTHONPATH=$site' in install.log" >&2; exit 1
+fi
 # From $work, with only P's site-packages added: not the build tree's build/python.
 (cd "$work" && PYTHONPATH="$site" PYTHONDONTWRITEBYTECODE=1 /usr/bin/python3 -c "
 import lubjoint, sys
