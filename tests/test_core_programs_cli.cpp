@@ -203,4 +203,32 @@ TEST(ProgramsCli, LubsimChecksOrPrintsTheSceneWithoutRunningIt) {
   EXPECT_FALSE(std::ifstream(out).good());
 }
 
+// The files a help or a message points to (the scene schema, example grids, docs pages) are
+// named where the user finds them: a program of the build tree names the repository's paths,
+// an installed one its prefix's share/lubjoint (the test install_consumer), and
+// LUBJOINT_DATADIR overrides both.
+TEST(ProgramsCli, HelpAndMessagesNameTheRepositoryOrTheInstalledFiles) {
+  const std::string scene = ::testing::TempDir() + "schema_not_a_string.json";
+  std::ofstream(scene) << R"({"$schema": 1})";
+  for (const std::string& dir : {std::string(), std::string("/opt/lj/share/lubjoint")}) {
+    const std::string env = dir.empty() ? "env -u LUBJOINT_DATADIR" : "env LUBJOINT_DATADIR=" + dir;
+    const auto with_env = [&](const std::string& program, const std::string& args) {
+      return lub_test::run_command(env + " OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " +
+                                   std::string(LUB_BINARY_DIR) + program + " " + args + " 2>&1");
+    };
+    const std::string root = dir.empty() ? "" : dir + "/";
+    const std::string lubsim = with_env("/core/lubsim", "--help").out;
+    EXPECT_NE(lubsim.find("(format: " + root + "configs/scene.schema.json)"), std::string::npos) << lubsim;
+    EXPECT_NE(lubsim.find("Example scenes: " + root + "configs/scenes/\n"), std::string::npos) << lubsim;
+    const std::string lubsweep = with_env("/sweep/lubsweep", "--help").out;
+    EXPECT_NE(lubsweep.find("(" + root + "docs/guide/grids.md; examples in " + root + "configs/grids/)"),
+              std::string::npos)
+        << lubsweep;
+    const Result r = with_env("/core/lubsim", scene + " --check");
+    EXPECT_EQ(r.status, 2) << r.out;
+    EXPECT_NE(r.out.find("the URI or path of " + root + "configs/scene.schema.json, for editors"), std::string::npos)
+        << r.out;
+  }
+}
+
 }  // namespace

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "lub/io/data_path.hpp"
 #include "lub/io/output_path.hpp"
 #include "lub/mechanism/builder.hpp"
 #include "lub/run/orbit.hpp"
@@ -25,11 +26,15 @@
 
 namespace {
 
-const char* const kDescription =
-    "lubsim: runs one scene (format: configs/scene.schema.json) and writes RUN.h5: /series (the\n"
-    "scene's channels, each with a units attribute), /orbit (the periodic orbit, when found by\n"
-    "shooting), /metrics, /solver, /cycles (per-cycle extremes), and the scene, version, revision,\n"
-    "status, warnings and notes as root attributes.";
+// The files named here are the repository's or the installed ones (lub::data_path).
+std::string description() {
+  return "lubsim: runs one scene (format: " + lub::data_path("configs/scene.schema.json") +
+         ") and writes RUN.h5:\n"
+         "/series (the scene's channels, each with a units attribute), /orbit (the periodic orbit,\n"
+         "when found by shooting), /metrics, /solver, /cycles (per-cycle extremes), and the scene,\n"
+         "version, revision, status, warnings and notes as root attributes.\nExample scenes: " +
+         lub::data_path("configs/scenes/");
+}
 
 const char* const kFooter =
     "Plausibility warnings go to stderr, once, and into the run file's root attribute `warnings`;\n"
@@ -54,7 +59,7 @@ struct Options {
 
 // Parses argv into `o`. Returns -1 to go on, or the exit status (help, version, usage error).
 int parse_options(int argc, char** argv, Options& o) {
-  CLI::App app(kDescription, "lubsim");
+  CLI::App app(description(), "lubsim");
   app.footer(kFooter);
   app.allow_extras();
   app.add_option("scene", o.scene_path, "the scene file (required)")->type_name("SCENE.json");
@@ -69,7 +74,7 @@ int parse_options(int argc, char** argv, Options& o) {
   app.add_option("--sensitivity", o.sensitivities,
                  "the located orbit's steady metrics differentiated with respect to this scene number (JSON "
                  "Pointer, repeatable), e.g. --sensitivity /joints/3/viscosity_Pa_s; written to the run file's "
-                 "/sensitivities (docs/theory/sensitivities.md)")
+                 "/sensitivities (" + lub::data_path("docs/theory/sensitivities.md") + ")")
       ->type_name("POINTER")
       ->allow_extra_args(false);
   app.add_flag("--strict", o.strict,
@@ -128,7 +133,8 @@ void print_run(const lub::Scene& scene, const lub::RunResult& r, const std::vect
   const std::string cls = lub::classification(r);
   const bool orbit = r.status == lub::RunStatus::ok && lub::has_orbit(r.steady.kind);
   std::printf("steady   %s (%s)%s\n", cls.c_str(), std::string(lub::name_of(r.steady.method)).c_str(),
-              orbit ? "" : ": the metrics below are a transient's, not a steady cycle's (docs/theory/steady-cycles.md)");
+              orbit ? "" : (": the metrics below are a transient's, not a steady cycle's (" +
+                            lub::data_path("docs/theory/steady-cycles.md") + ")").c_str());
   if (r.steady.method == lub::SteadyCycleMethod::shooting)
     std::printf("metrics  (the periodic orbit, %d cycles)\n", scene.simulation.metric_cycles);
   else if (r.steady.method == lub::SteadyCycleMethod::slow_flow)
@@ -139,8 +145,9 @@ void print_run(const lub::Scene& scene, const lub::RunResult& r, const std::vect
                 r.metrics.cycles_run);
   for (const auto& f : lub::metric_fields()) std::printf("  %-34s %.6g %s\n", f.name.c_str(), f.get(r), f.unit.c_str());
   const lub::SolverSettingNames names = lub::setting_names(r.stats);
-  std::printf("solver   %s (%s) rtol %.3g atol %.3g m (per state: docs/theory/formulations.md) jacobian %s\n",
-              names.method.c_str(), names.formulation.c_str(), r.stats.rtol, r.stats.atol, names.jacobian.c_str());
+  std::printf("solver   %s (%s) rtol %.3g atol %.3g m (per state: %s) jacobian %s\n", names.method.c_str(),
+              names.formulation.c_str(), r.stats.rtol, r.stats.atol,
+              lub::data_path("docs/theory/formulations.md").c_str(), names.jacobian.c_str());
   for (const auto& f : lub::solver_fields()) std::printf("  %-34s %.6g %s\n", f.name.c_str(), f.get(r), f.unit.c_str());
   print_sensitivities(sens);
   std::printf("wrote    %s\n", out_path.c_str());

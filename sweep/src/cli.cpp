@@ -4,6 +4,7 @@
 
 #include <cstdlib>
 
+#include "lub/io/data_path.hpp"
 #include "lub/run/run_io.hpp"
 #include "lub/sweep/sweep.hpp"
 
@@ -11,18 +12,23 @@ namespace lub::sweep {
 
 namespace {
 
-const char* const kDescription =
-    "lubsweep: runs every case of GRID.json (docs/guide/grids.md) and writes STUDY.h5: /cases (one row\n"
-    "per case: axis values, status, metrics, solver statistics), /grids (case ids over each sub-grid's\n"
-    "axes, with dimension scales, and the results over them), /scene and /scene_patches (each case's\n"
-    "scene as a JSON Patch of the root attribute reference_scene), /series (the channels a case keeps).\n"
-    "Every rank computes, rank 0 included; rank 0 alone writes the file. A study runs as\n"
-    "\n"
-    "  mpirun -np N lubsweep GRID.json -o STUDY.h5 [options]\n"
-    "\n"
-    "and its table prints with\n"
-    "\n"
-    "  lubsweep --summary STUDY.h5\n";
+// The files named here are the repository's or the installed ones (lub::data_path).
+std::string description() {
+  return "lubsweep: runs every case of GRID.json (" + data_path("docs/guide/grids.md") + "; examples in " +
+         data_path("configs/grids/") +
+         ")\n"
+         "and writes STUDY.h5: /cases (one row per case: axis values, status, metrics, solver statistics),\n"
+         "/grids (case ids over each sub-grid's axes, with dimension scales, and the results over them),\n"
+         "/scene and /scene_patches (each case's scene as a JSON Patch of the root attribute\n"
+         "reference_scene), /series (the channels a case keeps). Every rank computes, rank 0 included;\n"
+         "rank 0 alone writes the file. A study runs as\n"
+         "\n"
+         "  mpirun -np N lubsweep GRID.json -o STUDY.h5 [options]\n"
+         "\n"
+         "and its table prints with\n"
+         "\n"
+         "  lubsweep --summary STUDY.h5\n";
+}
 
 const char* const kFooter =
     "Exit status: 0 the study is complete (a case that could not be integrated is a\n"
@@ -77,7 +83,7 @@ std::optional<std::string> check(Options& o) {
 
 std::optional<std::string> parse_options(const std::vector<std::string>& args, Options& o, bool& help,
                                          std::string& help_text) {
-  CLI::App app(kDescription, "lubsweep");
+  CLI::App app(description(), "lubsweep");
   help = false;
   bool version = false;
   add_options(app, o, version);

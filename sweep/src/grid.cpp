@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "grid_parts.hpp"
+#include "lub/io/data_path.hpp"
 #include "lub/io/json_reader.hpp"
 #include "lub/run/run_io.hpp"
 #include "lub/scene/scene.hpp"
@@ -321,7 +322,7 @@ Grid parse_grid(const std::string& text, const std::string& base_dir, const std:
   find_targets(r, cx);
   std::vector<PendingBlock> pending = read_blocks(r);
   r.finish();
-  if (pending.empty()) throw InputError("grid: needs axes, cases or grids (docs/guide/grids.md)");
+  if (pending.empty()) throw InputError("grid: needs axes, cases or grids (" + data_path("docs/guide/grids.md") + ")");
   expand_blocks(g, cx, pending);
   if (g.sensitivities) g.parameters = detail::axis_parameters(g);
   return g;

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "lub/bearing/law_validity.hpp"
+#include "lub/io/data_path.hpp"
 #include "lub/io/json_reader.hpp"
 #include "lub/sweep/study_file.hpp"
 
@@ -123,7 +124,8 @@ void print_counts(std::FILE* out, const std::string& path, std::size_t n, std::i
   for (const auto& [name, count] : by_class) fmt::print(out, " {} {},", name, count);
   fmt::print(out,
              " (h_min etc. only for periodic cycles; without one, last_h, dh/cycle and flow say where it got to:"
-             " docs/theory/steady-cycles.md)\n");
+             " {})\n",
+             data_path("docs/theory/steady-cycles.md"));
 }
 
 /// `s` and spaces up to `width` bytes (fmt's own padding would count UTF-8 characters, and
@@ -181,8 +183,8 @@ void print_sensitivity_cost(std::FILE* out, const h5::Table& t) {
   for (std::int64_t p : t.read_int64s("periods_integrated")) steady += static_cast<double>(std::max<std::int64_t>(p, 0));
   fmt::print(out,
              "sensitivities: d_<metric>_per_<axis> of each located orbit in /cases and /grids; {:.0f} periods, {:.1f} % "
-             "of the steady stages' {:.0f} (docs/theory/sensitivities.md)\n",
-             spent, steady > 0.0 ? 100.0 * spent / steady : 0.0, steady);
+             "of the steady stages' {:.0f} ({})\n",
+             spent, steady > 0.0 ? 100.0 * spent / steady : 0.0, steady, data_path("docs/theory/sensitivities.md"));
 }
 
 }  // namespace

@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "lub/io/data_path.hpp"
+
 namespace lub {
 
 using nlohmann::json;
@@ -245,7 +247,7 @@ void ObjectReader::finish() const {
     if (read_.count(it.key())) continue;
     const std::optional<std::string> near = closest_name(it.key(), known);
     const std::string rule = near ? "unknown key; did you mean `" + *near + "`?"
-                                  : "unknown key (check the spelling; the keys: docs/reference/)";
+                                  : "unknown key (check the spelling; the keys: " + data_path("docs/reference/") + ")";
     throw UnknownKeyError(child(it.key()) + " = " + brief(it.value()) + ": " + rule, path_, it.key());
   }
 }

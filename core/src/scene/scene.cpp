@@ -11,6 +11,7 @@
 
 #include "lub/bearing/bearing_inputs.hpp"
 #include "lub/common/constants.hpp"
+#include "lub/io/data_path.hpp"
 
 namespace lub {
 
@@ -551,7 +552,7 @@ Scene parse_scene_once(const json& doc) {
   Scene scene;
   ObjectReader top(doc, "");
   if (const json* schema = top.raw_optional("$schema"); schema && !schema->is_string())
-    fail("$schema", *schema, "must be a string (the URI or path of configs/scene.schema.json, for editors)");
+    fail("$schema", *schema, "must be a string (the URI or path of " + data_path("configs/scene.schema.json") + ", for editors)");
   scene.description = top.string_or("description", "");
 
   const json& bodies = require_array(top.raw("bodies"), "bodies");
