@@ -174,6 +174,37 @@ void print_notes(std::FILE* out, const h5::File& f, const h5::Table& t) {
                reversed, full);
 }
 
+/// The boundaries located between grid points, where the study file has them
+/// (`python3 -m lubjoint.boundaries STUDY.h5` stores them as /boundaries): one line each.
+void print_boundaries(std::FILE* out, const h5::File& f) {
+  if (!f.exists("boundaries")) return;
+  const h5::Table b = f.open_table("boundaries");
+  const std::size_t n = b.rows();
+  if (n == 0) {
+    fmt::print(out, "boundaries: none between grid points (lubjoint.boundaries)\n");
+    return;
+  }
+  const auto axis = b.read_strings("axis"), unit = b.read_strings("unit"), kind = b.read_strings("kind");
+  const auto value = b.read_doubles("value"), error = b.read_doubles("error");
+  const auto a = b.read_int64s("case_a"), c = b.read_int64s("case_b"), converged = b.read_int64s("converged");
+  static const std::vector<std::string> fixed = {"axis", "value", "error", "unit", "kind",
+                                                 "case_a", "case_b", "runs", "converged"};
+  fmt::print(out, "boundaries located between grid points (docs/theory/sensitivities.md):\n");
+  for (std::size_t i = 0; i < n; ++i) {
+    std::string others;
+    for (const h5::Column& col : b.columns()) {
+      if (std::find(fixed.begin(), fixed.end(), col.name) != fixed.end()) continue;
+      std::string v;
+      if (col.type == h5::ColumnType::String) v = b.read_strings(col.name)[i];
+      else if (col.type == h5::ColumnType::Float64 && std::isfinite(b.read_doubles(col.name)[i]))
+        v = fmt::format("{:g}", b.read_doubles(col.name)[i]);
+      if (!v.empty()) others += (others.empty() ? "" : ", ") + col.name + " = " + v;
+    }
+    fmt::print(out, "  {}: {} = {:.6g} ± {:.2g} {} between cases {} and {} ({}){}\n", kind[i], axis[i], value[i],
+               error[i], unit[i], a[i], c[i], others, converged[i] ? "" : ", not converged");
+  }
+}
+
 /// What the sensitivities cost, where the study has them: their periods against the steady
 /// stages' (issue 44 bounds them at 30 %).
 void print_sensitivity_cost(std::FILE* out, const h5::Table& t) {
@@ -216,6 +247,7 @@ void print_summary(const std::string& path, std::FILE* out) {
   print_counts(out, path, n, total, status, cls);
   print_table(out, cols, n);
   print_sensitivity_cost(out, t);
+  print_boundaries(out, f);
   print_notes(out, f, t);
   for (std::size_t i = 0; i < n; ++i)
     if (!is_ok(status[i])) fmt::print(out, "{}: {}: {}\n", names[i], status[i], message[i]);

@@ -33,3 +33,57 @@ def test_the_safe_film_viscosity_matches_a_bisection_of_separate_runs(paper_stud
         mid = 0.5 * (lo + hi)
         lo, hi = (mid, hi) if gap(mid) < 0 else (lo, mid)
     assert row["value"] == pytest.approx(0.5 * (lo + hi), rel=5e-3)
+
+
+def test_the_boundaries_are_stored_in_the_study_file_and_the_summary_prints_them(paper_study, build_dir, tmp_path):
+    # The command a user runs: locate, store as /boundaries, print; then lubsweep --summary.
+    import os
+    import shutil
+    import subprocess
+    import sys
+
+    copy = tmp_path / "study.h5"
+    shutil.copy(paper_study, copy)
+    env = {**os.environ, "PYTHONPATH": str(build_dir / "python")}
+    done = subprocess.run([sys.executable, "-m", "lubjoint.boundaries", str(copy)], env=env, capture_output=True,
+                          text=True)
+    assert done.returncode == 0, done.stderr
+    assert "safe_film: viscosity_Pa_s = 0.18" in done.stdout, done.stdout
+    table = boundaries.read(copy)
+    rows = table[table["kind"] == "safe_film"]
+    assert len(rows) == 1 and rows.iloc[0]["unit"] == "Pa s" and rows.iloc[0]["force_law"] == "pinkus_sternlicht"
+    assert 0.1 < rows.iloc[0]["value"] < 0.2 and bool(rows.iloc[0]["converged"])
+    summary = subprocess.run([str(build_dir / "sweep" / "lubsweep"), "--summary", str(copy)], capture_output=True,
+                             text=True)
+    assert summary.returncode == 0, summary.stderr
+    assert "boundaries located between grid points" in summary.stdout
+    line = next(s for s in summary.stdout.splitlines() if "safe_film: viscosity_Pa_s" in s)
+    assert "between cases" in line and "force_law = pinkus_sternlicht" in line, line
+    # Bad input: exit 2, the file named, nothing created.
+    missing = tmp_path / "nope.h5"
+    bad = subprocess.run([sys.executable, "-m", "lubjoint.boundaries", str(missing)], env=env, capture_output=True,
+                         text=True)
+    assert bad.returncode == 2 and "nope.h5" in bad.stderr, bad.stderr
+    assert not missing.exists()
+
+
+@pytest.mark.parametrize("angle, kind", [(0.0, "fold"), (3.14159265, "period_doubling"), (1.2, "neimark_sacker")])
+def test_a_stability_crossing_is_located_by_regula_falsi_and_named(angle, kind):
+    # |mu|max - 1 = k ln(lambda / lambda*), a straight line in the logarithm, curved by a
+    # square: the crossing at lambda* = 0.137 to 0.5 % within the runs allowed, and its
+    # kind from the unstable end's multiplier.
+    import math
+
+    class Line:
+        runs = 0
+
+        def __call__(self, value):
+            self.runs += 1
+            u = math.log(value / 0.137)
+            return 2e-3 * u + 1e-3 * u * u, angle
+
+    a, b = (0.1, *Line()(0.1)), (0.2, *Line()(0.2))
+    value, error, found_angle, runs, converged = boundaries._falsi(Line(), a, b, 5e-3, 10)
+    assert converged and runs <= 10
+    assert value == pytest.approx(0.137, rel=5e-3) and error <= 5e-3 * value
+    assert boundaries._kind(found_angle) == kind

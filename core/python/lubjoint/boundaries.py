@@ -1,4 +1,4 @@
-"""Where the film stops being safe, located between a study's grid points (issue 44).
+"""Where the film stops being safe, or the cycle stable, located between a study's grid points.
 
 A study says ``below_safe_film`` at its grid points; the axis value where the minimum film
 equals the safe film lies between two neighbours that differ. ``safe_film_boundaries``
@@ -6,6 +6,13 @@ locates it by safeguarded Newton steps along that axis from the nearer orbit, ea
 run of the case's scene at the new value with its sensitivity (``simulate(...,
 sensitivity=[pointer])``): the step uses h_min and dh_min/dλ of the orbit it starts from,
 and stays inside the bracket the two neighbours give (else it bisects).
+``stability_boundaries`` locates where the dominant Floquet multiplier crosses the unit
+circle between neighbours whose orbits differ in stability, by regula falsi on ``|μ|max − 1``
+(no derivative of a multiplier is at hand), and names the crossing's kind.
+
+``locate`` does both, ``write`` stores them as the study file's ``/boundaries`` table (which
+``lubsweep --summary`` prints and ``read`` returns), and ``python3 -m lubjoint.boundaries
+STUDY.h5`` runs the three.
 """
 import math
 import warnings
@@ -135,3 +142,205 @@ def safe_film_boundaries(study, tolerance=5e-3, max_runs=8):
         rows.append({"axis": axis, "value": value, "error": error, "unit": cases[axis].attrs.get("units", ""),
                      "kind": "safe_film", "case_a": a, "case_b": b, "runs": runs, "converged": converged, **others})
     return pd.DataFrame(rows)
+
+
+def _kind(modulus_angle, angle_tol_rad=1e-3):
+    """The crossing's kind from the dominant multiplier's angle where it left the circle."""
+    angle = abs(modulus_angle)
+    if angle <= angle_tol_rad:
+        return "fold"
+    if abs(angle - math.pi) <= angle_tol_rad:
+        return "period_doubling"
+    return "neimark_sacker"
+
+
+class _Stability(_Line):
+    """An edge's axis as λ ↦ (``|μ|max − 1``, the dominant multiplier's angle, its run)."""
+
+    def __call__(self, value):
+        from .run import simulate
+
+        override, _ = axis_override(self.scene, self.axis, self.pointer, value)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            ds = simulate(self.scene, {**override, "/outputs/channels": []})
+        self.runs += 1
+        if ds.attrs["classification"] not in _ORBITS:
+            return None
+        return float(ds["multiplier_1_modulus"]) - 1.0, float(ds["multiplier_1_angle_rad"])
+
+
+def _falsi(line, a, b, tolerance, max_runs):
+    """λ where ``|μ|max − 1`` changes sign in [a, b] (each (λ, ``|μ|max − 1``, angle)): regula falsi
+    (Illinois) in the logarithm of λ. Returns (value, error, angle, runs, converged): the
+    error the last bracket's width; the angle the unstable end's."""
+    log = a[0] > 0 and b[0] > 0
+    t = (lambda v: math.log(v)) if log else (lambda v: v)
+    inv = (lambda u: math.exp(u)) if log else (lambda u: u)
+    (ua, fa, aa), (ub, fb, ab) = (t(a[0]), a[1], a[2]), (t(b[0]), b[1], b[2])
+    side = 0
+    for _ in range(max_runs):
+        u = ub - fb * (ub - ua) / (fb - fa) if fb != fa else 0.5 * (ua + ub)
+        if not (min(ua, ub) < u < max(ua, ub)):
+            u = 0.5 * (ua + ub)
+        at = line(inv(u))
+        if at is None:
+            break
+        f, angle = at
+        if (f > 0) == (fb > 0):
+            ub, fb, ab = u, f, angle
+            if side == -1:
+                fa /= 2.0
+            side = -1
+        else:
+            ua, fa, aa = u, f, angle
+            if side == 1:
+                fb /= 2.0
+            side = 1
+        lo, hi = sorted((inv(ua), inv(ub)))
+        if hi - lo <= tolerance * abs(0.5 * (lo + hi)):
+            break
+    lo, hi = sorted((inv(ua), inv(ub)))
+    unstable_angle = aa if fa > 0 else ab
+    converged = hi - lo <= tolerance * abs(0.5 * (lo + hi))
+    return 0.5 * (lo + hi), 0.5 * (hi - lo), unstable_angle, line.runs, converged
+
+
+def stability_boundaries(study, tolerance=5e-3, max_runs=10):
+    """The axis values where the dominant Floquet multiplier crosses the unit circle, between
+    every two lattice neighbours of ``study`` whose located orbits differ in stability
+    (``|μ|max < 1`` at one, ``> 1`` at the other). Each by regula falsi on ``|μ|max − 1`` in the
+    logarithm of the axis value, a run of the case's scene a step, to ``tolerance`` of the
+    value (the error: half the last bracket). ``kind``: ``fold`` (the unstable end's
+    dominant multiplier real, through +1), ``period_doubling`` (through −1) or
+    ``neimark_sacker`` (a complex pair). Columns as ``safe_film_boundaries``'."""
+    import pandas as pd
+
+    from . import study as st
+
+    cases = study.cases
+    df = st.cases(study.path)
+    pointers = axis_pointers(study)
+    rows = []
+    for a, b, axis in st.lattice_edges(df):
+        ra, rb = df.loc[a], df.loc[b]
+        if ra["classification"] not in _ORBITS or rb["classification"] not in _ORBITS or axis not in pointers:
+            continue
+        ma, mb = float(ra["multiplier_1_modulus"]), float(rb["multiplier_1_modulus"])
+        if not (math.isfinite(ma) and math.isfinite(mb)) or (ma > 1.0) == (mb > 1.0):
+            continue
+        ends = [(float(r[axis]), float(r["multiplier_1_modulus"]) - 1.0, float(r["multiplier_1_angle_rad"]))
+                for r in (ra, rb)]
+        value, error, angle, runs, converged = _falsi(_Stability(study, a, axis, pointers[axis]), ends[0], ends[1],
+                                                      tolerance, max_runs)
+        others = {k: ra[k] for k in cases.attrs.get("axes", []) if k != axis and k in ra}
+        rows.append({"axis": axis, "value": value, "error": error, "unit": cases[axis].attrs.get("units", ""),
+                     "kind": _kind(angle), "case_a": a, "case_b": b, "runs": runs, "converged": converged,
+                     **others})
+    return pd.DataFrame(rows)
+
+
+def locate(study, tolerance=5e-3):
+    """Every boundary of ``study``: ``safe_film_boundaries`` then ``stability_boundaries``,
+    one DataFrame (``attrs["units"]``: each column's unit)."""
+    import pandas as pd
+
+    parts = [f for f in (safe_film_boundaries(study, tolerance), stability_boundaries(study, tolerance)) if len(f)]
+    frame = pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=_FIXED)
+    frame.attrs["units"] = {"value": "(the row's unit)", "error": "(the row's unit)", "runs": "1", "converged": "1",
+                            **{k: study.cases[k].attrs.get("units", "") for k in study.cases.attrs.get("axes", [])}}
+    return frame
+
+
+#: The /boundaries columns every row has; the study's other axes follow.
+_FIXED = ["axis", "value", "error", "unit", "kind", "case_a", "case_b", "runs", "converged"]
+
+
+def write(path, frame):
+    """Store ``frame`` (``locate``'s) as the study file's ``/boundaries`` table, replacing one:
+    a group of one-dimensional columns (lubsweep's table layout: attribute ``columns``,
+    ``units`` on each), strings variable-length, the row's own axis NaN (or "")."""
+    import h5py
+    import numpy as np
+    import pandas as pd
+
+    strings = h5py.string_dtype()
+    with h5py.File(path, "a") as f:
+        if "boundaries" in f:
+            del f["boundaries"]
+        g = f.create_group("boundaries")
+        names = list(frame.columns) if len(frame.columns) else list(_FIXED)
+        units = getattr(frame, "attrs", {}).get("units", {})
+        for name in names:
+            col = frame[name] if name in frame else pd.Series([], dtype=float)
+            if name in ("case_a", "case_b", "runs", "converged"):
+                g.create_dataset(name, data=np.asarray(col, dtype=np.int64), maxshape=(None,))
+            elif name in ("axis", "unit", "kind") or col.dtype == object:
+                text = ["" if not isinstance(v, str) else v for v in col]  # NaN: the row's own axis
+                g.create_dataset(name, data=np.array(text, dtype=object), dtype=strings, maxshape=(None,))
+            else:
+                g.create_dataset(name, data=np.asarray(col, dtype=np.float64), maxshape=(None,))
+            g[name].attrs["units"] = units.get(name, "1")
+        g.attrs["columns"] = np.array(names, dtype=object).astype(strings)
+        g.attrs["long_name"] = ("boundaries located between grid points: where the minimum film reaches the safe film "
+                                "(kind safe_film) or the dominant multiplier crosses the unit circle "
+                                "(fold, period_doubling, neimark_sacker); lubjoint.boundaries")
+
+
+def read(path):
+    """The study file's ``/boundaries`` table as a DataFrame (None where it has none)."""
+    import h5py
+    import pandas as pd
+
+    with h5py.File(path, "r") as f:
+        if "boundaries" not in f:
+            return None
+        g = f["boundaries"]
+        names = [n.decode() if isinstance(n, bytes) else n for n in g.attrs["columns"]]
+        data = {}
+        for n in names:
+            d = g[n]
+            data[n] = d.asstr()[()] if h5py.check_string_dtype(d.dtype) else d[()]
+        frame = pd.DataFrame(data)
+        frame.attrs["units"] = {n: g[n].attrs.get("units", "") for n in names}
+    if "converged" in frame:
+        frame["converged"] = frame["converged"].astype(bool)
+    return frame
+
+
+def main(argv=None):
+    """``python3 -m lubjoint.boundaries STUDY.h5``: locate, store and print the boundaries."""
+    import argparse
+    import sys
+
+    from . import study as st
+
+    ap = argparse.ArgumentParser(prog="python3 -m lubjoint.boundaries",
+                                 description="Locate a study's boundaries (safe film, stability) between its grid "
+                                             "points and store them as its /boundaries table.")
+    ap.add_argument("study", help="a lubsweep study file (its grid with sensitivities, the default)")
+    ap.add_argument("--tolerance", type=float, default=5e-3, help="relative accuracy of each value (default 0.005)")
+    ap.add_argument("--no-write", action="store_true", help="print only; leave the study file as it is")
+    args = ap.parse_args(argv)
+    if not (0.0 < args.tolerance < 1.0):
+        print(f"--tolerance = {args.tolerance}: must lie in (0, 1)", file=sys.stderr)
+        return 2
+    try:
+        st.check(args.study)
+    except (st.StudyFormatError, FileNotFoundError, IsADirectoryError) as e:
+        print(f"{ap.prog}: {e}", file=sys.stderr)
+        return 2
+    frame = locate(st.load_study(args.study), args.tolerance)
+    if not args.no_write:
+        write(args.study, frame)
+    if len(frame) == 0:
+        print("boundaries: none (no two grid neighbours differ in below_safe_film or stability)")
+    for _, r in frame.iterrows():
+        others = ", ".join(f"{k} = {r[k]}" for k in frame.columns if k not in _FIXED and r[k] == r[k] and r[k] != "")
+        print(f"{r['kind']}: {r['axis']} = {r['value']:.6g} ± {r['error']:.2g} {r['unit']} between cases "
+              f"{r['case_a']} and {r['case_b']} ({others}; {r['runs']} runs{'' if r['converged'] else ', not converged'})")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
