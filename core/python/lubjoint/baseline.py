@@ -100,12 +100,14 @@ def key_text(key):
     return " ".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}" for k, v in zip(KEY, key))
 
 
-def study_rows(path):
+def study_rows(path, cases=None):
     """The study's cases as ``{key: row dict}`` (every compared metric as float, status as str);
     ``BaselineError`` (or ``StudyFormatError``, ``FileNotFoundError``) for a file that is not a
-    study of the paper grid's axes."""
+    study of the paper grid's axes. ``cases``: the study's ``lubjoint.study.cases(path)``, if
+    read already (reading it takes seconds)."""
     study_reader.check(path)
-    cases = study_reader.cases(path)
+    if cases is None:
+        cases = study_reader.cases(path)
     missing = [k for k in KEY if k not in cases.columns]
     if missing:
         raise BaselineError(f"{path}: no column {', '.join(missing)}: not the paper grid?")
