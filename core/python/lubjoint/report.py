@@ -64,6 +64,10 @@ class ReportError(ValueError):
     or a missing Chart.js; the message names the file and what to do."""
 
 
+class ChartJsMissing(ReportError):
+    """Chart.js (``CHART_JS``) is not installed: the message names the Debian package."""
+
+
 # --- values -------------------------------------------------------------------------------
 
 
@@ -99,7 +103,7 @@ def chart_js():
         with open(CHART_JS, encoding="utf-8") as f:
             return f.read()
     except OSError as e:
-        raise ReportError(f"Chart.js is missing ({CHART_JS}: {e.strerror}): install the Debian package "
+        raise ChartJsMissing(f"Chart.js is missing ({CHART_JS}: {e.strerror}): install the Debian package "
                           f"{CHART_JS_PACKAGE} (apt-get install {CHART_JS_PACKAGE}; tools/setup.sh does)") from None
 
 
@@ -466,7 +470,7 @@ def write_report(study_path, out_html, baseline=None):
 
 def main(argv=None):
     """``python3 -m lubjoint.report STUDY.h5 -o report.html [--baseline CSV]``: exit 0 written,
-    2 bad input (the message names the file; nothing written)."""
+    2 bad input (the message names the file; nothing written), 1 Chart.js missing."""
     ap = argparse.ArgumentParser(prog="lubjoint.report", description="Write a study's self-contained HTML report "
                                  "(summary, classification maps, metrics with error bars, each case's orbit and "
                                  "film, bifurcation edges, solver statistics; with --baseline the nightly "
@@ -481,7 +485,7 @@ def main(argv=None):
         data = write_report(args.study, args.output, args.baseline)
     except ReportError as e:
         print(f"{prog}: {e}", file=sys.stderr)
-        return 2
+        return 1 if isinstance(e, ChartJsMissing) else 2
     c = data["comparison"]
     verdict = "" if c is None else (f"; against {c['baseline']}: {len(c['regressions'])} regression"
                                     f"{'s' if len(c['regressions']) != 1 else ''}")
