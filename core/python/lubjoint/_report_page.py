@@ -303,7 +303,7 @@ function mapChart(canvas, g) {
       grouped: false, barPercentage: 0.96, categoryPercentage: 1.0});
   }));
   return makeChart(canvas, "map-" + g.name, {type: "bar", data: {labels: g.xs, datasets},
-    options: {scales: {x: {title: {display: true, text: g.axis_label}, grid: {display: false}},
+    options: {scales: {x: {title: {display: true, text: g.axis_label}, grid: {display: false}, ticks: {autoSkip: false}},
                        y: {min: -0.5, max: g.rows.length - 0.5, grid: {display: false},
                            afterBuildTicks: a => { a.ticks = g.rows.map((_, i) => ({value: i})); },
                            ticks: {callback: v => g.rows[v] === undefined ? "" : g.rows[v]}}},
@@ -324,7 +324,7 @@ function metricChart(canvas, g, name) {
     borderColor: PALETTE[k % 10], backgroundColor: PALETTE[k % 10], showLine: g.numeric, pointRadius: 3.5, borderWidth: 1.6}));
   const x = g.numeric ? {type: g.log_x ? "logarithmic" : "linear", title: {display: true, text: g.axis_label},
                          afterBuildTicks: a => { a.ticks = g.x.map(v => ({value: v})); }, ticks: {callback: v => fmt(v)}}
-                      : {type: "category", title: {display: true, text: g.axis_label}, offset: true};
+                      : {type: "category", title: {display: true, text: g.axis_label}, offset: true, ticks: {autoSkip: false}};
   return makeChart(canvas, "metric-" + g.name, {type: "line", data: {labels: g.numeric ? undefined : g.xs, datasets},
     options: {scales: {x, y: {type: M.log ? "logarithmic" : "linear", title: {display: true, text: M.label},
                               ticks: {callback: v => fmt(v, 4)}}},
