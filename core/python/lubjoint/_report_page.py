@@ -355,11 +355,14 @@ function caseCharts(c) {
   const s = c.series;
   const note = document.getElementById("case-note");
   if (!s) {
-    note.textContent = "This study stores no channels for " + c.name + " (the grid's study.channels): its metrics above are all the file holds.";
+    note.textContent = D.cases.some(x => x.series)
+      ? "This study stores no channels for " + c.name + ": its metrics above are all the file holds for it."
+      : "This study stores no channels for any case (the grid's study.channels is empty): its metrics, here and above, are all the file holds.";
     for (const n of ["orbit", "film", "reaction"]) if (charts[n]) { charts[n].destroy(); delete charts[n]; }
     return;
   }
-  note.textContent = "Drawn: " + s.what + "; " + s.samples + " samples (every k-th and each channel's extremes). Channels stored: " + s.channels.join(", ") + ".";
+  note.textContent = "Drawn: " + s.what + "; " + s.samples + " samples (every k-th and each channel's extremes). Channels stored: " + s.channels.join(", ") + "." +
+    (s.not_stored.length ? " Not stored, so not drawn: " + s.not_stored.join(", ") + " (the grid's study.channels)." : "");
   const circle = Array.from({length: 121}, (_, i) => ({x: Math.cos(i * Math.PI / 60), y: Math.sin(i * Math.PI / 60)}));
   const path = s.orbit ? s.orbit.x.map((x, i) => ({x, y: s.orbit.y[i]})) : [];
   makeChart(document.getElementById("chart-orbit"), "orbit", {type: "scatter", data: {datasets: [

@@ -258,7 +258,8 @@ def _case_series(study_path, cid, name, orbit_classes, classification):
     have = {k: v[keep] for k, v in have.items()}
     out = {"what": ("periodic orbit over the metric cycles" if classification in orbit_classes
                     else f"the run's last stored cycles (no periodic orbit: {classification})"),
-           "samples": int(len(keep)), "channels": sorted(have), "units": units}
+           "samples": int(len(keep)), "channels": sorted(have), "units": units,
+           "not_stored": [k for k in ("e_x", "e_y", "eps", "h_min", "reaction_force", "crank_angle") if k not in have]}
     if {"e_x", "e_y"} <= set(have):
         try:
             c = _clearance(have, ds, None)
