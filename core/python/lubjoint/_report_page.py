@@ -305,16 +305,17 @@ function mapChart(canvas, g) {
   return makeChart(canvas, "map-" + g.name, {type: "bar", data: {labels: g.xs, datasets},
     options: {scales: {x: {title: {display: true, text: g.axis_label}, grid: {display: false}, ticks: {autoSkip: false}},
                        y: {min: -0.5, max: g.rows.length - 0.5, grid: {display: false},
+                           title: {display: !!g.rows_title, text: g.rows_title},
                            afterBuildTicks: a => { a.ticks = g.rows.map((_, i) => ({value: i})); },
                            ticks: {callback: v => g.rows[v] === undefined ? "" : g.rows[v]}}},
-      plugins: {legend: {position: "right", labels: {filter: (item, d) => d.datasets[item.datasetIndex].first}},
+      plugins: {legend: {position: "bottom", labels: {filter: (item, d) => d.datasets[item.datasetIndex].first}},
                 tooltip: {callbacks: {title: items => { const k = items[0].dataset.cells[items[0].dataIndex]; return k.name + " (case " + k.case + ")"; },
-                                      label: it => { const k = it.dataset.cells[it.dataIndex]; return [k.y + ", " + g.axis + " " + k.x, k.cls + ", status " + k.status]; }}}}}});
+                                      label: it => { const k = it.dataset.cells[it.dataIndex]; return [(g.rows_title ? g.rows_title + " " + k.y + ", " : "") + g.axis_label + " " + k.x, k.cls + ", status " + k.status]; }}}}}});
 }
 
 function maps() {
   const box = document.getElementById("maps");
-  for (const g of D.grids) mapChart(chartBox(box, "map-" + g.name, "sub-grid " + g.name, 70 + 42 * g.rows.length), g);
+  for (const g of D.grids) mapChart(chartBox(box, "map-" + g.name, "sub-grid " + g.name, 100 + 42 * g.rows.length), g);
 }
 
 function metricChart(canvas, g, name) {

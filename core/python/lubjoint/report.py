@@ -180,8 +180,11 @@ def _grid(name, g, cases, units):
     xunit = g[x].attrs.get("units", units.get(x, ""))
     xs = [_axis_value(v, xunit) for v in g[x].values]
     combos = list(itertools.product(*(g[d].values for d in others)))
-    rows = [", ".join(f"{d} {_axis_value(v, g[d].attrs.get('units', ''))}" for d, v in zip(others, c)) or name
+    law = None if others else _grid_law(g, cases)
+    rows = [", ".join(_axis_value(v, g[d].attrs.get("units", "")) for d, v in zip(others, c)) or law or name
             for c in combos]
+    rows_title = ", ".join(_label(d, g[d].attrs.get("units", "")) if g[d].attrs.get("units", "") else d
+                           for d in others) or ("force_law" if law else "")
     cells, picks = [], []
     for row, combo in zip(rows, combos):
         sub = g.sel(dict(zip(others, combo))) if others else g
@@ -192,6 +195,7 @@ def _grid(name, g, cases, units):
                           "cls": _text(sub["classification"].values[j]), "status": _text(sub["status"].values[j])})
     shown = [float(v) * _display(xunit)[1] for v in g[x].values] if numeric else None
     out = {"name": name, "axis": x, "axis_label": _label(x, xunit) if xunit else x, "xs": xs, "rows": rows,
+           "rows_title": rows_title,
            "cells": cells, "numeric": numeric, "x": shown,
            "log_x": bool(numeric and min(shown) > 0 and max(shown) / min(shown) >= 10)}
     out["metrics"] = {m: _grid_metric(m, picks, rows, units) for m in _steady_metrics(g, cases)}
@@ -207,6 +211,14 @@ def _drop_empty_metrics(grids):
         for m in empty:
             g["metrics"].pop(m, None)
     return grids
+
+
+def _grid_law(g, cases):
+    """The force law of a sub-grid whose cases share one force law (and have no such axis), else None."""
+    if "force_law" not in cases.columns:
+        return None
+    laws = {_text(cases.loc[int(c), "force_law"]) for c in np.ravel(g["case_id"].values)}
+    return laws.pop() if len(laws) == 1 else None
 
 
 def _steady_metrics(g, cases):
