@@ -3,7 +3,7 @@
 # what a downstream user does with P: the consumer project (tests/install) configured with
 # -DCMAKE_PREFIX_PATH=P, built and run on one cycle of a scene; P/bin/lubsim --help; the
 # man page; `import lubjoint` from P's site-packages with /usr/bin/python3, and the
-# message a Python without NumPy gets.
+# message a Python without NumPy gets; P/bin/lubsweep report running P's lubjoint.report.
 # Usage: check_install.sh SOURCE_DIR BUILD_DIR WORK_DIR
 set -euo pipefail
 src=$1 build=$2 work=$3
@@ -47,4 +47,14 @@ if msg=$(cd "$work" && PYTHONPATH="$site" /usr/bin/python3 -S -c "import lubjoin
 fi
 grep -q "built for /usr/bin/python3" <<<"$msg" || { echo "install_consumer: no hint in: $msg" >&2; exit 1; }
 echo "wrong Python: $(tail -n 1 <<<"$msg")"
+
+# The installed lubsweep's `report` runs the prefix's lubjoint.report (found beside its bin/,
+# no PYTHONPATH): given a file that is no study, that module's message and exit 2, no page.
+step "lubsweep report from $prefix"
+status=0
+msg=$(cd "$work" && env -u PYTHONPATH "$prefix/bin/lubsweep" report "$src/configs/scenes/slider_crank.json" \
+      -o "$work/report.html" 2>&1) || status=$?
+echo "$msg"
+[ "$status" -eq 2 ] && grep -q "slider_crank.json: not an HDF5 file" <<<"$msg" && [ ! -e "$work/report.html" ] ||
+  { echo "install_consumer: lubsweep report did not run the prefix's lubjoint.report (exit $status)" >&2; exit 1; }
 step "ok"
