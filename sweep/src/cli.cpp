@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdlib>
+#include <string>
+#include <vector>
 
 #include "lub/run/run_io.hpp"
 #include "lub/sweep/sweep.hpp"
@@ -117,8 +119,14 @@ std::optional<std::string> parse_options(const std::vector<std::string>& args, O
     const CLI::App* report = app.get_subcommand("report");
     help_text = report->parsed() ? report->help() : app.help();
     return std::nullopt;
-  } catch (const CLI::ExtrasError&) {
-    const std::string extra = app.remaining().front();
+  } catch (const CLI::ExtrasError& e) {
+    // The extras are the main command's, or the subcommand's (recursive: `report ... --check`).
+    const std::vector<std::string> extras = app.remaining(true);
+    if (extras.empty()) return std::string(e.what());
+    const std::string& extra = extras.front();
+    if (app.get_subcommand("report")->parsed())
+      return "report: " + (!extra.empty() && extra[0] == '-' ? "unknown option " + extra : "more than one study given (" +
+                                                                    o.report_study + ", " + extra + ")");
     if (!extra.empty() && extra[0] == '-') return "unknown option " + extra;
     return "more than one grid given (" + o.grid + ", " + extra + ")";
   } catch (const CLI::ParseError& e) {
