@@ -1,6 +1,7 @@
 // lubsweep: the MPI parametric study. A thin main over lubsweep_lib (lub/sweep/*.hpp).
 //
 //   mpirun -np 2 lubsweep GRID.json -o STUDY.h5
+//   lubsweep report STUDY.h5 -o report.html     (Python's lubjoint.report; no MPI)
 #include <mpi.h>
 
 #include <cstdio>
@@ -16,6 +17,7 @@ int main(int argc, char** argv) {
   bool help = false;
   std::string help_text;
   const auto error = lub::sweep::parse_options(args, options, help, help_text);
+  if (!help && !error && options.report) return lub::sweep::run_report(options);  // Python, no MPI
 
   int provided = 0;
   MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);

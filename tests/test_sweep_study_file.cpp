@@ -868,6 +868,38 @@ TEST(SweepOptions, CommandLine) {
   EXPECT_EQ(text.substr(0, 9), "lubsweep ");
 }
 
+TEST(SweepOptions, TheReportSubcommandTakesAStudyAnOutputAndABaseline) {
+  using lub::sweep::Options;
+  using lub::sweep::parse_options;
+  bool help = false;
+  std::string text;
+  Options o;
+  EXPECT_FALSE(parse_options({"report", "s.h5", "-o", "r.html", "--baseline", "b.csv"}, o, help, text));
+  EXPECT_TRUE(o.report);
+  EXPECT_EQ(o.report_study, "s.h5");
+  EXPECT_EQ(o.report_output, "r.html");
+  EXPECT_EQ(o.report_baseline, "b.csv");
+  EXPECT_TRUE(o.grid.empty() && o.output.empty());
+  Options plain;
+  EXPECT_FALSE(parse_options({"g.json", "-o", "s.h5"}, plain, help, text));
+  EXPECT_FALSE(plain.report);
+  Options no_out;
+  EXPECT_NE(parse_options({"report", "s.h5"}, no_out, help, text)->find("--output"), std::string::npos);
+  Options extra;  // an option of the main command given to the subcommand: named, no crash
+  EXPECT_EQ(*parse_options({"report", "s.h5", "-o", "r.html", "--summary", "x"}, extra, help, text),
+            "report: unknown option --summary");
+  Options two;
+  EXPECT_EQ(*parse_options({"report", "a.h5", "b.h5", "-o", "r.html"}, two, help, text),
+            "report: more than one study given (a.h5, b.h5)");
+  Options h;
+  EXPECT_FALSE(parse_options({"report", "--help"}, h, help, text));
+  EXPECT_TRUE(help);
+  EXPECT_NE(text.find("--baseline CSV"), std::string::npos) << text;  // the subcommand's own help
+  Options top;
+  EXPECT_FALSE(parse_options({"--help"}, top, help, text));
+  EXPECT_NE(text.find("lubsweep report STUDY.h5 -o report.html"), std::string::npos) << text;
+}
+
 TEST_F(StudyFile, OutputLockRefusesASecondHolderNamingTheFirst) {
   const std::string path = file("s.h5");
   {

@@ -22,6 +22,7 @@ PACKAGES=(
   help2man valgrind
   python3-sphinx python3-myst-parser libjs-mathjax
   python3-nbconvert python3-ipykernel python3-nbformat jupyter-core jupyter-nbconvert
+  libjs-chart.js chromium
 )
 
 missing=()

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The main job: set-up, build, the paper's study on 2 MPI ranks, its summary and figures.
 #   writes out/study.h5 (lubsweep configs/grids/paper.json; re-running resumes it) and
-#   out/figures/*.png (tools/plot/paper.py), and prints the study's table.
+#   out/figures/*.png (tools/plot/paper.py) and out/report.html (lubsweep report), and
+#   prints the study's table.
 # Exit status: 0 when the study is complete (cases that could not be integrated, e.g. a
 # film collapse, are results: recorded in the file and the table); else lubsweep's.
 set -euo pipefail
@@ -20,3 +21,5 @@ build/sweep/lubsweep --summary out/study.h5
 echo
 PYTHONPATH="$root/build/python${PYTHONPATH:+:$PYTHONPATH}" \
   /usr/bin/python3 tools/plot/paper.py out/study.h5 -o out/figures | sed 's/^/figure: /'
+# The whole study as one page a browser opens offline (docs/guide/lubsweep.md).
+build/sweep/lubsweep report out/study.h5 -o out/report.html

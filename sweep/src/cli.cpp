@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdlib>
+#include <string>
+#include <vector>
 
 #include "lub/io/data_path.hpp"
 #include "lub/run/run_io.hpp"
@@ -25,9 +27,13 @@ std::string description() {
          "\n"
          "  mpirun -np N lubsweep GRID.json -o STUDY.h5 [options]\n"
          "\n"
-         "and its table prints with\n"
+         "its table prints with\n"
          "\n"
-         "  lubsweep --summary STUDY.h5\n";
+         "  lubsweep --summary STUDY.h5\n"
+         "\n"
+         "and its HTML report (a page readable offline) is written with\n"
+         "\n"
+         "  lubsweep report STUDY.h5 -o report.html [--baseline BASELINE.csv]\n";
 }
 
 const char* const kFooter =
@@ -64,10 +70,35 @@ void add_options(CLI::App& app, Options& o, bool& version) {
                         "no table at the end (by default the study's table is printed)");
   app.add_flag("-q,--quiet", o.quiet, "no progress lines on stderr");
   app.add_flag("--version", version, "print the version, revision and build type and exit");
+  app.require_subcommand(0, 1);
+  CLI::App* report = app.add_subcommand(
+      "report",
+      "write a study's self-contained HTML report (see 'lubsweep report --help')");
+  report->description(
+      "lubsweep report: writes STUDY.h5's report as one HTML file readable offline: the summary table\n"
+      "(sortable, filterable), the classification map and each steady metric over every sub-grid with\n"
+      "error bars, each case's orbit, film and reaction, the bifurcation edges, the solver statistics;\n"
+      "with --baseline the nightly comparison (each metric within or outside its tolerance). It runs\n"
+      "/usr/bin/python3 -m lubjoint.report (no MPI; docs/guide/lubsweep.md).");
+  report->footer(
+      "Exit status: 0 written; 2 bad input (no study file, not a study file, a bad baseline or -o:\n"
+      "nothing written); 1 Python, the module lubjoint or Chart.js (libjs-chart.js) not found.");
+  report->add_option("study", o.report_study, "the study file")->required()->type_name("STUDY.h5");
+  report->add_option("-o,--output", o.report_output, "the HTML file to write")->required()->type_name("HTML");
+  report->add_option("--baseline", o.report_baseline,
+                     "a baseline CSV (tests/baselines/paper.csv): each metric against its tolerance")
+      ->type_name("CSV");
+  report->set_help_flag("-h,--help", "print this text and exit");
+  report->callback([&o] { o.report = true; });
 }
 
 /// What goes together, once parsed: an error message, or nullopt.
 std::optional<std::string> check(Options& o) {
+  if (o.report) {
+    if (!o.grid.empty() || !o.output.empty() || !o.summary_of.empty())
+      return "report takes a study file, -o HTML and --baseline only (lubsweep report STUDY.h5 -o report.html)";
+    return std::nullopt;
+  }
   if (!o.summary_of.empty()) {
     if (!o.grid.empty() || !o.output.empty()) return "--summary takes only a study file";
     return std::nullopt;
@@ -91,10 +122,17 @@ std::optional<std::string> parse_options(const std::vector<std::string>& args, O
     app.parse(std::vector<std::string>(args.rbegin(), args.rend()));  // CLI11 wants them last first
   } catch (const CLI::CallForHelp&) {
     help = true;
-    help_text = app.help();
+    const CLI::App* report = app.get_subcommand("report");
+    help_text = report->parsed() ? report->help() : app.help();
     return std::nullopt;
-  } catch (const CLI::ExtrasError&) {
-    const std::string extra = app.remaining().front();
+  } catch (const CLI::ExtrasError& e) {
+    // The extras are the main command's, or the subcommand's (recursive: `report ... --check`).
+    const std::vector<std::string> extras = app.remaining(true);
+    if (extras.empty()) return std::string(e.what());
+    const std::string& extra = extras.front();
+    if (app.get_subcommand("report")->parsed())
+      return "report: " + (!extra.empty() && extra[0] == '-' ? "unknown option " + extra : "more than one study given (" +
+                                                                    o.report_study + ", " + extra + ")");
     if (!extra.empty() && extra[0] == '-') return "unknown option " + extra;
     return "more than one grid given (" + o.grid + ", " + extra + ")";
   } catch (const CLI::ParseError& e) {

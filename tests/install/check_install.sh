@@ -5,7 +5,8 @@
 # installed example scene; P/share/lubjoint (configs/ with the schema, docs/); the installed
 # programs' --help and errors naming files that exist there; the man page; `import lubjoint`
 # with /usr/bin/python3 from PYTHONPATH=P/lib/python3.X/dist-packages, the line the install
-# prints, and the message a Python without NumPy gets.
+# prints, and the message a Python without NumPy gets; P/bin/lubsweep report running P's
+# lubjoint.report.
 # Usage: check_install.sh SOURCE_DIR BUILD_DIR WORK_DIR
 set -euo pipefail
 src=$1 build=$2 work=$3
@@ -87,4 +88,14 @@ if msg=$(cd "$work" && PYTHONPATH="$site" /usr/bin/python3 -S -c "import lubjoin
 fi
 grep -q "built for /usr/bin/python3" <<<"$msg" || fail "no hint in: $msg"
 echo "wrong Python: $(tail -n 1 <<<"$msg")"
+
+# The installed lubsweep's `report` runs the prefix's lubjoint.report (found beside its bin/,
+# no PYTHONPATH): given a file that is no study, that module's message and exit 2, no page.
+step "lubsweep report from $prefix"
+status=0
+msg=$(cd "$work" && env -u PYTHONPATH "$prefix/bin/lubsweep" report "$src/configs/scenes/slider_crank.json" \
+      -o "$work/report.html" 2>&1) || status=$?
+echo "$msg"
+[ "$status" -eq 2 ] && grep -q "slider_crank.json: not an HDF5 file" <<<"$msg" && [ ! -e "$work/report.html" ] ||
+  fail "lubsweep report did not run the prefix's lubjoint.report (exit $status)"
 step "ok"

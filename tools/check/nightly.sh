@@ -2,14 +2,15 @@
 # The nightly reproduction: build, run the paper's study (configs/grids/paper.json) on two
 # MPI ranks from scratch, compare it with the committed baseline tests/baselines/paper.csv
 # (tools/compare/nightly.py: per-metric tolerances, keyed by the cases' axis values), write a
-# report. docs/validation/nightly.md.
+# report (report.md, and report.html: the study and the comparison as a page, lubsweep report).
+# docs/validation/nightly.md.
 #
 #   bash tools/check/nightly.sh              build, run, compare: exit 0 ok, 1 a regression
 #                                      (the lines name the case and the metric), 2 bad input
 #   bash tools/check/nightly.sh --accept     build, run, and write the baseline from this run
 #                                      (review `git diff tests/baselines/paper.csv`, commit)
 # Options: --no-build (use the build as it is), --build-dir DIR (default build/),
-#          -o DIR (default out/nightly: study.h5, report.md, a figure per changed case,
+#          -o DIR (default out/nightly: study.h5, report.md, report.html, a figure per changed case,
 #          accepted_study.h5 after --accept, whose series the figures then show beside
 #          the new ones), --baseline FILE (default tests/baselines/paper.csv).
 set -euo pipefail
@@ -52,4 +53,10 @@ if ((accept)); then
 fi
 accepted=()
 if [ -f "$out/accepted_study.h5" ]; then accepted=(--accepted-study "$out/accepted_study.h5"); fi
-"$py" "$root/tools/compare.py" nightly "$out/study.h5" --baseline "$baseline" --report "$out" "${accepted[@]}"
+status=0
+"$py" "$root/tools/compare.py" nightly "$out/study.h5" --baseline "$baseline" --report "$out" "${accepted[@]}" || status=$?
+# The same comparison as a page beside report.md (lubsweep report: lubjoint.report), whatever it found.
+if ((status != 2)); then
+  "$lubsweep" report "$out/study.h5" -o "$out/report.html" --baseline "$baseline" || status=$((status ? status : $?))
+fi
+exit "$status"

@@ -26,6 +26,10 @@ struct Options {
   bool check = false;         ///< validate the grid, list its cases, run nothing
   bool strict = false;        ///< --strict: a plausibility warning is an error (exit 2)
   long kill_after = -1;       ///< tests: rank 0 kills itself (SIGKILL) after this many new rows
+  bool report = false;        ///< the subcommand `report`: write a study's HTML report, no MPI
+  std::string report_study;   ///< report: the study file
+  std::string report_output;  ///< report: the HTML file (-o)
+  std::string report_baseline;  ///< report: --baseline CSV, or empty
 };
 
 /// Exit statuses.
@@ -60,6 +64,14 @@ void setup_process(int rank);
 /// --version (the version line into `help_text`).
 std::optional<std::string> parse_options(const std::vector<std::string>& args, Options& out, bool& help,
                                          std::string& help_text);
+
+/// `lubsweep report STUDY.h5 -o report.html [--baseline CSV]` (report.cpp): runs
+/// `/usr/bin/python3 -m lubjoint.report` with the module lubjoint on PYTHONPATH (this build
+/// tree's build/python for the build tree's lubsweep, else the install prefix's Python
+/// directory beside its bin/), before and without MPI. Returns its exit status: 0 written,
+/// 2 bad input (no study file, not a study: the message names the file, nothing written),
+/// 1 Python or the module not found.
+int run_report(const Options& options);
 
 /// Runs the sweep on MPI_COMM_WORLD (MPI initialised with at least MPI_THREAD_FUNNELED).
 /// Returns the exit status on every rank (rank 0's decides; others return 0 or 2).
