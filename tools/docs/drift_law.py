@@ -7,7 +7,7 @@ drift exponents per force law, and of the law's reach on the paper's Frene short
 Run from the repository root.
 
     mpirun -np 2 build/sweep/lubsweep configs/grids/full_factorial.json -o ff.h5
-    PYTHONPATH=build/python /usr/bin/python3 tools/docs/drift_law.py ff.h5   (~2 min on 2 cores)
+    PYTHONPATH=build/python /usr/bin/python3 tools/docs/drift_law.py ff.h5   (~10 min on 2 cores: the rtol 1e-11 transient)
 """
 import argparse
 import concurrent.futures
@@ -40,8 +40,10 @@ def crossing(path, case_id, until, safe):
 
 def reach_table():
     """The paper's Frene short case (0.5 mm, 400 cP, 5000 rpm), whose safe film lies beyond
-    its law's reach: the law's cycle for films from its own fitted range toward the wall
-    (from the flow's end, its drift and exponent) against a transient at RTOL."""
+    its law's checked reach: the law's cycle for films from its own fitted range toward the
+    wall (from the flow's end, its drift and exponent) against transients from rest at rtol
+    1e-10 and 1e-11 (the tighter reaches each film earlier near the wall: the looser one's
+    map error is a growing share of the drift there)."""
     scene = "configs/scenes/slider_crank.json"
     study = {"/joints/3/force_law": "frene_short", "/simulation/steady": "auto", "/simulation/max_cycles": 40,
              "/simulation/stop_when_steady": True, "/simulation/steady_tolerance": 1e-3, "/outputs/channels": []}
@@ -49,24 +51,28 @@ def reach_table():
     p, h0 = float(a["drift_exponent"]), float(a["last_cycle_min_film_m"])
     s0 = -float(a["min_film_drift_m_per_cycle"])
     n0 = float(a["cycle_min_film_thickness_m"].size) + float(a["slow_flow_cycles"])
-    low = h0  # the law's smallest fitted film is the flow's last
     targets = [t for t in (10e-6, 8e-6, 6.5e-6, 5e-6, 4e-6, 3e-6) if t < h0]
-    tr = crossing_series(scene, {**study, "/simulation/steady": "transient"}, 10000)
-    print(f"The paper's Frene short case: law p = {p:.2f}, fitted down to {low * 1e6:.1f} µm at cycle {n0:.0f}; "
-          f"the cycle each film is reached, by the law and by a transient from rest at rtol {RTOL:g}:\n")
-    print("| film [µm] | below the fitted films | law's cycle | transient's | law early by |")
+    runs = {1e-10: 10000, 1e-11: 5300}
+    transient = {**study, "/simulation/steady": "transient"}
+    with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
+        tr = dict(zip(runs, pool.map(lambda r: crossing_series(scene, transient, runs[r], r), runs)))
+    print(f"The paper's Frene short case: law p = {p:.2f}, fitted down to {h0 * 1e6:.1f} µm at cycle {n0:.0f}; "
+          "the cycle each film is reached, by the law and by transients from rest:\n")
+    print("| film [µm] | below the fitted films | law's cycle | rtol 1e-10 | rtol 1e-11 |")
     print("|---|---|---|---|---|")
     for t in targets:
         law = n0 + h0 * ((t / h0) ** (1 - p) - 1) / (s0 * (p - 1))
-        k = np.nonzero(tr < t)[0]
-        seen = float(k[0]) if k.size else math.nan
-        print(f"| {t * 1e6:g} | {low / t:.2f} × | {law:.0f} | {seen:.0f} | {100 * (seen - law) / seen:.0f} % |")
+        seen = []
+        for r in runs:
+            k = np.nonzero(tr[r] < t)[0]
+            seen.append(f"{k[0]}" if k.size else f"> {runs[r]}")
+        print(f"| {t * 1e6:g} | {h0 / t:.2f} × | {law:.0f} | {seen[0]} | {seen[1]} |")
     print()
 
 
-def crossing_series(scene, overrides, cycles):
-    """Each cycle's minimum film of a transient from rest at RTOL."""
-    o = {**overrides, "/solver/rtol": RTOL, "/solver/max_steps": 1_000_000_000,
+def crossing_series(scene, overrides, cycles, rtol=RTOL):
+    """Each cycle's minimum film of a transient from rest at `rtol`."""
+    o = {**overrides, "/solver/rtol": rtol, "/solver/max_steps": 1_000_000_000, "/solver/max_wall_time_s": 7200,
          "/simulation/stop_when_steady": False, "/simulation/max_cycles": cycles}
     return lubjoint.simulate(scene, o)["cycle_min_film_thickness_m"].values
 

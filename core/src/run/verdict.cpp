@@ -281,7 +281,7 @@ void drift_law(std::ostringstream& msg, const RunResult& res, const SlowFlowEvid
   } else if (ev.safe_beyond_reach) {
     msg << ": the safe film " << res.metrics.safe_film_thickness_m << " m lies "
         << std::round(10.0 * ev.law_film_low / res.metrics.safe_film_thickness_m) / 10.0
-        << " times below the films it was fitted over, beyond its reach (its exponent grows toward the wall)";
+        << " times below the films it was fitted over, beyond the factor 2 its crossings are checked to";
   } else if (res.metrics.below_safe_film) {
     msg << ", already below the safe film";
   }
