@@ -10,6 +10,7 @@
 
 #include "lub/io/json_reader.hpp"
 #include "lub/mechanism/film_element.hpp"
+#include "lub/run/orbit.hpp"
 #include "lub/run/run.hpp"
 #include "run/segment.hpp"
 
@@ -65,6 +66,34 @@ TEST(FinestRtol, AnIllConditionedOrbitIsNotLocatedWithoutRoomToRefine) {
   EXPECT_NE(r.message.find("located only where it stops moving under refinement"), std::string::npos) << r.message;
   // 10 cycles and a Newton at 1e-12 take ~6e5 steps; with integrations at 1e-14, 2.7e7.
   EXPECT_LT(r.stats.steps, 3000000) << r.message;
+}
+
+// The same rule without error bars: Frêne short at 0.2 mm, 400 cP, 5000 rpm (a full-factorial
+// cell whose journal creeps toward the wall). With its error bars (the default) the orbit
+// shooting finds at 3.5 µm (κ ~ 1e4) moves under refinement and the case drifts; with
+// simulation.error_bars = false nothing shows it stops moving, so it is not located either.
+TEST(FinestRtol, WithoutErrorBarsAnIllConditionedOrbitIsNotLocated) {
+  json doc = reference(1e-8);
+  doc["joints"][3]["force_law"] = "frene_short";
+  doc["joints"][3]["journal_radius_m"] = 0.0098;
+  doc["simulation"]["max_cycles"] = 40;
+  doc["simulation"]["stop_when_steady"] = true;
+  doc["simulation"]["steady_tolerance"] = 1e-3;
+  doc["simulation"]["metric_cycles"] = 2;
+  doc["simulation"]["error_bars"] = false;
+  const lub::RunResult off = run(doc);
+  ASSERT_EQ(off.status, lub::RunStatus::ok) << off.message;
+  EXPECT_FALSE(lub::has_orbit(off.steady.kind)) << off.message;
+  EXPECT_NE(off.message.find("simulation.error_bars = false, and an orbit with kappa"), std::string::npos)
+      << off.message;
+  doc["simulation"]["error_bars"] = true;
+  const lub::RunResult on = run(doc);
+  EXPECT_EQ(lub::classification(on), "drifting") << on.message;
+  // A well-conditioned orbit needs no refinement: the printed law's, found without bars.
+  json printed = reference(1e-8);
+  printed["simulation"]["error_bars"] = false;
+  const lub::RunResult p = run(printed);
+  EXPECT_EQ(p.steady.kind, lub::SteadyClass::periodic) << p.message;
 }
 
 // Why Newton's stall there is not the map's noise: near the wall at 1e-12 a period started

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <cmath>
 
+#include "lub/run/orbit.hpp"
 #include "run/orbit_seed.hpp"
 #include "run/steady_strategies.hpp"
 
@@ -247,6 +248,17 @@ OrbitEvidence solve_orbit(SteadyContext& cx, Chart& chart, const StartState& bas
     if (cx.sim.error_bars) {
       ev.bars = orbit_error_bars(cx, chart, base, *tight_period, found.z, monodromy.M, options);
       if (ev.bars.outcome == ErrorBarEvidence::Outcome::failed && !ev.bars.budget) return ev;
+    } else if (const double kappa = orbit_conditioning(steady.multipliers); kappa > cx.tuning.refine_conditioning) {
+      // Without the refinement the error bars make, an ill-conditioned orbit cannot be told
+      // from a fixed point of the map's error (near the wall Newton converges to those):
+      // not located.
+      std::ostringstream why;
+      why << "simulation.error_bars = false, and an orbit with kappa " << kappa
+          << " is located only where it stops moving under refinement";
+      ev.bars.outcome = ErrorBarEvidence::Outcome::failed;
+      ev.bars.conditioning = kappa;
+      ev.bars.failure = why.str();
+      return ev;
     }
     ev.orbit_error = steady.orbit_error;
     // Located no better than the tolerance a cycle is steady by: near |μ| = 1 a fixed
