@@ -187,9 +187,18 @@ void print_boundaries(std::FILE* out, const h5::File& f) {
   const auto axis = b.read_strings("axis"), unit = b.read_strings("unit"), kind = b.read_strings("kind");
   const auto value = b.read_doubles("value"), error = b.read_doubles("error");
   const auto a = b.read_int64s("case_a"), c = b.read_int64s("case_b"), converged = b.read_int64s("converged");
-  static const std::vector<std::string> fixed = {"axis", "value", "error", "unit", "kind",
-                                                 "case_a", "case_b", "runs", "converged"};
-  fmt::print(out, "boundaries located between grid points (docs/theory/sensitivities.md):\n");
+  static const std::vector<std::string> fixed = {"axis",   "value", "error",   "unit",     "kind",
+                                                 "case_a", "case_b", "runs", "periods", "converged"};
+  // What they cost, against the study's own periods (its cases' and their sensitivities').
+  const h5::Table cases = f.open_table("cases");
+  double study = 0.0, spent = 0.0;
+  for (const char* c : {"periods_integrated", "sensitivity_periods"})
+    if (cases.has_column(c))
+      for (const std::int64_t p : cases.read_int64s(c)) study += p > 0 ? static_cast<double>(p) : 0.0;
+  if (b.has_column("periods"))
+    for (const std::int64_t p : b.read_int64s("periods")) spent += static_cast<double>(p);
+  fmt::print(out, "boundaries located between grid points ({:.0f} periods, {:.1f} % of the study's {:.0f}; "
+             "docs/theory/sensitivities.md):\n", spent, study > 0.0 ? 100.0 * spent / study : 0.0, study);
   for (std::size_t i = 0; i < n; ++i) {
     std::string others;
     for (const h5::Column& col : b.columns()) {

@@ -51,6 +51,14 @@ class _Line:
         self.scene = st.scene(study.path, case)
         self.axis, self.pointer = axis, pointer
         self.runs = 0
+        self.periods = 0  # crank periods the runs integrated, their sensitivities' included
+
+    def _count(self, ds):
+        self.runs += 1
+        self.periods += int(ds["periods_integrated"])
+        key = "d_min_film_thickness_m_per_" + self.pointer.lstrip("/").replace("/", "_")
+        if key in ds:
+            self.periods += int(ds[key].attrs.get("periods_integrated", 0))
 
     def __call__(self, value):
         from .run import simulate
@@ -59,7 +67,7 @@ class _Line:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             ds = simulate(self.scene, {**override, "/outputs/channels": []}, sensitivity=[self.pointer])
-        self.runs += 1
+        self._count(ds)
         if ds.attrs["classification"] not in _ORBITS:
             return None
         key = "d_min_film_thickness_m_per_" + self.pointer.lstrip("/").replace("/", "_")
@@ -136,11 +144,12 @@ def safe_film_boundaries(study, tolerance=5e-3, max_runs=8):
             continue
         ends = [(float(r[axis]), float(r["min_film_thickness_m"] - r["safe_film_thickness_m"]), float(r[key]))
                 for r in (ra, rb)]
-        value, error, runs, converged = _locate(_Line(study, a, axis, pointers[axis]), ends[0], ends[1], tolerance,
-                                                max_runs)
+        line = _Line(study, a, axis, pointers[axis])
+        value, error, runs, converged = _locate(line, ends[0], ends[1], tolerance, max_runs)
         others = {k: ra[k] for k in cases.attrs.get("axes", []) if k != axis and k in ra}
         rows.append({"axis": axis, "value": value, "error": error, "unit": cases[axis].attrs.get("units", ""),
-                     "kind": "safe_film", "case_a": a, "case_b": b, "runs": runs, "converged": converged, **others})
+                     "kind": "safe_film", "case_a": a, "case_b": b, "runs": runs, "periods": line.periods,
+                     "converged": converged, **others})
     return pd.DataFrame(rows)
 
 
@@ -164,7 +173,7 @@ class _Stability(_Line):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             ds = simulate(self.scene, {**override, "/outputs/channels": []})
-        self.runs += 1
+        self._count(ds)
         if ds.attrs["classification"] not in _ORBITS:
             return None
         return float(ds["multiplier_1_modulus"]) - 1.0, float(ds["multiplier_1_angle_rad"])
@@ -231,12 +240,12 @@ def stability_boundaries(study, tolerance=5e-3, max_runs=10):
             continue
         ends = [(float(r[axis]), float(r["multiplier_1_modulus"]) - 1.0, float(r["multiplier_1_angle_rad"]))
                 for r in (ra, rb)]
-        value, error, angle, runs, converged = _falsi(_Stability(study, a, axis, pointers[axis]), ends[0], ends[1],
-                                                      tolerance, max_runs)
+        line = _Stability(study, a, axis, pointers[axis])
+        value, error, angle, runs, converged = _falsi(line, ends[0], ends[1], tolerance, max_runs)
         others = {k: ra[k] for k in cases.attrs.get("axes", []) if k != axis and k in ra}
         rows.append({"axis": axis, "value": value, "error": error, "unit": cases[axis].attrs.get("units", ""),
-                     "kind": _kind(angle), "case_a": a, "case_b": b, "runs": runs, "converged": converged,
-                     **others})
+                     "kind": _kind(angle), "case_a": a, "case_b": b, "runs": runs, "periods": line.periods,
+                     "converged": converged, **others})
     return pd.DataFrame(rows)
 
 
@@ -247,13 +256,14 @@ def locate(study, tolerance=5e-3):
 
     parts = [f for f in (safe_film_boundaries(study, tolerance), stability_boundaries(study, tolerance)) if len(f)]
     frame = pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=_FIXED)
-    frame.attrs["units"] = {"value": "(the row's unit)", "error": "(the row's unit)", "runs": "1", "converged": "1",
+    frame.attrs["units"] = {"value": "(the row's unit)", "error": "(the row's unit)", "runs": "1", "periods": "1",
+                            "converged": "1",
                             **{k: study.cases[k].attrs.get("units", "") for k in study.cases.attrs.get("axes", [])}}
     return frame
 
 
 #: The /boundaries columns every row has; the study's other axes follow.
-_FIXED = ["axis", "value", "error", "unit", "kind", "case_a", "case_b", "runs", "converged"]
+_FIXED = ["axis", "value", "error", "unit", "kind", "case_a", "case_b", "runs", "periods", "converged"]
 
 
 def write(path, frame):
@@ -273,7 +283,7 @@ def write(path, frame):
         units = getattr(frame, "attrs", {}).get("units", {})
         for name in names:
             col = frame[name] if name in frame else pd.Series([], dtype=float)
-            if name in ("case_a", "case_b", "runs", "converged"):
+            if name in ("case_a", "case_b", "runs", "periods", "converged"):
                 g.create_dataset(name, data=np.asarray(col, dtype=np.int64), maxshape=(None,))
             elif name in ("axis", "unit", "kind") or col.dtype == object:
                 text = ["" if not isinstance(v, str) else v for v in col]  # NaN: the row's own axis
@@ -335,6 +345,13 @@ def main(argv=None):
         write(args.study, frame)
     if len(frame) == 0:
         print("boundaries: none (no two grid neighbours differ in below_safe_film or stability)")
+    else:
+        cases = st.cases(args.study)
+        own = sum(float(cases[c].clip(lower=0).sum()) for c in ("periods_integrated", "sensitivity_periods")
+                  if c in cases)
+        spent = float(frame["periods"].sum())
+        print(f"boundaries: {len(frame)} located in {int(frame['runs'].sum())} runs, {spent:.0f} periods "
+              f"({100 * spent / own if own else 0:.1f} % of the study's {own:.0f})")
     for _, r in frame.iterrows():
         others = ", ".join(f"{k} = {r[k]}" for k in frame.columns if k not in _FIXED and r[k] == r[k] and r[k] != "")
         print(f"{r['kind']}: {r['axis']} = {r['value']:.6g} ± {r['error']:.2g} {r['unit']} between cases "

@@ -184,7 +184,7 @@ def simulate(scene, overrides=None, output=None, *, strict=False, sensitivity=()
             for suffix, v, what in (("", d, "d"), ("_error", e, "error bar of d")):
                 data_vars[f"d_{name}_per_{key}{suffix}"] = ((), np.float64(v), attrs_of(
                     units, f"{what} {name} / d {s['parameter']} on the located orbit", kind="sensitivity",
-                    parameter=s["parameter"]))
+                    parameter=s["parameter"], periods_integrated=int(s["periods"])))
     settings = r["solver_settings"]
     attrs = {
         "status": r["status"],

@@ -162,6 +162,28 @@ void measure_orbit(SteadyContext& cx, Chart& chart, const StartState& base, cons
   ev.measured = true;
 }
 
+/// The orbit's error bars where the scene asks for them (ev.bars). Without them, an
+/// ill-conditioned orbit cannot be told from a fixed point of the map's error (near the
+/// wall Newton converges to those): not located, saying why. False where the orbit is not
+/// accepted for it.
+bool take_error_bars(SteadyContext& cx, Chart& chart, const StartState& base, PeriodMap& tight_period,
+                     const Eigen::VectorXd& z, const Eigen::MatrixXd& monodromy, const steady::ShootingOptions& options,
+                     OrbitEvidence& ev) {
+  if (cx.sim.error_bars) {
+    ev.bars = orbit_error_bars(cx, chart, base, tight_period, z, monodromy, options);
+    return !(ev.bars.outcome == ErrorBarEvidence::Outcome::failed && !ev.bars.budget);
+  }
+  const double kappa = orbit_conditioning(cx.res.steady.multipliers);
+  if (!(kappa > cx.tuning.refine_conditioning)) return true;
+  std::ostringstream why;
+  why << "simulation.error_bars = false, and an orbit with kappa " << kappa
+      << " is located only where it stops moving under refinement";
+  ev.bars.outcome = ErrorBarEvidence::Outcome::failed;
+  ev.bars.conditioning = kappa;
+  ev.bars.failure = why.str();
+  return false;
+}
+
 }  // namespace
 
 OrbitEvidence solve_orbit(SteadyContext& cx, Chart& chart, const StartState& base, const std::vector<double>& winding,
@@ -245,21 +267,7 @@ OrbitEvidence solve_orbit(SteadyContext& cx, Chart& chart, const StartState& bas
     if (!ev.measured) return ev;
     max_eps = cx.res.metrics.max_eps;
     steps_per_period = static_cast<double>(cx.res.stats.steps - steps0) / std::max(1, cx.sim.metric_cycles);
-    if (cx.sim.error_bars) {
-      ev.bars = orbit_error_bars(cx, chart, base, *tight_period, found.z, monodromy.M, options);
-      if (ev.bars.outcome == ErrorBarEvidence::Outcome::failed && !ev.bars.budget) return ev;
-    } else if (const double kappa = orbit_conditioning(steady.multipliers); kappa > cx.tuning.refine_conditioning) {
-      // Without the refinement the error bars make, an ill-conditioned orbit cannot be told
-      // from a fixed point of the map's error (near the wall Newton converges to those):
-      // not located.
-      std::ostringstream why;
-      why << "simulation.error_bars = false, and an orbit with kappa " << kappa
-          << " is located only where it stops moving under refinement";
-      ev.bars.outcome = ErrorBarEvidence::Outcome::failed;
-      ev.bars.conditioning = kappa;
-      ev.bars.failure = why.str();
-      return ev;
-    }
+    if (!take_error_bars(cx, chart, base, *tight_period, found.z, monodromy.M, options, ev)) return ev;
     ev.orbit_error = steady.orbit_error;
     // Located no better than the tolerance a cycle is steady by: near |μ| = 1 a fixed
     // point of the map's error.
