@@ -201,7 +201,9 @@ void fit_flow_drift_law(SteadyContext& cx, Chart& chart, const StartState& from,
       if (film.count(i)) continue;
       StartState at = from;
       double h = kNaN;
-      if (chart.expand(from.t, way.trail[i].data(), at.qv)) {
+      // The law is no part of the verdict: where the run's budget has no period left for a
+      // point, it is skipped, and no budget note is left.
+      if (cx.budget.left(cx.spent()) >= 1 && chart.expand(from.t, way.trail[i].data(), at.qv)) {
         const SegmentResult one = cx.measure(at, 1.0, false, 1);
         if (one.res.status == RunStatus::ok && !one.res.cycles.empty()) h = one.res.cycles.back().min_film_thickness_m;
       }
@@ -211,6 +213,10 @@ void fit_flow_drift_law(SteadyContext& cx, Chart& chart, const StartState& from,
   // The first point (two periods into the flow) still carries the transient's wobble.
   sample(1, n - 1);
   const double last = film.rbegin()->second;
+  if (!std::isfinite(last)) {
+    ev.no_law = "the film where the flow stopped was not measured";
+    return;
+  }
   size_t lo = 1;
   for (const auto& [i, h] : film)
     if (h > kNearEnd * last) lo = i;
