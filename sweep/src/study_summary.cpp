@@ -174,9 +174,17 @@ void print_notes(std::FILE* out, const h5::File& f, const h5::Table& t) {
                reversed, full);
 }
 
+/// A period-count column's sum, its unknowns (-1) left out (0: no such column).
+double sum_periods(const h5::Table& t, const char* column) {
+  double sum = 0.0;
+  if (t.has_column(column))
+    for (const std::int64_t p : t.read_int64s(column)) sum += static_cast<double>(std::max<std::int64_t>(p, 0));
+  return sum;
+}
+
 /// The boundaries located between grid points, where the study file has them
 /// (`python3 -m lubjoint.boundaries STUDY.h5` stores them as /boundaries): one line each.
-void print_boundaries(std::FILE* out, const h5::File& f) {
+void print_boundaries(std::FILE* out, const h5::File& f, const h5::Table& cases) {
   if (!f.exists("boundaries")) return;
   const h5::Table b = f.open_table("boundaries");
   const std::size_t n = b.rows();
@@ -189,38 +197,36 @@ void print_boundaries(std::FILE* out, const h5::File& f) {
   const auto a = b.read_int64s("case_a"), c = b.read_int64s("case_b"), converged = b.read_int64s("converged");
   static const std::vector<std::string> fixed = {"axis",   "value", "error",   "unit",     "kind",
                                                  "case_a", "case_b", "runs", "periods", "converged"};
-  // What they cost, against the study's own periods (its cases' and their sensitivities').
-  const h5::Table cases = f.open_table("cases");
-  double study = 0.0, spent = 0.0;
-  for (const char* c : {"periods_integrated", "sensitivity_periods"})
-    if (cases.has_column(c))
-      for (const std::int64_t p : cases.read_int64s(c)) study += p > 0 ? static_cast<double>(p) : 0.0;
-  if (b.has_column("periods"))
-    for (const std::int64_t p : b.read_int64s("periods")) spent += static_cast<double>(p);
-  fmt::print(out, "boundaries located between grid points ({:.0f} periods, {:.1f} % of the study's {:.0f}; "
-             "docs/theory/sensitivities.md):\n", spent, study > 0.0 ? 100.0 * spent / study : 0.0, study);
-  for (std::size_t i = 0; i < n; ++i) {
-    std::string others;
-    for (const h5::Column& col : b.columns()) {
-      if (std::find(fixed.begin(), fixed.end(), col.name) != fixed.end()) continue;
-      std::string v;
-      if (col.type == h5::ColumnType::String) v = b.read_strings(col.name)[i];
-      else if (col.type == h5::ColumnType::Float64 && std::isfinite(b.read_doubles(col.name)[i]))
-        v = fmt::format("{:g}", b.read_doubles(col.name)[i]);
-      if (!v.empty()) others += (others.empty() ? "" : ", ") + col.name + " = " + v;
+  // Each row's other axes ("name = value"), a column at a time.
+  std::vector<std::string> others(n);
+  for (const h5::Column& col : b.columns()) {
+    if (std::find(fixed.begin(), fixed.end(), col.name) != fixed.end()) continue;
+    std::vector<std::string> text(n);
+    if (col.type == h5::ColumnType::String) {
+      text = b.read_strings(col.name);
+    } else if (col.type == h5::ColumnType::Float64) {
+      const std::vector<double> v = b.read_doubles(col.name);
+      for (std::size_t i = 0; i < n; ++i)
+        if (std::isfinite(v[i])) text[i] = fmt::format("{:g}", v[i]);
     }
-    fmt::print(out, "  {}: {} = {:.6g} ± {:.2g} {} between cases {} and {} ({}){}\n", kind[i], axis[i], value[i],
-               error[i], unit[i], a[i], c[i], others, converged[i] ? "" : ", not converged");
+    for (std::size_t i = 0; i < n; ++i)
+      if (!text[i].empty()) others[i] += (others[i].empty() ? "" : ", ") + col.name + " = " + text[i];
   }
+  // What they cost, against the study's own periods (its cases' and their sensitivities').
+  const double study = sum_periods(cases, "periods_integrated") + sum_periods(cases, "sensitivity_periods");
+  const double spent = sum_periods(b, "periods");
+  fmt::print(out, "boundaries located between grid points ({:.0f} periods, {:.1f} % of the study's {:.0f}; {}):\n",
+             spent, study > 0.0 ? 100.0 * spent / study : 0.0, study, data_path("docs/theory/sensitivities.md"));
+  for (std::size_t i = 0; i < n; ++i)
+    fmt::print(out, "  {}: {} = {:.6g} ± {:.2g} {} between cases {} and {} ({}){}\n", kind[i], axis[i], value[i],
+               error[i], unit[i], a[i], c[i], others[i], converged[i] ? "" : ", not converged");
 }
 
 /// What the sensitivities cost, where the study has them: their periods against the steady
 /// stages' (issue 44 bounds them at 30 %).
 void print_sensitivity_cost(std::FILE* out, const h5::Table& t) {
   if (!t.has_column("sensitivity_periods") || !t.has_column("periods_integrated")) return;
-  double spent = 0.0, steady = 0.0;
-  for (std::int64_t p : t.read_int64s("sensitivity_periods")) spent += static_cast<double>(std::max<std::int64_t>(p, 0));
-  for (std::int64_t p : t.read_int64s("periods_integrated")) steady += static_cast<double>(std::max<std::int64_t>(p, 0));
+  const double spent = sum_periods(t, "sensitivity_periods"), steady = sum_periods(t, "periods_integrated");
   fmt::print(out,
              "sensitivities: d_<metric>_per_<axis> of each located orbit in /cases and /grids; {:.0f} periods, {:.1f} % "
              "of the steady stages' {:.0f} ({})\n",
@@ -256,7 +262,7 @@ void print_summary(const std::string& path, std::FILE* out) {
   print_counts(out, path, n, total, status, cls);
   print_table(out, cols, n);
   print_sensitivity_cost(out, t);
-  print_boundaries(out, f);
+  print_boundaries(out, f, t);
   print_notes(out, f, t);
   for (std::size_t i = 0; i < n; ++i)
     if (!is_ok(status[i])) fmt::print(out, "{}: {}: {}\n", names[i], status[i], message[i]);

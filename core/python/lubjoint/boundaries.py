@@ -50,15 +50,15 @@ class _Line:
 
         self.scene = st.scene(study.path, case)
         self.axis, self.pointer = axis, pointer
+        self.slope = "d_min_film_thickness_m_per_" + pointer.lstrip("/").replace("/", "_")  # its sensitivity
         self.runs = 0
         self.periods = 0  # crank periods the runs integrated, their sensitivities' included
 
     def _count(self, ds):
         self.runs += 1
         self.periods += int(ds["periods_integrated"])
-        key = "d_min_film_thickness_m_per_" + self.pointer.lstrip("/").replace("/", "_")
-        if key in ds:
-            self.periods += int(ds[key].attrs.get("periods_integrated", 0))
+        if self.slope in ds:
+            self.periods += int(ds[self.slope].attrs.get("periods_integrated", 0))
 
     def __call__(self, value):
         from .run import simulate
@@ -70,8 +70,7 @@ class _Line:
         self._count(ds)
         if ds.attrs["classification"] not in _ORBITS:
             return None
-        key = "d_min_film_thickness_m_per_" + self.pointer.lstrip("/").replace("/", "_")
-        slope = float(ds[key]) * sign
+        slope = float(ds[self.slope]) * sign
         gap = float(ds["min_film_thickness_m"]) - float(ds["safe_film_thickness_m"])
         return gap, slope, float(ds["min_film_thickness_m_error"])
 
@@ -104,6 +103,27 @@ def _locate(line, lo, hi, tolerance, max_runs):
     return x, step_error, line.runs, False
 
 
+def _orbit_edges(study):
+    """The lattice edges of ``study`` whose two ends both have a located orbit, along an axis
+    that sets a scene number: ``(case_a, case_b, axis, pointer, row_a, row_b)``."""
+    from . import study as st
+
+    df = st.cases(study.path)  # with the lattice in its attrs
+    pointers = axis_pointers(study)
+    for a, b, axis in st.lattice_edges(df):
+        ra, rb = df.loc[a], df.loc[b]
+        if ra["classification"] in _ORBITS and rb["classification"] in _ORBITS and axis in pointers:
+            yield a, b, axis, pointers[axis], ra, rb
+
+
+def _row(study, a, b, axis, ra, line, value, error, kind, converged):
+    """One boundary's row: the fixed columns, then the other axes' values of its line."""
+    cases = study.cases
+    others = {k: ra[k] for k in cases.attrs.get("axes", []) if k != axis and k in ra}
+    return {"axis": axis, "value": value, "error": error, "unit": cases[axis].attrs.get("units", ""), "kind": kind,
+            "case_a": a, "case_b": b, "runs": line.runs, "periods": line.periods, "converged": converged, **others}
+
+
 def safe_film_boundaries(study, tolerance=5e-3, max_runs=8):
     """The axis values where the minimum film reaches the safe film, between every two lattice
     neighbours of ``study`` (lubjoint.study.lattice_edges) whose ``below_safe_film`` differ and
@@ -127,29 +147,18 @@ def safe_film_boundaries(study, tolerance=5e-3, max_runs=8):
     """
     import pandas as pd
 
-    from . import study as st
-
-    cases = study.cases
-    df = st.cases(study.path)  # with the lattice in its attrs
-    pointers = axis_pointers(study)
     rows = []
-    for a, b, axis in st.lattice_edges(df):
-        ra, rb = df.loc[a], df.loc[b]
-        if ra["classification"] not in _ORBITS or rb["classification"] not in _ORBITS:
-            continue
-        if int(ra["below_safe_film"]) == int(rb["below_safe_film"]) or axis not in pointers:
+    for a, b, axis, pointer, ra, rb in _orbit_edges(study):
+        if int(ra["below_safe_film"]) == int(rb["below_safe_film"]):
             continue
         key = f"d_min_film_thickness_m_per_{axis}"
-        if key not in df or not (math.isfinite(ra[key]) and math.isfinite(rb[key])):
+        if key not in ra or not (math.isfinite(ra[key]) and math.isfinite(rb[key])):
             continue
         ends = [(float(r[axis]), float(r["min_film_thickness_m"] - r["safe_film_thickness_m"]), float(r[key]))
                 for r in (ra, rb)]
-        line = _Line(study, a, axis, pointers[axis])
-        value, error, runs, converged = _locate(line, ends[0], ends[1], tolerance, max_runs)
-        others = {k: ra[k] for k in cases.attrs.get("axes", []) if k != axis and k in ra}
-        rows.append({"axis": axis, "value": value, "error": error, "unit": cases[axis].attrs.get("units", ""),
-                     "kind": "safe_film", "case_a": a, "case_b": b, "runs": runs, "periods": line.periods,
-                     "converged": converged, **others})
+        line = _Line(study, a, axis, pointer)
+        value, error, _, converged = _locate(line, ends[0], ends[1], tolerance, max_runs)
+        rows.append(_row(study, a, b, axis, ra, line, value, error, "safe_film", converged))
     return pd.DataFrame(rows)
 
 
@@ -225,27 +234,16 @@ def stability_boundaries(study, tolerance=5e-3, max_runs=10):
     ``neimark_sacker`` (a complex pair). Columns as ``safe_film_boundaries``'."""
     import pandas as pd
 
-    from . import study as st
-
-    cases = study.cases
-    df = st.cases(study.path)
-    pointers = axis_pointers(study)
     rows = []
-    for a, b, axis in st.lattice_edges(df):
-        ra, rb = df.loc[a], df.loc[b]
-        if ra["classification"] not in _ORBITS or rb["classification"] not in _ORBITS or axis not in pointers:
-            continue
+    for a, b, axis, pointer, ra, rb in _orbit_edges(study):
         ma, mb = float(ra["multiplier_1_modulus"]), float(rb["multiplier_1_modulus"])
         if not (math.isfinite(ma) and math.isfinite(mb)) or (ma > 1.0) == (mb > 1.0):
             continue
         ends = [(float(r[axis]), float(r["multiplier_1_modulus"]) - 1.0, float(r["multiplier_1_angle_rad"]))
                 for r in (ra, rb)]
-        line = _Stability(study, a, axis, pointers[axis])
-        value, error, angle, runs, converged = _falsi(line, ends[0], ends[1], tolerance, max_runs)
-        others = {k: ra[k] for k in cases.attrs.get("axes", []) if k != axis and k in ra}
-        rows.append({"axis": axis, "value": value, "error": error, "unit": cases[axis].attrs.get("units", ""),
-                     "kind": _kind(angle), "case_a": a, "case_b": b, "runs": runs, "periods": line.periods,
-                     "converged": converged, **others})
+        line = _Stability(study, a, axis, pointer)
+        value, error, angle, _, converged = _falsi(line, ends[0], ends[1], tolerance, max_runs)
+        rows.append(_row(study, a, b, axis, ra, line, value, error, _kind(angle), converged))
     return pd.DataFrame(rows)
 
 

@@ -60,7 +60,7 @@ bool fit_secants(const std::vector<double>& N, const std::vector<double>& h, siz
   }
 }
 
-/// ΔN from h0 to h1 for the drift s0 < 0... given as its size at h0 (ln s0) and p.
+/// ΔN from h0 to h1 under the law whose drift at h0 has size s0 (given as ln s0), exponent p.
 double crossing(double log_s0, double p, double h0, double h1) {
   const double s0 = std::exp(log_s0);  // |dh/dN| at h0 [m/cycle]
   if (std::abs(p - 1.0) < 1e-9) return h0 * std::log(h0 / h1) / s0;
