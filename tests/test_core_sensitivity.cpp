@@ -107,6 +107,31 @@ TEST(Sensitivity, ThePrintedLawsMetricsDependOnViscosityTimesLength) {
   }
 }
 
+// The error bar, half the difference of the two one-sided differences (theory page): for a
+// smooth metric it is the step's truncation, h |m''|/2, of order δ = 1e-3 of the slope (bound
+// 1e-2: m'' on the scale of m'/λ); for the crank angle of the minimum film, a flat minimum
+// whose place jumps within the step, it is as large as the value (bound: half of it). The
+// orbit's own measurement (the metric cycles) is shared: the second parameter does not pay it.
+TEST(Sensitivity, ItsErrorBarIsTheTruncationForASmoothMetricAndTheJumpAtAKink) {
+  const json doc = paper_case();
+  const lub::RunResult r = lub::run_scene(lub::parse_scene(doc));
+  ASSERT_TRUE(lub::has_orbit(r.steady.kind)) << r.message;
+  const auto s = lub::steady_sensitivities(
+      r, {parameter(doc, "/joints/3/viscosity_Pa_s", "Pa s"), parameter(doc, "/drivers/0/speed_rpm", "rpm")});
+  ASSERT_TRUE(s[0].ok && s[1].ok) << s[0].message << s[1].message;
+  const auto& metrics = lub::steady_metrics();
+  for (std::size_t i = 0; i < metrics.size(); ++i) {
+    const std::string name = metrics[i].name;
+    if (name == "min_film_thickness_m" || name == "max_eps" || name == "peak_reaction_N") {
+      EXPECT_GT(s[0].d_metric_error[i], 0.0) << name;
+      EXPECT_LT(s[0].d_metric_error[i], 1e-2 * std::abs(s[0].d_metric[i])) << name;
+    }
+    if (name == "crank_angle_at_min_film_rad")
+      EXPECT_GT(s[0].d_metric_error[i], 0.5 * std::abs(s[0].d_metric[i])) << name;
+  }
+  EXPECT_EQ(s[0].periods - s[1].periods, static_cast<long long>(lub::parse_scene(doc).simulation.metric_cycles));
+}
+
 TEST(Sensitivity, ARunWithoutAnOrbitSaysSo) {
   json doc = paper_case();
   doc["simulation"]["steady"] = "transient";

@@ -1,6 +1,6 @@
 // What a sensitivity costs (docs/theory/sensitivities.md): d(metrics)/d(viscosity) of the paper's
 // reference orbit (printed law, 0.5 mm, 400 cP, 5000 rpm, steady auto) by the implicit-function
-// route (steady_sensitivities: 12 periods at rtol/100), against central differences of two
+// route (steady_sensitivities: 8 periods at rtol/100), against central differences of two
 // orbits located separately at ± 1 % (two whole steady stages), side by side in one run.
 //
 //   build/tests/bench/bench_sensitivity

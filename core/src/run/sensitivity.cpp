@@ -11,6 +11,12 @@
 // measured on the first-order orbits y* ± δλ dy*/dλ of the scenes at λ±: O(δ²) off, like the
 // difference itself. Maps and measurements at rtol/100, so that the map's error (~1.7e3 rtol a
 // period) is small against the change δ makes.
+//
+// The error bar: the two one-sided differences (m₊ − m₀)/h and (m₀ − m₋)/h, m₀ measured once
+// on the orbit at λ for all parameters, differ by h m'' plus the measurements' noise over h;
+// half their difference, |m₊ − 2m₀ + m₋|/(2h), bounds the central difference's truncation
+// h² m'''/6 wherever m'' changes on scales longer than h, carries its noise, and is as large
+// as the slope's jump at a kink within ±h (a peak over the cycle that changes place).
 #include <cmath>
 #include <optional>
 #include <string>
@@ -26,8 +32,7 @@ namespace lub {
 namespace detail {
 namespace {
 
-constexpr double kRelativeStep = 1e-3;   // δ: the step in λ, relative
-constexpr double kCoarseFactor = 4.0;    // the error bar's second estimate at 4δ
+constexpr double kRelativeStep = 1e-3;  // δ: the step in λ, relative
 
 /// One perturbed scene: its steady context, the seed placed in it and the seed's chart there,
 /// built once for both the period and the measurement. `failure` where the seed does not fit.
@@ -93,17 +98,20 @@ std::optional<Metrics> measure_at(Side& side, const Eigen::VectorXd& y, double f
   return m.res.metrics;
 }
 
-/// One estimate of every metric's derivative with the relative step `delta`.
+/// Every metric's central difference with the relative step `delta`, and the two measurements
+/// it differences (for the error bar).
 struct Estimate {
   bool ok = false;
   std::string failure;
-  std::vector<double> d_metric;
+  double h = 0.0;  ///< the step in λ
+  Metrics plus, minus;
 };
 
 Estimate estimate(const SensitivityParameter& p, const OrbitSeed& seed, const Eigen::MatrixXd& M_scaled, double delta,
                   long long& periods) {
   Estimate e;
-  const double h = delta * p.value;
+  e.h = delta * p.value;
+  const double h = e.h;
   const Scene plus_scene = p.scene_at(p.value + h), minus_scene = p.scene_at(p.value - h);
   Side plus(plus_scene, seed), minus(minus_scene, seed);
   const double tight = plus.cx.finer(plus.cx.tuning.tight_factor);
@@ -124,13 +132,43 @@ Estimate estimate(const SensitivityParameter& p, const OrbitSeed& seed, const Ei
   const std::optional<Metrics> mm = mp ? measure_at(minus, y0 - h * dy, tight, e.failure) : std::nullopt;
   periods += spent();
   if (!mp || !mm) return e;
-  for (const SteadyMetric& sm : steady_metrics()) {
-    double d = (*mp).*sm.value - (*mm).*sm.value;
-    if (sm.angle) d = std::remainder(d, kTwoPi);
-    e.d_metric.push_back(d / (2.0 * h));
-  }
+  e.plus = *mp;
+  e.minus = *mm;
   e.ok = true;
   return e;
+}
+
+/// The metrics measured on the seed's own orbit in the scene at λ (m₀ of every error bar), at
+/// the estimates' rtol; `failure` where they could not be.
+std::optional<Metrics> measure_at_seed(const Scene& scene, const OrbitSeed& seed, long long& periods,
+                                       std::string& failure) {
+  Side side(scene, seed);
+  if (!side.failure.empty()) {
+    failure = side.failure;
+    return std::nullopt;
+  }
+  const Chart& chart = *side.chart;
+  const Eigen::VectorXd y =
+      chart.reduce(side.base->qv).cwiseQuotient(Eigen::Map<const Eigen::VectorXd>(chart.units().data(), chart.size()));
+  const std::optional<Metrics> m = measure_at(side, y, side.cx.finer(side.cx.tuning.tight_factor), failure);
+  periods += side.cx.res.steady.periods_integrated;
+  return m;
+}
+
+/// Fills `s` (its derivatives, and their bars where `m0` is known) from the estimate `e`.
+void differentiate(const Estimate& e, const std::optional<Metrics>& m0, Sensitivity& s) {
+  const auto difference = [](const SteadyMetric& sm, double a, double b) {
+    return sm.angle ? std::remainder(a - b, kTwoPi) : a - b;
+  };
+  std::size_t i = 0;
+  for (const SteadyMetric& sm : steady_metrics()) {
+    s.d_metric[i] = difference(sm, e.plus.*sm.value, e.minus.*sm.value) / (2.0 * e.h);
+    if (m0)
+      s.d_metric_error[i] = std::abs(difference(sm, e.plus.*sm.value, (*m0).*sm.value) -
+                                     difference(sm, (*m0).*sm.value, e.minus.*sm.value)) /
+                            (2.0 * std::abs(e.h));
+    ++i;
+  }
 }
 
 /// The unit of a scene number, from its key's suffix (the scene format names every unit so).
@@ -180,6 +218,9 @@ std::vector<SensitivityParameter> sensitivity_parameters(const nlohmann::json& d
 std::vector<Sensitivity> steady_sensitivities(const RunResult& r,
                                               const std::vector<SensitivityParameter>& parameters) {
   std::vector<Sensitivity> out;
+  std::optional<Metrics> m0;  // the orbit's metrics at λ, measured once for every parameter
+  std::string m0_failure = "the orbit's own measurement did not finish";
+  bool m0_tried = false;
   for (const SensitivityParameter& p : parameters) {
     Sensitivity s;
     s.name = p.name;
@@ -198,18 +239,17 @@ std::vector<Sensitivity> steady_sensitivities(const RunResult& r,
         const OrbitSeed& seed = r.orbit_seed;
         const auto n = static_cast<Eigen::Index>(std::lround(std::sqrt(static_cast<double>(seed.monodromy.size()))));
         const Eigen::MatrixXd M = Eigen::Map<const Eigen::MatrixXd>(seed.monodromy.data(), n, n);
-        const detail::Estimate fine = detail::estimate(p, seed, M, detail::kRelativeStep, s.periods);
-        const detail::Estimate coarse =
-            fine.ok ? detail::estimate(p, seed, M, detail::kCoarseFactor * detail::kRelativeStep, s.periods)
-                    : detail::Estimate{};
-        if (!fine.ok) {
-          s.message = fine.failure;
+        const detail::Estimate e = detail::estimate(p, seed, M, detail::kRelativeStep, s.periods);
+        if (!e.ok) {
+          s.message = e.failure;
         } else {
+          if (!m0_tried) {  // its periods are the first differentiated parameter's
+            m0_tried = true;
+            m0 = detail::measure_at_seed(p.scene_at(p.value), seed, s.periods, m0_failure);
+          }
           s.ok = true;
-          s.d_metric = fine.d_metric;
-          for (std::size_t i = 0; i < nm; ++i)
-            s.d_metric_error[i] = coarse.ok ? std::abs(fine.d_metric[i] - coarse.d_metric[i]) : kNaN;
-          if (!coarse.ok) s.message = "no error bar: " + coarse.failure;
+          detail::differentiate(e, m0, s);
+          if (!m0) s.message = "no error bar: " + m0_failure;
         }
       }
     } catch (const std::exception& e) {

@@ -327,8 +327,9 @@ struct SensitivityParameter {
 /// d(metric)/dλ of each steady metric on a located orbit (docs/theory/sensitivities.md): by
 /// the implicit-function theorem dz*/dλ = (I − M)⁻¹ ∂P/∂λ, ∂P/∂λ a central difference of the
 /// period map at z* over λ(1 ± δ); each metric then measured on the orbits z* ± δλ dz*/dλ
-/// of the scenes at λ(1 ± δ) and differenced. At rtol/100, with δ = 1e-3 and again with 4δ:
-/// the error bar is the two estimates' difference.
+/// of the scenes at λ(1 ± δ) and differenced, at rtol/100 with δ = 1e-3. The error bar is half
+/// the difference of the two one-sided differences, from the metrics measured once on the
+/// orbit itself: |m₊ − 2m₀ + m₋|/(2h).
 struct Sensitivity {
   std::string name, unit;
   double value = 0.0;
