@@ -171,6 +171,12 @@ def test_classification_map_draws_each_cells_classification(study):
         expected = expected.transpose("viscosity_Pa_s", "clearance_m").values.astype(str)
         assert [[labels[int(v)] for v in row] for row in cells] == expected.tolist()
         assert "[µm]" in ax.get_xlabel() or not ax.get_xlabel()
+        # each located orbit's cell names its conditioning κ, as the file holds it
+        kappa = g["orbit_conditioning"].sel(force_law=law).sortby(["viscosity_Pa_s", "clearance_m"])
+        kappa = kappa.transpose("viscosity_Pa_s", "clearance_m").values
+        orbits = set(lubjoint.study.orbit_classifications(study.cases))
+        wanted = sorted(f"κ {k:.2g}" for c, k in zip(expected.ravel(), kappa.ravel()) if c in orbits and np.isfinite(k))
+        assert wanted and sorted(t.get_text() for t in ax.texts if t.get_text().startswith("κ")) == wanted
     one = plot.classification_map(study, x="viscosity_Pa_s", y="clearance_m", fix={"force_law": LAWS[1]})
     assert len(one.axes) == 1 and "viscosity [Pa s]" == one.axes[0].get_xlabel()
 

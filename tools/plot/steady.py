@@ -90,7 +90,7 @@ def draw_edges(axs, layout, cases, edges):
 def grid_panels(cases, value, title, out, cmap=None, norm=None, categorical=False, edges=None, label=None,
                 annotate=None):
     """One panel per force law and crank speed, clearance x viscosity in each; `value(row)` the
-    cell's number (NaN: blank), on one colour scale (`norm`) for all panels; `annotate(v)`
+    cell's number (NaN: blank), on one colour scale (`norm`) for all panels; `annotate(v, row)`
     the text written in a cell with a value."""
     laws = list(dict.fromkeys(cases["force_law"]))
     speeds = sorted(set(cases["speed_rpm"]), reverse=True)
@@ -101,14 +101,18 @@ def grid_panels(cases, value, title, out, cmap=None, norm=None, categorical=Fals
         for j, speed in enumerate(speeds):
             ax = axs[i][j]
             img = np.full((len(clearances), len(viscosities)), np.nan)
+            rows = {}
             sel = cases[(cases["force_law"] == law) & (cases["speed_rpm"] == speed)]
             for _, r in sel.iterrows():
-                img[clearances.index(r["clearance_m"]), viscosities.index(r["viscosity_Pa_s"])] = value(r)
+                at = (clearances.index(r["clearance_m"]), viscosities.index(r["viscosity_Pa_s"]))
+                img[at], rows[at] = value(r), r
             im = ax.imshow(img, cmap=cmap, norm=norm, aspect="auto")
             if annotate is not None:
                 for (y, x), v in np.ndenumerate(img):
                     if np.isfinite(v):
-                        ax.text(x, y, annotate(v), ha="center", va="center", fontsize=6,
+                        # below the middle in a classification map, whose edges' labels sit there
+                        ax.text(x, y + (0.3 if categorical else 0.0), annotate(v, rows[y, x]), ha="center",
+                                va="center", fontsize=6,
                                 color="black" if norm is None or norm(v) > 0.5 else "white")
             ax.set_xticks(range(len(viscosities)), [f"{v * 1e3:g}" for v in viscosities], fontsize=7)
             ax.set_yticks(range(len(clearances)), [f"{c * 1e3:g}" for c in clearances], fontsize=7)
@@ -189,6 +193,7 @@ def main():
     from matplotlib.colors import BoundaryNorm, ListedColormap
     cmap = ListedColormap(COLOURS)
     norm = BoundaryNorm(np.arange(len(CLASSES) + 1) - 0.5, len(CLASSES))
+    orbit = study_reader.orbit_classifications(cases)  # as the file says
     edges = study_reader.bifurcation_edges(cases)
     if len(edges):
         edges.to_csv(os.path.join(a.outdir, "steady_edges.csv"), index=False)
@@ -197,16 +202,16 @@ def main():
     grid_panels(cases, lambda r: CLASSES.index(r["classification"]) if r["classification"] in CLASSES else np.nan,
                 f"steady-cycle classification (simulation.steady = {'continuation' if continued else 'auto'})",
                 os.path.join(a.outdir, "steady_classification.png"), cmap=cmap, norm=norm, categorical=True,
-                edges=edges)
+                edges=edges, annotate=lambda v, r: lubplot.posedness_note(
+                    r["classification"], r.get("orbit_conditioning", np.nan), r.get("drift_exponent", np.nan), orbit))
     # One scale for every panel: |mu|max in [0, 1] (a stable orbit), above 1 red (unstable);
     # only where an orbit was found and located (a not-located fixed point has multipliers too).
     from matplotlib.colors import Normalize
-    orbit = study_reader.orbit_classifications(cases)  # as the file says
     grid_panels(cases, lambda r: r["multiplier_1_modulus"] if r["classification"] in orbit else np.nan,
                 "dominant Floquet multiplier |mu|max of the periodic orbits (blank: no orbit)",
                 os.path.join(a.outdir, "steady_multiplier.png"),
                 cmap=plt.get_cmap("viridis").with_extremes(over="#d62828"), norm=Normalize(0.0, 1.0),
-                label="|mu|max (red: > 1, unstable)", annotate=lambda v: f"{v:.4f}" if v > 0.99 else f"{v:.3f}")
+                label="|mu|max (red: > 1, unstable)", annotate=lambda v, r: f"{v:.4f}" if v > 0.99 else f"{v:.3f}")
     if a.orbit:
         orbit_figure(os.path.join(a.outdir, "steady_frene_long_orbit.png"))
 

@@ -384,7 +384,31 @@ def _classification_colours(labels):
     return [CLASSIFICATION_COLOURS.get(c) or greys[others.index(c)] for c in labels]
 
 
-def classification_map(study, grid=None, x=None, y=None, *, fix=None):
+def posedness_note(classification, kappa, drift_exponent, orbits):
+    """How well posed a cell's answer is, in a few characters: ``κ 57`` for a located orbit
+    (its conditioning 1/min|1 − μ|), ``p 2.5`` for a drifting cell with a drift law (dh/dN =
+    −a h^p), "" otherwise. ``orbits``: the classifications with an orbit
+    (lubjoint.study.orbit_classifications)."""
+    if classification in orbits and math.isfinite(kappa):
+        return f"κ {kappa:.2g}"
+    if classification == "drifting" and math.isfinite(drift_exponent):
+        return f"p {drift_exponent:.2g}"
+    return ""
+
+
+def _posedness_notes(cell, cls, orbits):
+    """``posedness_note`` of each cell of ``cell`` (a variable may be absent from an older file)."""
+    def values(name):
+        return np.atleast_2d(cell[name].values.astype(float)) if name in cell else np.full(cls.shape, np.nan)
+
+    kappa, p = values("orbit_conditioning"), values("drift_exponent")
+    notes = np.full(cls.shape, "", dtype=object)
+    for (i, j), c in np.ndenumerate(cls):
+        notes[i, j] = posedness_note(c, kappa[i, j], p[i, j], orbits)
+    return notes
+
+
+def classification_map(study, grid=None, x=None, y=None, *, fix=None, notes=True):
     """Each cell's steady-cycle classification over two axes of a sub-grid, one panel per value
     of the grid's other axes (force law, crank speed, ...).
 
@@ -399,6 +423,10 @@ def classification_map(study, grid=None, x=None, y=None, *, fix=None):
         Without a second one, a panel is one row.
     fix : dict, optional
         ``{axis: value}``: draw only these values of the other axes.
+    notes : bool, optional
+        Write in each cell how well posed its answer is: a located orbit's conditioning
+        ``κ`` = 1/min|1 − μ| (``orbit_conditioning``), a drifting cell's drift exponent ``p``
+        (``drift_exponent``, dh/dN = −a h^p; docs/theory/slow-flow.md). Default True.
 
     Returns
     -------
@@ -407,6 +435,8 @@ def classification_map(study, grid=None, x=None, y=None, *, fix=None):
         them with more than one, a row per combination of the others), and a legend of the
         classifications drawn. A case that is not ``ok`` is hatched and its status written in it.
     """
+    from .study import orbit_classifications
+
     study, name, g = _grid(study, grid, [a for a in (x, y) if a])
     g = _sorted(_fixed(g, fix))
     dims = list(g["case_id"].dims)
@@ -420,6 +450,7 @@ def classification_map(study, grid=None, x=None, y=None, *, fix=None):
     from matplotlib.colors import BoundaryNorm, ListedColormap
 
     cmap, norm = ListedColormap(colours), BoundaryNorm(np.arange(len(labels) + 1) - 0.5, len(labels))
+    orbits = set(orbit_classifications(study.cases)) if notes else set()
     xs, xlabel = _shown(g, x)
     ys, ylabel = _shown(g, y) if y else ([""], "")
     ncols = next((g.sizes[d] for d in reversed(rest) if g.sizes[d] > 1), 1)
@@ -433,7 +464,7 @@ def classification_map(study, grid=None, x=None, y=None, *, fix=None):
         cell = g.sel(dict(zip(rest, values))).transpose(*([y] if y else []), x)
         cls = np.atleast_2d(cell["classification"].values.astype(str))
         cell_map(ax, np.vectorize(labels.index)(cls), xs, ys, cmap=cmap, norm=norm,
-                 status=np.atleast_2d(cell["status"].values))
+                 text=_posedness_notes(cell, cls, orbits) if notes else None, status=np.atleast_2d(cell["status"].values))
         if not y:
             ax.set_yticks([])
         ax.set_title(", ".join(_value_text(g, d, v) for d, v in zip(rest, values)), fontsize=9)
