@@ -22,8 +22,11 @@
 
 namespace lub::detail {
 
+struct SensitivityData;  // integrator_cvode.cpp: forward sensitivities, where started
+
 struct CallbackData {
   OdeSystem* sys = nullptr;
+  SensitivityData* sens = nullptr;
   int n = 0;         ///< ODE size (quadratures appended after it by ARKODE)
   int nquad = 0;     ///< quadratures integrated as extra states (ARKODE)
   std::string error; ///< SUNDIALS' first error text, or an exception's

@@ -7,6 +7,8 @@
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
+#include <cfloat>
+#include <cmath>
 #include <exception>
 #include <stdexcept>
 #include <string>
@@ -18,9 +20,45 @@
 
 namespace lub {
 
+namespace detail {
+
+/// Forward sensitivities' state (Integrator::start_sensitivities): their vectors and the
+/// states' scales of their difference steps.
+struct SensitivityData {
+  int ns = 0;
+  N_Vector* yS = nullptr;
+  std::vector<double> scale;
+  std::vector<double> pbar;  ///< each column's scale (CVodeSetSensParams)
+  N_Vector* atol = nullptr;  ///< their absolute tolerances
+  bool off = false;          ///< stopped (Integrator::stop_sensitivities)
+  void allocate(int n_sens, N_Vector like, SUNContext) {
+    yS = N_VCloneVectorArray(n_sens, like);
+    if (!yS) throw std::runtime_error("N_VCloneVectorArray failed");
+    ns = n_sens;
+  }
+  SensitivityData() = default;
+  SensitivityData(const SensitivityData&) = delete;
+  SensitivityData& operator=(const SensitivityData&) = delete;
+  ~SensitivityData() {
+    if (yS) N_VDestroyVectorArray(yS, ns);
+    if (atol) N_VDestroyVectorArray(atol, ns);
+  }
+};
+
+}  // namespace detail
+
 namespace {
 
+/// The sensitivities' relative difference step: u^(1/3).
+const double kSensitivityStep = std::cbrt(DBL_EPSILON);
+/// The sensitivities' relative tolerance at the finest (their corrector's convergence test):
+/// their right-hand side, a difference quotient, carries round-off of ~1e-10 of itself,
+/// which a tighter test chases (at rtol 1e-10 the corrector failed hundreds of times a
+/// period, each failure a smaller step).
+constexpr double kSensitivityRtol = 1e-6;
+
 using detail::CallbackData;
+using detail::SensitivityData;
 using detail::err_cb;
 using detail::quad_cb;
 using detail::rhs_cb;
@@ -182,8 +220,12 @@ class CvodeIntegrator final : public Integrator {
     // the step's history.
     if (q_) check(CVodeGetQuadDky(mem_, t, 0, q_), "CVodeGetQuadDky");
     for (sunindextype i = 0; i < N_VGetLength(y_); ++i) NV_Ith_S(y_, i) = y[i];
+    // The sensitivities at t, likewise, to restart them there.
+    const bool sens = sens_.ns > 0 && !sens_.off;
+    if (sens) check(CVodeGetSensDky(mem_, t, 0, sens_.yS), "CVodeGetSensDky");
     check(CVodeReInit(mem_, t, y_), "CVodeReInit");
     if (q_) check(CVodeQuadReInit(mem_, q_), "CVodeQuadReInit");
+    if (sens) check(CVodeSensReInit(mem_, CV_STAGGERED, sens_.yS), "CVodeSensReInit");
     check(CVodeSetStopTime(mem_, t_stop_), "CVodeSetStopTime");
   }
 
@@ -195,11 +237,103 @@ class CvodeIntegrator final : public Integrator {
   void set_abs_tolerances(const std::vector<double>& atol) override {
     for (sunindextype i = 0; i < N_VGetLength(atol_); ++i) NV_Ith_S(atol_, i) = atol[static_cast<size_t>(i)];
     check(CVodeSVtolerances(mem_, rtol_, atol_), "CVodeSVtolerances");
+    if (sens_.ns > 0) set_sensitivity_scales();
+  }
+
+  bool start_sensitivities(int ns, const double* S0) override {
+    if (method_ != Method::cvode_bdf || ns < 1 || sens_.ns > 0) return false;
+    const sunindextype n = N_VGetLength(y_);
+    sens_.allocate(ns, y_, ctx_);
+    data_.sens = &sens_;
+    for (int k = 0; k < ns; ++k)
+      for (sunindextype i = 0; i < n; ++i) NV_Ith_S(sens_.yS[k], i) = S0[static_cast<size_t>(k * n + i)];
+    set_sensitivity_scales();
+    check(CVodeSensInit(mem_, ns, CV_STAGGERED, sensitivity_rhs, sens_.yS), "CVodeSensInit");
+    // Each column's scale, for the tolerances CVODES derives from the state's (atol / pbar_k,
+    // which its corrector's convergence test uses): S_ik is ∂y_i/∂y0_k, of order the ratio of
+    // the two states' scales when the seed is the identity; a seed column's size in its state's
+    // scales otherwise.
+    sens_.pbar.assign(static_cast<size_t>(ns), 1.0);
+    for (int k = 0; k < ns; ++k) {
+      double size = 0.0;
+      for (sunindextype i = 0; i < n; ++i)
+        size = std::max(size, std::abs(S0[static_cast<size_t>(k * n + i)]) / sens_.scale[static_cast<size_t>(i)]);
+      if (size > 0.0) sens_.pbar[static_cast<size_t>(k)] = 1.0 / size;
+    }
+    check(CVodeSetSensParams(mem_, nullptr, sens_.pbar.data(), nullptr), "CVodeSetSensParams");
+    const double rtol_s = std::max(rtol_, kSensitivityRtol);
+    sens_.atol = N_VCloneVectorArray(ns, y_);
+    for (int k = 0; k < ns; ++k)
+      for (sunindextype i = 0; i < n; ++i)
+        NV_Ith_S(sens_.atol[k], i) = rtol_s * sens_.scale[static_cast<size_t>(i)] / sens_.pbar[static_cast<size_t>(k)];
+    check(CVodeSensSVtolerances(mem_, rtol_s, sens_.atol), "CVodeSensSVtolerances");
+    check(CVodeSetSensErrCon(mem_, SUNFALSE), "CVodeSetSensErrCon");
+    return true;
+  }
+
+  void stop_sensitivities() override {
+    if (sens_.ns == 0 || sens_.off) return;
+    check(CVodeSensToggleOff(mem_), "CVodeSensToggleOff");
+    sens_.off = true;
+  }
+
+  bool sensitivities(double t, double* S) override {
+    if (sens_.ns == 0 || sens_.off) return false;
+    if (CVodeGetSensDky(mem_, t, 0, sens_.yS) != CV_SUCCESS) return false;
+    const sunindextype n = N_VGetLength(y_);
+    for (int k = 0; k < sens_.ns; ++k)
+      for (sunindextype i = 0; i < n; ++i) S[static_cast<size_t>(k * n + i)] = NV_Ith_S(sens_.yS[k], i);
+    return true;
   }
 
  private:
   void check(int flag, const char* what) {
     if (flag != 0) throw std::runtime_error(std::string(what) + " failed: " + data_.error);
+  }
+
+  /// Each state's scale for the sensitivities' difference steps: atol/rtol, the size at
+  /// which its absolute and relative tolerances meet (its own unit: a clearance for a
+  /// journal's position).
+  void set_sensitivity_scales() {
+    const sunindextype n = N_VGetLength(atol_);
+    sens_.scale.resize(static_cast<size_t>(n));
+    for (sunindextype i = 0; i < n; ++i) sens_.scale[static_cast<size_t>(i)] = NV_Ith_S(atol_, i) / rtol_;
+  }
+
+  /// S_k' = ∂f/∂y S_k by a central difference of f along S_k: a step of u^(1/3) in the
+  /// states' scales (truncation and round-off balanced, ~1e-10 of the product). A forward
+  /// difference (half the evaluations) is ~1e-8 off: near the wall its error failed the
+  /// sensitivities' corrector often enough to take ten times the steps.
+  static int sensitivity_rhs(int ns, sunrealtype t, N_Vector y, N_Vector, N_Vector* yS, N_Vector* ySdot,
+                             void* user, N_Vector tmp1, N_Vector tmp2) {
+    auto* self = static_cast<CallbackData*>(user);
+    return detail::guarded(self, "sensitivity right-hand side", [&] {
+      const SensitivityData& sd = *self->sens;
+      const sunindextype n = N_VGetLength(y);
+      const double* yy = N_VGetArrayPointer(y);
+      double* yp = N_VGetArrayPointer(tmp1);
+      double* fp = N_VGetArrayPointer(tmp2);
+      for (int k = 0; k < ns; ++k) {
+        const double* s = N_VGetArrayPointer(yS[k]);
+        double* out = N_VGetArrayPointer(ySdot[k]);
+        double size = 0.0;  // |S_k| in the states' scales
+        for (sunindextype i = 0; i < n; ++i) size = std::max(size, std::abs(s[i]) / sd.scale[static_cast<size_t>(i)]);
+        if (size == 0.0) {
+          for (sunindextype i = 0; i < n; ++i) out[i] = 0.0;
+          continue;
+        }
+        const double sigma = kSensitivityStep / size;
+        for (sunindextype i = 0; i < n; ++i) yp[i] = yy[i] + sigma * s[i];
+        int rc = self->sys->rhs(t, yp, fp);
+        if (rc != 0) return rc;
+        for (sunindextype i = 0; i < n; ++i) out[i] = fp[i];
+        for (sunindextype i = 0; i < n; ++i) yp[i] = yy[i] - sigma * s[i];
+        rc = self->sys->rhs(t, yp, fp);
+        if (rc != 0) return rc;
+        for (sunindextype i = 0; i < n; ++i) out[i] = (out[i] - fp[i]) / (2.0 * sigma);
+      }
+      return 0;
+    });
   }
 
   Method method_;
@@ -210,6 +344,7 @@ class CvodeIntegrator final : public Integrator {
   // Owned handles, in the order they must outlive each other (destroyed bottom-up).
   detail::OwnedContext ctx_;
   detail::OwnedVector y_, atol_, q_;
+  SensitivityData sens_;  // forward sensitivities' vectors, where started
   detail::OwnedNonlinearSolver nls_;
   detail::OwnedMatrix A_;
   detail::OwnedLinearSolver ls_;

@@ -134,6 +134,20 @@ class Integrator {
   /// New absolute tolerances of the state (size() entries; the partitioned formulation's
   /// integrated coordinates change at a repartition). Call after reinit().
   virtual void set_abs_tolerances(const std::vector<double>& atol) = 0;
+  /// Forward sensitivities S = ∂y(t)/∂y(t0) · S0 of the state to its initial value along the
+  /// `ns` columns of S0 (size() × ns, column-major): the variational equation S' = ∂f/∂y S,
+  /// its right-hand side a central difference of f along each column, solved with the state
+  /// on the state's own steps (left out of the error test, so the steps are those of the
+  /// state alone). They carry across reinit() unchanged (a switch of the right-hand side
+  /// would need its saltation: the caller knows when). false where the method has none
+  /// (only cvode_bdf has them); nothing changes then.
+  virtual bool start_sensitivities(int /*ns*/, const double* /*S0*/) { return false; }
+  /// The sensitivities at t within the last step (size() × ns); false if none were started
+  /// or they were stopped.
+  virtual bool sensitivities(double /*t*/, double* /*S*/) { return false; }
+  /// Stops integrating them (they no longer apply: a switch of the right-hand side without
+  /// its saltation); the state goes on as before.
+  virtual void stop_sensitivities() {}
 };
 
 std::unique_ptr<Integrator> make_integrator(const IntegratorSettings& settings, OdeSystem& sys,
