@@ -197,7 +197,27 @@ PeriodMap::PeriodMap(RunModel& rm, Chart& chart, const StartState& base, std::ve
     : rm_(rm), chart_(chart), base_(base), winding_(std::move(winding)), rtol_factor_(rtol_factor), stats_(stats),
       periods_(periods) {}
 
-int PeriodMap::apply(const double* z, double* Pz) {
+int PeriodMap::apply(const double* z, double* Pz) { return period(z, Pz, false, nullptr); }
+
+int PeriodMap::apply_with_derivative(const double* z, double* Pz, double* M) {
+  if (chart_.wall() || chart_.independent().empty() || chart_.independent()[0] != Chart::kJointChart)
+    no_derivative_ = "the period map's derivative by sensitivities needs the joint formulation's chart";
+  if (!no_derivative_.empty()) {
+    failure_ = no_derivative_;
+    return kNoDerivative;
+  }
+  std::vector<double> S;
+  const int rc = period(z, Pz, true, &S);
+  if (rc != 0) return rc;
+  if (S.size() != static_cast<size_t>(dim()) * static_cast<size_t>(dim())) {
+    no_derivative_ = failure_;  // the segment's note: why none
+    return kNoDerivative;
+  }
+  std::copy(S.begin(), S.end(), M);
+  return 0;
+}
+
+int PeriodMap::period(const double* z, double* Pz, bool sensitivities, std::vector<double>* S) {
   if (periods_ >= max_periods_) {
     failure_ = "simulation.max_periods reached";
     refused_ = true;
@@ -215,7 +235,8 @@ int PeriodMap::apply(const double* z, double* Pz) {
   o.series = false;
   o.rtol_factor = rtol_factor_;
   o.max_steps = max_steps_;
-  const SegmentResult period = run_segment(rm_, o);
+  o.sensitivities = sensitivities;
+  SegmentResult period = run_segment(rm_, o);
   accumulate(stats_, period.res.stats);
   ++periods_;
   if (period.res.status != RunStatus::ok) {
@@ -225,6 +246,10 @@ int PeriodMap::apply(const double* z, double* Pz) {
   std::vector<double> end = period.end.qv;
   for (size_t i = 0; i < end.size(); ++i) end[i] -= winding_[i];
   chart_.reduce(end.data(), Pz);
+  if (S) {
+    *S = std::move(period.sensitivity);
+    if (S->empty()) failure_ = period.sensitivity_note;
+  }
   return 0;
 }
 

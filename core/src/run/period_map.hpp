@@ -84,6 +84,11 @@ class PeriodMap final : public steady::CycleMap {
 
   int dim() const override { return chart_.size(); }
   int apply(const double* z, double* Pz) override;
+  /// The period with its forward sensitivities (SegmentOptions::sensitivities): on the joint
+  /// formulation's chart, whose coordinates are the integrated ones, M is their sensitivity
+  /// over the period; elsewhere (the wall chart, the partitioned formulation, a method
+  /// without sensitivities, a film's mode switch) kNoDerivative, `last_failure` saying why.
+  int apply_with_derivative(const double* z, double* Pz, double* M) override;
   const std::string& last_failure() const { return failure_; }
   /// A period that takes far more steps than the transient's did has left the orbit's
   /// neighbourhood (near the wall the printed law's corrector crawls at h ~ 1e-8 s for
@@ -114,7 +119,13 @@ class PeriodMap final : public steady::CycleMap {
   double rtol_factor_;
   SolverStats& stats_;
   long long& periods_;
+  /// One period from z into Pz (with its sensitivities into `S` if asked); as apply().
+  int period(const double* z, double* Pz, bool sensitivities, std::vector<double>* S);
+
   std::string failure_;
+  /// Why this map has no derivative, once a period has said so for good (a film's mode
+  /// switched in it: its later periods would switch too, and each try costs a period).
+  std::string no_derivative_;
   long long max_steps_ = 0;
   long long max_periods_ = std::numeric_limits<long long>::max();
   bool refused_ = false;

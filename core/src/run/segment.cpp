@@ -105,6 +105,8 @@ class Runner {
   /// A cycle ends at tp: its end state (the Poincaré section at crank angle 0), then close it.
   bool end_cycle(double tp, bool have_state);
   SegmentResult finish(double t);
+  /// SegmentOptions::sensitivities: starts them from the identity; why not, if not.
+  std::string start_sensitivities();
 };
 
 Runner::Runner(RunModel& rm, const SegmentOptions& opt)
@@ -299,6 +301,7 @@ Stop Runner::handle_root(double t, bool have_state) {
     return fail(RunStatus::solver_failure, "coordinate partitioning: the dependent coordinates cannot be recovered at t = " +
                                                std::to_string(t) + " s");
   res_.stats.mode_switches += sys_->switch_modes(root_flags_, t, yfull_.data());
+  if (opt_.sensitivities) integ_->stop_sensitivities();  // they would need the switch's saltation
   restart_here(t);
   return Stop::none;
 }
@@ -389,6 +392,7 @@ Stop Runner::advance(double& t) {
     // A free mode that no longer matches the sign of ε̇: a crossing the root finder could
     // not see (ε̇ left zero from an exact zero at a restart). Restart on the branch that applies.
     res_.stats.mode_switches += resynced;
+    if (opt_.sensitivities) integ_->stop_sensitivities();
     restart_here(t);
   }
   if (check_drift_and_budgets(t) == Stop::failed) return Stop::failed;
@@ -453,10 +457,36 @@ SegmentResult Runner::run() {
     return {std::move(res_), {}, {}};
   }
   first_observation();
+  std::string sensitivity_note = opt_.sensitivities ? start_sensitivities() : std::string();
   double t = t0_;
   while (advance(t) == Stop::none) {
   }
-  return finish(t);
+  const long long switches = res_.stats.mode_switches, repartitions = res_.stats.repartitions;
+  std::vector<double> S;
+  if (opt_.sensitivities && sensitivity_note.empty()) {
+    S.assign(static_cast<size_t>(sys_->size()) * static_cast<size_t>(sys_->size()), 0.0);
+    if (switches > 0 || repartitions > 0)
+      sensitivity_note = "a film's mode switched or the coordinates were repartitioned: the variational "
+                         "equation would need its saltation there";
+    else if (!integ_->sensitivities(t, S.data()))
+      sensitivity_note = "the sensitivities could not be read at the segment's end";
+    if (!sensitivity_note.empty()) S.clear();
+  }
+  SegmentResult out = finish(t);
+  out.sensitivity = std::move(S);
+  out.sensitivity_note = std::move(sensitivity_note);
+  return out;
+}
+
+std::string Runner::start_sensitivities() {
+  if (sys_->formulation() != Formulation::joint)
+    return "forward sensitivities need the joint formulation (its coordinates are the chart's)";
+  const size_t n = static_cast<size_t>(sys_->size());
+  std::vector<double> S0(n * n, 0.0);
+  for (size_t i = 0; i < n; ++i) S0[i * n + i] = 1.0;
+  if (!integ_->start_sensitivities(static_cast<int>(n), S0.data()))
+    return "the integration method has no forward sensitivities (cvode_bdf has)";
+  return {};
 }
 
 }  // namespace

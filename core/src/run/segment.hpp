@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "lub/mechanism/model.hpp"
@@ -32,6 +33,13 @@ struct SegmentOptions {
   /// ending the segment (segment.cpp, Runner::integration_failed). false: the first failure
   /// ends it, as before issue 25 (the tests compare both).
   bool restart_after_failure = true;
+  /// Integrate with the state the forward sensitivities of the integrated coordinates to
+  /// their start (SegmentResult::sensitivity): the variational equation on the state's own
+  /// steps (Integrator::start_sensitivities), so that the derivative is that of the computed
+  /// map itself. Where the integration has none (a method without them, a formulation
+  /// other than joint) or a switch of the right-hand side breaks them (a film's mode
+  /// change, which would need its saltation; a repartition), the result says why.
+  bool sensitivities = false;
   /// Called after every completed cycle with the cycles so far: true stops the run there.
   std::function<bool(const std::vector<CycleMetrics>&)> stop_after_cycle;
 };
@@ -57,6 +65,10 @@ struct SegmentResult {
   StartState end;                   ///< the state where the segment ended (a cycle boundary if ok)
   /// The state at each cycle boundary (observe only): the start, then each cycle's end
   std::vector<StartState> boundaries;
+  /// SegmentOptions::sensitivities: ∂y(end)/∂y(start) of the integrated coordinates
+  /// (n × n, column-major), or empty with `sensitivity_note` saying why there is none.
+  std::vector<double> sensitivity;
+  std::string sensitivity_note;
 };
 
 SegmentResult run_segment(RunModel& rm, const SegmentOptions& opt);

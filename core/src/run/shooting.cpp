@@ -12,13 +12,13 @@
 namespace lub::detail {
 
 PeriodAndMonodromy period_and_monodromy(PeriodMap& period, PeriodMap& tight, const Eigen::VectorXd& z,
-                                        const Chart& chart, double step) {
+                                        const Chart& chart, const steady::ShootingOptions& options) {
   PeriodAndMonodromy out;
   out.Pz.resize(z.size());
   out.rc = period.apply(z.data(), out.Pz.data());
   if (out.rc == 0)
-    out.monodromy =
-        steady::monodromy_by_differences(tight, z, out.Pz, steady::MonodromyOptions{chart.units(), step, true});
+    out.monodromy = steady::monodromy(
+        tight, z, out.Pz, steady::MonodromyOptions{chart.units(), options.step, true, 0, options.map_derivative});
   return out;
 }
 
@@ -84,8 +84,7 @@ steady::ShootingResult newton_from_start(const SteadyContext& cx, PeriodMap& per
   long long start_maps = 0;
   if (!options.initial_jacobian) {
     if (!options.central_jacobian) return find_orbit(t, period, z0, options, accelerate);
-    const steady::Monodromy M0 = steady::monodromy_by_differences(
-        tight, z0, z0, steady::MonodromyOptions{options.scales, options.step, true, options.difference_retries});
+    const steady::Monodromy M0 = steady::monodromy(tight, z0, z0, options.monodromy_options(true));
     if (M0.failed) return find_orbit(t, period, z0, options, accelerate);
     J0 = M0.M - Eigen::MatrixXd::Identity(z0.size(), z0.size());
     start_maps = M0.maps;
@@ -238,15 +237,13 @@ OrbitEvidence solve_orbit(SteadyContext& cx, Chart& chart, const StartState& bas
     ev.drifts = found.outcome != steady::ShootingOutcome::left_domain && transient_drifts(cx);
     return ev;
   }
-  // Floquet multipliers: central differences at the orbit (error O(h²)). A step of a
-  // continuation's path needs only a Jacobian for the next step: forward differences.
+  // Floquet multipliers: the map's own derivative (simulation.monodromy = sensitivities) or
+  // central differences at the orbit (error O(h²)). A step of a continuation's path needs
+  // only a Jacobian for the next step: forward differences.
   const steady::Monodromy monodromy =
-      final ? steady::monodromy_by_differences(
-                  *tight_period, found.z, found.Pz,
-                  steady::MonodromyOptions{chart.units(), options.step, true, options.difference_retries})
-            : steady::monodromy_by_differences(
-                  *period, found.z, found.Pz,
-                  steady::MonodromyOptions{chart.units(), options.step, false, options.difference_retries});
+      steady::monodromy(final ? *tight_period : *period, found.z, found.Pz,
+                        steady::MonodromyOptions{chart.units(), options.step, final, options.difference_retries,
+                                                 options.map_derivative});
   if (monodromy.failed) {
     ev.failure = final ? tight_period->last_failure() : period->last_failure();
     ev.outcome = Outcome::multipliers_failed;

@@ -74,7 +74,7 @@ SlowNewton newton_where_flow_stops(SteadyContext& cx, Chart& chart, const StartS
     std::optional<PeriodMap> period, tight;
     cx.period_maps(period, tight, near, at, winding, 1.0, cx.transient_step_budget());
     const Eigen::VectorXd z0 = near.reduce(at.qv);
-    const PeriodAndMonodromy there = period_and_monodromy(*period, *tight, z0, near, options.step);
+    const PeriodAndMonodromy there = period_and_monodromy(*period, *tight, z0, near, options);
     steady::ShootingResult picard;
     if (there.rc == 0 && !there.monodromy.failed) {
       picard = steady::newton_picard(*period, z0, there.monodromy.M - Eigen::MatrixXd::Identity(near.size(), near.size()),

@@ -68,6 +68,7 @@ steady::ShootingOptions SteadyContext::shooting_options(const Chart& chart, doub
   options.residual_scales = chart.residual_units();
   options.tolerance = sim.shooting_tolerance;
   if (sim.shooting_fallback == ShootingFallback::anderson) options.difference_retries = 2;
+  options.map_derivative = sim.monodromy == MonodromyMethod::sensitivities;
   // The wall chart keeps every iterate and difference step inside the clearance, and
   // its steps are relative changes of the gap.
   if (chart.wall()) {

@@ -45,7 +45,7 @@ struct PeriodAndMonodromy {
   steady::Monodromy monodromy;
 };
 PeriodAndMonodromy period_and_monodromy(PeriodMap& period, PeriodMap& tight, const Eigen::VectorXd& z,
-                                        const Chart& chart, double step);
+                                        const Chart& chart, const steady::ShootingOptions& options);
 /// Newton–Picard's options for the problem `o` poses, at most `iterations` iterations.
 steady::NewtonPicardOptions newton_picard_options(const steady::ShootingOptions& o, int iterations);
 /// Newton on the period map from `base`, then the monodromy and the multipliers; if

@@ -202,7 +202,7 @@ TransientConfirmation confirm_transient(SteadyContext& cx) {
   PeriodMap& tight = *tight_map;
   const steady::ShootingOptions options = cx.shooting_options(chart, cx.res.cycles.back().max_eps);
   const Eigen::VectorXd z = chart.reduce(base.qv);
-  const PeriodAndMonodromy end = period_and_monodromy(period, tight, z, chart, options.step);
+  const PeriodAndMonodromy end = period_and_monodromy(period, tight, z, chart, options);
   if (period.refused() || end.monodromy.refused) {
     cx.budget.stopped(cx.spent(), "the transient's stop not confirmed by the period map");
     out.outcome = Outcome::refused;

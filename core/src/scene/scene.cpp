@@ -330,6 +330,7 @@ SimulationSpec parse_simulation(const json& j) {
   s.shooting_coordinates =
       r.choice_of<ShootingCoordinates>("shooting_coordinates", s.shooting_coordinates);
   s.shooting_fallback = r.choice_of<ShootingFallback>("shooting_fallback", s.shooting_fallback);
+  s.monodromy = r.choice_of<MonodromyMethod>("monodromy", s.monodromy);
   // Error bars cost a re-integration at a 100x tighter rtol: on by default where a steady
   // cycle is the product (shooting, auto), off for a plain transient.
   s.error_bars = r.boolean_or("error_bars", s.steady != SteadyMethod::transient);

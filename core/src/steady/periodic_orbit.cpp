@@ -63,6 +63,25 @@ Monodromy monodromy_by_differences(CycleMap& P, const Eigen::VectorXd& z, const 
   return out;
 }
 
+Monodromy monodromy(CycleMap& P, const Eigen::VectorXd& z, const Eigen::VectorXd& Pz, const MonodromyOptions& opt) {
+  if (opt.derivative) {
+    Monodromy out;
+    const int n = P.dim();
+    out.M.resize(n, n);
+    Eigen::VectorXd Pd(n);
+    const int flag = P.apply_with_derivative(z.data(), Pd.data(), out.M.data());
+    if (flag != CycleMap::kNoDerivative) {
+      out.maps = 1;
+      if (flag != 0) {
+        out.failed = 1;
+        out.refused = flag < 0;
+      }
+      return out;
+    }
+  }
+  return monodromy_by_differences(P, z, Pz, opt);
+}
+
 std::vector<std::complex<double>> floquet_multipliers(const Eigen::MatrixXd& M) {
   std::vector<std::complex<double>> mu;
   if (M.size() == 0) return mu;
@@ -141,9 +160,8 @@ int jacobian_cb(N_Vector u, N_Vector fu, SUNMatrix J, void* data, N_Vector, N_Ve
   const double* fd = N_VGetArrayPointer(fu);
   Eigen::VectorXd z(pb.n), Pz(pb.n);
   for (int i = 0; i < pb.n; ++i) z(i) = ud[i], Pz(i) = fd[i] + ud[i];
-  MonodromyOptions mo{pb.opt->scales, pb.opt->step, pb.opt->central_jacobian, pb.opt->difference_retries};
   CycleMap& map = pb.opt->jacobian_map ? *pb.opt->jacobian_map : *pb.P;
-  const Monodromy m = monodromy_by_differences(map, z, Pz, mo);
+  const Monodromy m = monodromy(map, z, Pz, pb.opt->monodromy_options(pb.opt->central_jacobian));
   pb.maps += m.maps;
   if (m.failed) {
     ++pb.failures;

@@ -170,6 +170,22 @@ struct NameTable<ShootingFallback> {
   }};
 };
 
+/// How shooting differentiates the period map (simulation.monodromy; docs/theory/steady-cycles.md).
+enum class MonodromyMethod {
+  differences,    ///< central (or forward) differences of whole periods (the default)
+  /// forward sensitivities integrated with the period on its own steps (cvode_bdf on the
+  /// joint formulation's chart, where no film switches mode in the period; differences
+  /// elsewhere)
+  sensitivities,
+};
+template <>
+struct NameTable<MonodromyMethod> {
+  static constexpr std::array<std::pair<MonodromyMethod, std::string_view>, 2> entries{{
+      {MonodromyMethod::differences, "differences"},
+      {MonodromyMethod::sensitivities, "sensitivities"},
+  }};
+};
+
 struct SimulationSpec {
   std::optional<double> duration_s;  ///< fixed end time, or:
   int max_cycles = 5;                ///< cap on crank cycles
@@ -196,6 +212,7 @@ struct SimulationSpec {
   double shooting_tolerance = 1e-9;
   ShootingCoordinates shooting_coordinates = ShootingCoordinates::independent;
   ShootingFallback shooting_fallback = ShootingFallback::none;
+  MonodromyMethod monodromy = MonodromyMethod::differences;
   /// Error bars on the steady metrics (`<metric>_error`): the steady cycle re-found and
   /// re-measured at a 100× tighter rtol (docs/theory/steady-cycles.md, error bars). Default:
   /// on for shooting and auto, off for transient.

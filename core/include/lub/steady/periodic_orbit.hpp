@@ -29,6 +29,13 @@ class CycleMap {
   /// from z leaves the domain: a film collapses, the integrator fails), or < 0 if it
   /// refuses to go on at all (a budget of periods is spent): the solvers stop there.
   virtual int apply(const double* z, double* Pz) = 0;
+  /// P(z) and its derivative M = ∂P/∂z (dim × dim, column-major) from the variational
+  /// equation integrated with the period on the period's own steps: the derivative of the
+  /// computed map itself, smooth where the flow is. Returns as apply(), or kNoDerivative
+  /// where the map has no such derivative at z (then Pz holds P(z) if it could be
+  /// evaluated, and a caller differences instead).
+  virtual int apply_with_derivative(const double* /*z*/, double* /*Pz*/, double* /*M*/) { return kNoDerivative; }
+  static constexpr int kNoDerivative = 1000;
 };
 
 /// Monodromy M = ∂P/∂z by differences of the flow map. Differences of the map itself
@@ -41,6 +48,9 @@ struct MonodromyOptions {
   bool central = true;         ///< central (2 n maps, error O(h²)) or forward (n maps, O(h))
   /// A column whose perturbed period fails is tried again with the step ÷ 10, this many times.
   int retries = 0;
+  /// monodromy(): the map's own derivative first (CycleMap::apply_with_derivative, one map),
+  /// differences only where it has none.
+  bool derivative = false;
 };
 struct Monodromy {
   Eigen::MatrixXd M;
@@ -51,6 +61,10 @@ struct Monodromy {
 /// `Pz` = P(z) (used by forward differences).
 Monodromy monodromy_by_differences(CycleMap& P, const Eigen::VectorXd& z, const Eigen::VectorXd& Pz,
                                    const MonodromyOptions& opt);
+/// M at z: with opt.derivative the map's own derivative where it has one (forward
+/// sensitivities on the period's steps: smooth in z, no difference step to choose), else
+/// monodromy_by_differences.
+Monodromy monodromy(CycleMap& P, const Eigen::VectorXd& z, const Eigen::VectorXd& Pz, const MonodromyOptions& opt);
 
 /// Eigenvalues of M, largest modulus first (ties: larger angle first).
 std::vector<std::complex<double>> floquet_multipliers(const Eigen::MatrixXd& M);
@@ -87,6 +101,12 @@ struct ShootingOptions {
   int chord_iterations = 2;
   /// MonodromyOptions::retries of the Newton Jacobians' differences.
   int difference_retries = 0;
+  /// MonodromyOptions::derivative of the Newton Jacobians (simulation.monodromy).
+  bool map_derivative = false;
+  /// The options of a monodromy at this Newton's scales and step (central or not).
+  MonodromyOptions monodromy_options(bool central) const {
+    return MonodromyOptions{scales, step, central, difference_retries, map_derivative};
+  }
 };
 
 enum class ShootingOutcome {
