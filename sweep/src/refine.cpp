@@ -17,6 +17,7 @@
 #include "grid_parts.hpp"
 #include "lub/io/json_reader.hpp"
 #include "lub/run/run_io.hpp"
+#include "lub/scene/scene.hpp"
 #include "lub/sweep/hash.hpp"
 #include "lub/sweep/mpi_transport.hpp"
 #include "lub/sweep/output_lock.hpp"
@@ -127,6 +128,10 @@ class Planner {
     k.name = case_name(id, static_cast<std::size_t>(id) + 1);
     k.scene = canonical_json(scene);
     k.hash = sha256_hex(k.scene);
+    try {  // what the sweep asks of a case's scene, it asks the parsed scene
+      k.steady = parse_scene(scene).simulation.steady;
+    } catch (const InputError&) {  // the run says so: invalid_scene
+    }
     k.axis_values = s_.points.at(static_cast<std::size_t>(c.edge.a)).axis_values;
     k.axis_values.at(static_cast<std::size_t>(c.edge.axis)) = value;
     k.label = fmt::format("{}={:.6g} between {} and {} ({})", axis.name, value,
@@ -209,6 +214,14 @@ void run_round(const Options& o, RefineStudy& s, Planner& plan, const std::map<i
   int next = queue.front();
   Schedule sc;
   sc.local = [](const Task& t) { return run_task(t, 0); };
+  // A case whose scene asks for continuation starts from its edge's lower end's orbit, as
+  // the study's cases start from a neighbour's: a parent fixed before the round runs.
+  sc.parents.assign(s.grid.cases.size(), -1);
+  for (const auto& [id, c] : chosen)
+    if (s.grid.cases.at(static_cast<std::size_t>(id)).steady == SteadyMethod::continuation) {
+      sc.parents.at(static_cast<std::size_t>(id)) = c.edge.a;
+      sc.finished[c.edge.a] = s.points.at(static_cast<std::size_t>(c.edge.a)).orbit_seed;
+    }
   sc.tick = [&] {
     if (const int sig = interrupts.signal()) {
       for (int w = 1; w <= transport.workers(); ++w) transport.send_stop(w);

@@ -196,6 +196,9 @@ RefinePoint point_of(const RefineStudy& s, const std::vector<h5::Column>& column
   for (const Axis& a : s.grid.axes) p.axis_values.push_back(axis_json(*cell(a.name)));
   p.ok = parse_name<CaseStatus>(std::get<std::string>(*cell("status"))) == CaseStatus::ok;
   p.classification = std::get<std::string>(*cell("classification"));
+  const h5::Cell* seed = cell("orbit_seed");
+  if (seed && !std::get<std::string>(*seed).empty())
+    p.orbit_seed = json::parse(std::get<std::string>(*seed)).get<std::vector<double>>();
   p.below_safe_film = value("below_safe_film");
   if (!std::isfinite(p.below_safe_film)) p.below_safe_film = -1.0;
   for (const SteadyMetric& m : steady_metrics()) {

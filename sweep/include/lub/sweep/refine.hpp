@@ -60,6 +60,9 @@ struct RefinePoint {
   std::vector<double> metric, metric_error;  ///< per steady_metrics() (NaN: none)
   /// Per Grid::parameters, per steady metric: d metric / d axis and its error bar (NaN: none).
   std::vector<double> slope, slope_error;
+  /// Its periodic orbit, packed (pack_seed; empty: none): what a case between it and its
+  /// neighbour continues from where its scene asks for continuation.
+  std::vector<double> orbit_seed;
 };
 
 /// An edge to score: two cases that differ on the numeric axis `axis` only, `a` at the lower
