@@ -156,6 +156,23 @@ def test_without_sensitivities_it_refines_on_labels_and_says_so(source_dir, buil
     assert "d_min_film_thickness_m_per_viscosity_Pa_s" not in rows
 
 
+def test_a_continuation_study_continues_each_new_case_from_its_lower_end(source_dir, build_dir, tmp_path):
+    import json
+
+    grid = json.loads((source_dir / "tests" / "mpi" / "refine_grid.json").read_text())
+    grid["scene"] = str(source_dir / "configs" / "scenes" / "slider_crank.json")
+    grid["set"]["/simulation/steady"] = "continuation"
+    (tmp_path / "grid.json").write_text(json.dumps(grid))
+    path = tmp_path / "continued.h5"
+    assert lubsweep(build_dir, tmp_path / "grid.json", "-o", path, "-q", "--no-summary").returncode == 0
+    done = lubsweep(build_dir, "refine", path, "--budget", 3)
+    assert done.returncode == 0, done.stderr
+    rows = table(path)
+    assert list(rows["case_a"]) == [0, 1, 3]  # the third: a half of the first's edge
+    assert list(rows["continued_from"]) == list(rows["case_a"])
+    assert set(rows["classification"]) == {"periodic"}
+
+
 @pytest.mark.parametrize("args, says", [
     (["MISSING", "--budget", "2"], "no such file"),
     (["STUDY", "--budget", "0"], "--budget = 0: must be at least 1"),
