@@ -206,9 +206,10 @@ long long periods_of(const CaseResult& r) {
 
 /// Runs one round's new cases (`queue`, consecutive ids) on every rank; their rows go to
 /// the file in id order as soon as every lower id's is in.
-void run_round(const Options& o, RefineStudy& s, Planner& plan, const std::map<int, RefineCandidate>& chosen,
-               std::deque<int> queue, RefineWriter& writer, Progress& progress, Clock::time_point t0, Tally& tally) {
-  MpiCoordinator transport(MPI_COMM_WORLD);
+void run_round(MPI_Comm comm, const Options& o, RefineStudy& s, Planner& plan,
+               const std::map<int, RefineCandidate>& chosen, std::deque<int> queue, RefineWriter& writer,
+               Progress& progress, Clock::time_point t0, Tally& tally) {
+  MpiCoordinator transport(comm);
   detail::Interrupts& interrupts = detail::Interrupts::process();
   std::map<int, CaseResult> waiting;
   int next = queue.front();
@@ -255,7 +256,7 @@ void run_round(const Options& o, RefineStudy& s, Planner& plan, const std::map<i
 }
 
 /// Rank 0, once the checks passed: the rounds, then the last lines and the table.
-int coordinate_refine(const Options& o, RefineStudy& s, std::vector<RefinedRow> held) {
+int coordinate_refine(MPI_Comm comm, const Options& o, RefineStudy& s, std::vector<RefinedRow> held) {
   const auto t0 = Clock::now();
   std::size_t held_failed = 0;
   for (const RefinedRow& r : held) held_failed += !r.point.ok;
@@ -272,19 +273,20 @@ int coordinate_refine(const Options& o, RefineStudy& s, std::vector<RefinedRow> 
       for (const Planned& p : round)
         if (!p.held) queue.push_back(p.id), chosen[p.id] = p.candidate;
       if (queue.empty()) continue;
-      broadcast_code(MPI_COMM_WORLD, kServeRound);
-      run_round(o, s, plan, chosen, std::move(queue), writer, progress, t0, tally);
+      broadcast_code(comm, kServeRound);
+      run_round(comm, o, s, plan, chosen, std::move(queue), writer, progress, t0, tally);
     }
   } catch (const InputError& e) {
-    broadcast_code(MPI_COMM_WORLD, kNoMoreRounds);
+    broadcast_code(comm, kNoMoreRounds);
     fmt::print(stderr, "lubsweep: refine: {}\n", e.what());
     return kExitBadInput;
   }
-  broadcast_code(MPI_COMM_WORLD, kNoMoreRounds);
+  broadcast_code(comm, kNoMoreRounds);
   if (!o.quiet)
-    fmt::print(stderr, "lubsweep: refine: wrote {}: {} new cases, {} in /refinement/cases (--budget {}), {} rounds, {} "
+    fmt::print(stderr, "lubsweep: refine: {}: {} new cases, {} in /refinement/cases (--budget {}) from {} round{}, {} "
                        "periods, {}; {}\n",
-               s.path, tally.new_rows, plan.spent(), o.refine_budget, plan.rounds(), tally.periods,
+               s.path, tally.new_rows, plan.spent(), o.refine_budget, plan.rounds(), plan.rounds() == 1 ? "" : "s",
+               tally.periods,
                format_duration(std::chrono::duration<double>(Clock::now() - t0).count()),
                plan.spent() >= o.refine_budget ? "the budget is spent" : "no edge scores any more");
   print_refinement(s.path, stdout);
@@ -331,26 +333,26 @@ int prepare_refine(const Options& o, std::optional<RefineStudy>& s, std::vector<
 
 }  // namespace
 
-int run_refine(const Options& o) {
+int run_refine(const Options& o, MPI_Comm comm) {
   int rank = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_rank(comm, &rank);
   std::optional<RefineStudy> s;
   std::vector<RefinedRow> held;
   OutputLock lock;  // rank 0: held while the refinement runs
   int code = 0;
   if (rank == 0) code = prepare_refine(o, s, held, lock);
-  code = broadcast_code(MPI_COMM_WORLD, code);
+  code = broadcast_code(comm, code);
   if (code != 0) return rank == 0 && code != kNothingToDo ? code : 0;
   int status = 0;
   if (rank == 0) {
-    status = coordinate_refine(o, *s, std::move(held));
+    status = coordinate_refine(comm, o, *s, std::move(held));
   } else {
-    while (broadcast_code(MPI_COMM_WORLD, kNoMoreRounds) == kServeRound) {
-      MpiWorker transport(MPI_COMM_WORLD);
+    while (broadcast_code(comm, kNoMoreRounds) == kServeRound) {
+      MpiWorker transport(comm);
       serve(transport, [rank](const Task& t) { return run_task(t, rank); });
     }
   }
-  polite_barrier(MPI_COMM_WORLD);
+  polite_barrier(comm);
   return status;
 }
 

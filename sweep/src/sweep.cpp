@@ -234,7 +234,7 @@ int finish(const Options& o, const Grid& grid, StudyWriter& writer, const Progre
 int run_sweep(const Options& o) {
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  if (o.refine) return run_refine(o);
+  if (o.refine) return run_refine(o, MPI_COMM_WORLD);
 
   if (!o.summary_of.empty()) {
     if (rank != 0) return 0;

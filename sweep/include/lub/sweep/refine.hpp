@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include <mpi.h>
 #include <nlohmann/json.hpp>
 
 #include "lub/common/name_table.hpp"
@@ -105,9 +106,9 @@ std::optional<RefineCandidate> score_edge(const RefineEdge& edge, const RefinePo
 void rank_candidates(std::vector<RefineCandidate>& candidates);
 
 struct Options;
-/// `lubsweep refine`: runs on MPI_COMM_WORLD (rank 0 selects and writes, every rank
-/// computes). Returns the exit status (0 done or nothing to do, 2 bad input: the file
-/// untouched, 1 the file could not be written).
-int run_refine(const Options& options);
+/// `lubsweep refine`: runs on `comm` (its rank 0 selects and writes, every rank computes;
+/// lubsweep passes MPI_COMM_WORLD). Returns the exit status on rank 0 (0 done or nothing to
+/// do, 2 bad input: the file untouched, 1 the file could not be written); 0 on the others.
+int run_refine(const Options& options, MPI_Comm comm);
 
 }  // namespace lub::sweep
