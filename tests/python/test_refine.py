@@ -179,11 +179,19 @@ def test_a_continuation_study_continues_each_new_case_from_its_lower_end(source_
     (["STUDY", "--budget", "2", "--metric-tolerance", "-0.1"], "--metric-tolerance = -0.1: must be"),
     (["GRID", "--budget", "2"], "not a lubsweep study file"),
     (["REFINED", "--budget", "4", "--metric-tolerance", "0.1"], "was made with 0.05"),
+    (["INCOMPLETE", "--budget", "2"], "the study is incomplete (1 of 3 cases"),
 ])
 def test_bad_input_exits_2_naming_the_field_and_leaves_the_file_as_it_was(copy, build_dir, source_dir, args, says):
     if args[0] == "REFINED":
         assert lubsweep(build_dir, "refine", copy, "--budget", 1).returncode == 0
-    paths = {"MISSING": copy.parent / "nope.h5", "STUDY": copy, "REFINED": copy,
+    if args[0] == "INCOMPLETE":  # a sweep killed after its first row
+        copy.unlink()
+        killed = lubsweep(build_dir, source_dir / "tests" / "mpi" / "refine_grid.json", "-o", copy, "-q",
+                          env={"LUBSWEEP_TEST_KILL_AFTER": "1"})
+        assert killed.returncode != 0 and copy.exists()
+        for stale in copy.parent.glob("*.lock"):  # the killed sweep's lock file, released by the kernel
+            stale.unlink()
+    paths = {"MISSING": copy.parent / "nope.h5", "STUDY": copy, "REFINED": copy, "INCOMPLETE": copy,
              "GRID": source_dir / "tests" / "mpi" / "refine_grid.json"}
     target = paths[args[0]]
     digest = md5(copy)
