@@ -1,7 +1,9 @@
 // lubsweep's command line (CLI11): the options, their help as CLI11 generates it (the man
 // page is help2man's reading of it), and the checks of what goes together.
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <string>
 #include <vector>
@@ -33,7 +35,12 @@ std::string description() {
          "\n"
          "and its HTML report (a page readable offline) is written with\n"
          "\n"
-         "  lubsweep report STUDY.h5 -o report.html [--baseline BASELINE.csv]\n";
+         "  lubsweep report STUDY.h5 -o report.html [--baseline BASELINE.csv]\n"
+         "\n"
+         "and cases added where it learns most (between neighbours whose labels differ, or whose metrics\n"
+         "change faster than their sensitivities predict) with\n"
+         "\n"
+         "  mpirun -np N lubsweep refine STUDY.h5 --budget K\n";
 }
 
 const char* const kFooter =
@@ -45,6 +52,37 @@ const char* const kFooter =
 
 std::string version_line() {
   return "lubsweep " + program_version() + " (revision " + build_revision() + ", " + LUB_BUILD_TYPE + " build)\n";
+}
+
+/// The subcommand `refine` (lub/sweep/refine.hpp).
+void add_refine(CLI::App& app, Options& o) {
+  CLI::App* refine = app.add_subcommand(
+      "refine", "add cases where a study learns most (see 'lubsweep refine --help')");
+  refine->description(
+      "lubsweep refine: adds to STUDY.h5 at most K cases, each at the midpoint of two lattice neighbours\n"
+      "whose classification or below_safe_film differ, or whose steady metric changes faster than its\n"
+      "sensitivities predict (by more than its error bars and --metric-tolerance of its size); in rounds, the\n"
+      "halves of a refined edge scored again. The cases go to /refinement/cases (the columns of /cases, the\n"
+      "edge refined, its round and score); /cases, /grids and /lattice are left as they are. Run again (after\n"
+      "a kill, or with a larger --budget) it continues; any number of ranks gives the same cases\n"
+      "(docs/guide/lubsweep.md, Refining a study):\n"
+      "\n"
+      "  mpirun -np N lubsweep refine STUDY.h5 --budget K [--metric-tolerance R]");
+  refine->footer(
+      "Exit status: 0 done (or the budget already spent, or nothing left to refine); 2 bad input (no study\n"
+      "file, not a complete study, a bad option, a /refinement of another tolerance or build: the file\n"
+      "untouched); 1 the file could not be written; 130/143 interrupted: re-run to resume.");
+  refine->add_option("study", o.refine_study, "the study file")->required()->type_name("STUDY.h5");
+  refine->add_option("--budget", o.refine_budget, "the most cases /refinement/cases may hold (at least 1)")
+      ->required()
+      ->type_name("K");
+  refine->add_option("--metric-tolerance", o.refine_tolerance,
+                     "the metric criterion's allowance beyond the error bars, a fraction of the metric (default "
+                     "0.05)")
+      ->type_name("R");
+  refine->add_flag("-q,--quiet", o.quiet, "no progress lines on stderr");
+  refine->set_help_flag("-h,--help", "print this text and exit");
+  refine->callback([&o] { o.refine = true; });
 }
 
 /// The options of `o` on `app` (`version` for --version).
@@ -90,6 +128,7 @@ void add_options(CLI::App& app, Options& o, bool& version) {
       ->type_name("CSV");
   report->set_help_flag("-h,--help", "print this text and exit");
   report->callback([&o] { o.report = true; });
+  add_refine(app, o);
 }
 
 /// What goes together, once parsed: an error message, or nullopt.
@@ -97,6 +136,18 @@ std::optional<std::string> check(Options& o) {
   if (o.report) {
     if (!o.grid.empty() || !o.output.empty() || !o.summary_of.empty())
       return "report takes a study file, -o HTML and --baseline only (lubsweep report STUDY.h5 -o report.html)";
+    return std::nullopt;
+  }
+  if (o.refine) {
+    if (!o.grid.empty() || !o.output.empty() || !o.summary_of.empty())
+      return "refine takes a study file, --budget and --metric-tolerance only (lubsweep refine STUDY.h5 --budget K)";
+    if (o.refine_budget < 1)
+      return "refine: --budget = " + std::to_string(o.refine_budget) +
+             ": must be at least 1 (the most cases the refinement may hold)";
+    if (!(o.refine_tolerance >= 0.0) || !std::isfinite(o.refine_tolerance))
+      return "refine: --metric-tolerance = " + fmt::format("{:g}", o.refine_tolerance) +
+             ": must be a finite number >= 0 (a fraction of the metric: 0.05 is 5 %)";
+    if (const char* k = std::getenv("LUBSWEEP_TEST_KILL_AFTER")) o.kill_after = std::atol(k);
     return std::nullopt;
   }
   if (!o.summary_of.empty()) {
@@ -123,16 +174,20 @@ std::optional<std::string> parse_options(const std::vector<std::string>& args, O
   } catch (const CLI::CallForHelp&) {
     help = true;
     const CLI::App* report = app.get_subcommand("report");
-    help_text = report->parsed() ? report->help() : app.help();
+    const CLI::App* refine = app.get_subcommand("refine");
+    help_text = report->parsed() ? report->help() : refine->parsed() ? refine->help() : app.help();
     return std::nullopt;
   } catch (const CLI::ExtrasError& e) {
     // The extras are the main command's, or the subcommand's (recursive: `report ... --check`).
     const std::vector<std::string> extras = app.remaining(true);
     if (extras.empty()) return std::string(e.what());
     const std::string& extra = extras.front();
-    if (app.get_subcommand("report")->parsed())
-      return "report: " + (!extra.empty() && extra[0] == '-' ? "unknown option " + extra : "more than one study given (" +
-                                                                    o.report_study + ", " + extra + ")");
+    const auto of_subcommand = [&](const std::string& name, const std::string& study) {
+      return name + ": " + (!extra.empty() && extra[0] == '-' ? "unknown option " + extra
+                                                               : "more than one study given (" + study + ", " + extra + ")");
+    };
+    if (app.get_subcommand("refine")->parsed()) return of_subcommand("refine", o.refine_study);
+    if (app.get_subcommand("report")->parsed()) return of_subcommand("report", o.report_study);
     if (!extra.empty() && extra[0] == '-') return "unknown option " + extra;
     return "more than one grid given (" + o.grid + ", " + extra + ")";
   } catch (const CLI::ParseError& e) {

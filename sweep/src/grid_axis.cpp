@@ -170,26 +170,29 @@ json read_value(const json& scene, const Axis& axis) {
   return scene.at(ptr);
 }
 
+std::optional<AxisParameter> axis_parameter(const Grid& g, std::size_t i) {
+  const Axis& a = g.axes.at(i);
+  if (!a.numeric || a.kind == AxisKind::force_law) return std::nullopt;
+  const bool setting = a.pointer.rfind("/solver/", 0) == 0 || a.pointer.rfind("/simulation/", 0) == 0 ||
+                       a.pointer.rfind("/outputs/", 0) == 0;
+  const bool counts = (a.units.empty() || a.units == "1") &&
+                      std::all_of(g.cases.begin(), g.cases.end(), [i](const Case& c) {
+                        return i >= c.axis_values.size() || c.axis_values[i].is_null() ||
+                               c.axis_values[i].is_number_integer();
+                      });
+  if (setting || counts) return std::nullopt;
+  AxisParameter p{a.name, a.units.empty() ? "1" : a.units, a.pointer, "", 1.0};
+  if (a.kind == AxisKind::clearance_m) {  // the journal radius R_B − c
+    p.base_pointer = bearing_radius_of(a).to_string();
+    p.sign = -1.0;
+  }
+  return p;
+}
+
 std::vector<AxisParameter> axis_parameters(const Grid& g) {
   std::vector<AxisParameter> out;
-  for (std::size_t i = 0; i < g.axes.size(); ++i) {
-    const Axis& a = g.axes[i];
-    if (!a.numeric || a.kind == AxisKind::force_law) continue;
-    const bool setting = a.pointer.rfind("/solver/", 0) == 0 || a.pointer.rfind("/simulation/", 0) == 0 ||
-                         a.pointer.rfind("/outputs/", 0) == 0;
-    const bool counts = (a.units.empty() || a.units == "1") &&
-                        std::all_of(g.cases.begin(), g.cases.end(), [i](const Case& c) {
-                          return i >= c.axis_values.size() || c.axis_values[i].is_null() ||
-                                 c.axis_values[i].is_number_integer();
-                        });
-    if (setting || counts) continue;
-    AxisParameter p{a.name, a.units.empty() ? "1" : a.units, a.pointer, "", 1.0};
-    if (a.kind == AxisKind::clearance_m) {  // the journal radius R_B − c
-      p.base_pointer = bearing_radius_of(a).to_string();
-      p.sign = -1.0;
-    }
-    out.push_back(std::move(p));
-  }
+  for (std::size_t i = 0; i < g.axes.size(); ++i)
+    if (auto p = axis_parameter(g, i)) out.push_back(std::move(*p));
   return out;
 }
 

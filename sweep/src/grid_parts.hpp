@@ -68,6 +68,8 @@ nlohmann::json read_value(const nlohmann::json& scene, const Axis& axis);
 /// of a physical number (not under /solver, /simulation or /outputs, which are settings
 /// a result must not depend on) that is not a dimensionless count (integers without unit).
 std::vector<AxisParameter> axis_parameters(const Grid& g);
+/// Axis `i` of `g` as such a parameter, or nullopt if it is not one (axis_parameters' rule).
+std::optional<AxisParameter> axis_parameter(const Grid& g, std::size_t i);
 /// How an axis value reaches the scene, where the scene parser's message needs it ("" if
 /// it is set as written).
 std::string applied_as(const Axis& axis, const nlohmann::json& v, const Context& cx);

@@ -144,9 +144,14 @@ void describe_orbit_seed(h5::Dataset d) {
                   "square_matrix_column_major of count n*n is n x n, column by column; int64 fields hold integers");
 }
 
-/// The empty /cases table, its columns and the attributes that group them.
-void create_cases_table(h5::File& f, const Grid& g) {
-  h5::Table t = f.create_table("cases", case_columns(g));
+}  // namespace
+
+namespace detail {
+
+h5::Table create_cases_table(h5::Group& parent, const Grid& g, const std::vector<h5::Column>& extra) {
+  std::vector<h5::Column> columns = case_columns(g);
+  columns.insert(columns.end(), extra.begin(), extra.end());
+  h5::Table t = parent.create_table("cases", columns);
   std::vector<std::string> axes, metrics, solver;
   for (const Axis& a : g.axes) axes.push_back(a.name);
   for (const auto& fld : metric_fields()) metrics.push_back(fld.name);
@@ -158,7 +163,12 @@ void create_cases_table(h5::File& f, const Grid& g) {
   declare_missing_values(t, g);
   describe_classifications(t);
   describe_orbit_seed(t.column("orbit_seed"));
+  return t;
 }
+
+}  // namespace detail
+
+namespace {
 
 /// /lattice: the grid's lattice neighbours (lattice_edges, the lattice the continuation
 /// tree walks), one edge per entry of the dimension `edge`: case_a at the lower value of
@@ -242,7 +252,7 @@ void write_block_index(h5::Group& grids, const Grid& g, const Block& b) {
 /// Everything but the rows, the sub-grids' results and the series.
 void write_header(h5::File& f, const Grid& g, const std::vector<std::string>& patches, bool complete) {
   write_root_attributes(f, g, complete);
-  create_cases_table(f, g);
+  detail::create_cases_table(f, g);
   write_scene_patches(f, g, patches);
   write_lattice(f, g);
   h5::Group grids = f.require_group("grids");

@@ -4,6 +4,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include "lub/io/h5.hpp"
 #include "lub/sweep/case_result.hpp"
@@ -15,6 +16,12 @@ namespace lub::sweep::detail {
 /// `from` has no such group). The names differ when the file being resumed came from
 /// another grid: a case keeps its hash but its id and name follow its place in the new grid.
 void copy_series(const h5::File& from, const std::string& from_name, h5::File& to, const Case& to_case);
+
+/// The empty table `cases` in `parent` (the root's /cases, or /refinement/cases): the
+/// columns of case_columns(g), then `extra`, with the attributes that group them (axes,
+/// metrics, solver, each axis's pointer, the missing values, the classifications, the
+/// orbit seed's packing).
+h5::Table create_cases_table(h5::Group& parent, const Grid& g, const std::vector<h5::Column>& extra = {});
 
 /// Copies to `to` the series the earlier study file `from` holds for the `reused` cases of
 /// `grid`, each found by its scene's hash (the earlier file's case names are those of the

@@ -233,7 +233,47 @@ void print_sensitivity_cost(std::FILE* out, const h5::Table& t) {
              spent, steady > 0.0 ? 100.0 * spent / steady : 0.0, steady, data_path("docs/theory/sensitivities.md"));
 }
 
+/// The refinement's table (`t`: /refinement/cases): one line per case, what it refines and
+/// what it found.
+void print_refinement_table(std::FILE* out, const h5::Table& t) {
+  const std::size_t n = t.rows();
+  const auto names = t.read_strings("name"), axis = t.read_strings("axis"), reason = t.read_strings("reason");
+  const auto a = t.read_int64s("case_a"), b = t.read_int64s("case_b"), round = t.read_int64s("round");
+  const auto status = t.read_strings("status"), cls = t.read_strings("classification");
+  std::vector<SummaryColumn> cols = {{"case", names}, {"edge", {}}, {"axis", axis}, {"value", {}}, {"round", {}},
+                                     {"reason", reason}, {"status", status}, {"classification", cls}};
+  std::map<std::string, std::vector<double>> values;  // each refined axis's column, read once
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!values.count(axis[i])) values[axis[i]] = t.read_doubles(axis[i]);
+    cols[1].cells.push_back(fmt::format("{}-{}", a[i], b[i]));
+    cols[3].cells.push_back(formatted("{:.6g}", values[axis[i]].at(i)));
+    cols[4].cells.push_back(fmt::format("{}", round[i]));
+  }
+  const auto metric = [&](const std::string& head, const char* name, const char* format, double scale) {
+    SummaryColumn c{head, {}};
+    for (double v : t.read_doubles(name)) c.cells.push_back(std::isfinite(v) ? formatted(format, v * scale) : "-");
+    cols.push_back(std::move(c));
+  };
+  metric("h_min[um]", "min_film_thickness_m", "{:.3f}", 1e6);
+  SummaryColumn below{"below_safe", {}};
+  for (std::int64_t v : t.read_int64s("below_safe_film")) below.cells.push_back(v < 0 ? "-" : fmt::format("{}", v));
+  cols.push_back(std::move(below));
+  metric("|mu|max", "multiplier_1_modulus", "{:.4f}", 1.0);
+  metric("periods", "periods_integrated", "{:.0f}", 1.0);
+  print_table(out, cols, n);
+}
+
 }  // namespace
+
+void print_refinement(const std::string& path, std::FILE* out) {
+  const h5::File f = h5::File::open(path, h5::File::Mode::ReadOnly);
+  if (!f.exists("refinement/cases")) return;
+  const h5::Table t = f.open_table("refinement/cases");
+  const h5::Group g = f.open_group("refinement");
+  fmt::print(out, "refinement: {} cases between lattice neighbours (lubsweep refine, --metric-tolerance {:g}; {}):\n",
+             t.rows(), g.attribute_double("metric_tolerance"), data_path("docs/guide/lubsweep.md"));
+  print_refinement_table(out, t);
+}
 
 void print_summary(const std::string& path, std::FILE* out) {
   // One line for a path that is not a study (lubsweep --summary): not HDF5's error stack.
@@ -266,6 +306,7 @@ void print_summary(const std::string& path, std::FILE* out) {
   print_notes(out, f, t);
   for (std::size_t i = 0; i < n; ++i)
     if (!is_ok(status[i])) fmt::print(out, "{}: {}: {}\n", names[i], status[i], message[i]);
+  print_refinement(path, out);
 }
 
 }  // namespace lub::sweep

@@ -23,6 +23,7 @@
 #include "lub/sweep/mpi_transport.hpp"
 #include "lub/sweep/output_lock.hpp"
 #include "lub/sweep/progress.hpp"
+#include "lub/sweep/refine.hpp"
 #include "lub/sweep/scheduler.hpp"
 #include "lub/sweep/study_file.hpp"
 #include "signals.hpp"
@@ -233,6 +234,7 @@ int finish(const Options& o, const Grid& grid, StudyWriter& writer, const Progre
 int run_sweep(const Options& o) {
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  if (o.refine) return run_refine(o, MPI_COMM_WORLD);
 
   if (!o.summary_of.empty()) {
     if (rank != 0) return 0;

@@ -109,14 +109,31 @@ def check_or_exit(path):
         raise SystemExit(str(e)) from None
 
 
-def cases(path):
+#: The tables ``cases`` reads: the study's own, and the cases ``lubsweep refine`` added.
+CASE_GROUPS = {"cases": "cases", "refinement": "refinement/cases"}
+
+
+def cases(path, group="cases"):
     """/cases as a pandas DataFrame indexed by case id. Its ``attrs``: the group's attributes
     (``axes``, ``orbit_classifications``, ...), ``units`` (each column's), and ``lattice``,
-    the file's /lattice (``lattice_edges``) where it has one."""
-    ds = _open(path, "cases")
+    the file's /lattice (``lattice_edges``) where it has one.
+
+    ``group="refinement"``: the cases ``lubsweep refine`` added (/refinement/cases), the same
+    columns and units plus the edge each refines (``case_a``, ``case_b``, ``axis``, ``round``,
+    ``reason``, ``score``, ``score_metric``) and its ``scene_patch``; None where the file has
+    no refinement."""
+    import h5py
+
+    if group not in CASE_GROUPS:
+        raise ValueError(f"group = {group!r}: must be one of {', '.join(map(repr, CASE_GROUPS))}")
+    if group != "cases":
+        with h5py.File(path, "r") as f:
+            if CASE_GROUPS[group] not in f:
+                return None
+    ds = _open(path, CASE_GROUPS[group])
     df = ds.to_dataframe()
     df.attrs = dict(ds.attrs, units={k: ds[k].attrs.get("units", "") for k in ds.variables})
-    lattice = _lattice(path)
+    lattice = _lattice(path) if group == "cases" else None
     if lattice is not None:
         df.attrs["lattice"] = lattice
     return df
@@ -201,14 +218,20 @@ def series(path, case_name):
 
 
 def scene(path, case_id):
-    """The effective scene of a case (a dict): its JSON Patch applied to reference_scene."""
+    """The effective scene of a case (a dict): its JSON Patch applied to reference_scene. A
+    case ``lubsweep refine`` added (an id past the study's) has its patch in
+    /refinement/cases."""
     import h5py
     import jsonpatch  # Debian: python3-jsonpatch
 
     with h5py.File(path, "r") as f:
         reference = f.attrs["reference_scene"]
         ids = list(f["scene"][:])
-        patch = f["scene_patches"][ids.index(int(case_id))]
+        if int(case_id) in ids:
+            patch = f["scene_patches"][ids.index(int(case_id))]
+        else:
+            refined = f["refinement/cases"]
+            patch = refined["scene_patch"][list(refined["case"][:]).index(int(case_id))]
     return jsonpatch.apply_patch(json.loads(_text(reference)), json.loads(_text(patch)))
 
 

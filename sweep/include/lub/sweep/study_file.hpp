@@ -124,8 +124,14 @@ class StudyWriter {
 };
 
 
-/// Prints a table of the study (one line per case: axes, status, key metrics) to `out`.
+/// Prints a table of the study (one line per case: axes, status, key metrics) to `out`,
+/// then its refinement's (print_refinement) where it has one.
 void print_summary(const std::string& path, std::FILE* out);
+
+/// Prints the cases of the study file's /refinement/cases (lubsweep refine), one line each:
+/// the edge refined, the axis value, round, reason, classification, key metrics. Nothing
+/// if the file has no refinement.
+void print_refinement(const std::string& path, std::FILE* out);
 
 /// Throws lub::InputError (naming `what`, then `hint`) unless `f` has this build's study
 /// format (kStudyFormat): an older layout is refused, not misread.

@@ -30,6 +30,10 @@ struct Options {
   std::string report_study;   ///< report: the study file
   std::string report_output;  ///< report: the HTML file (-o)
   std::string report_baseline;  ///< report: --baseline CSV, or empty
+  bool refine = false;        ///< the subcommand `refine`: add cases to a study (refine.hpp)
+  std::string refine_study;   ///< refine: the study file
+  long refine_budget = 0;     ///< refine: --budget, the most cases /refinement may hold
+  double refine_tolerance = 0.05;  ///< refine: --metric-tolerance (kDefaultMetricTolerance)
 };
 
 /// Exit statuses.
