@@ -47,25 +47,19 @@ struct Frene {
   Eigen::VectorXd z;
 };
 
-void BM_MonodromyByDifferences(benchmark::State& state) {
+/// M at the state by the map's own derivative (`derivative`) or by central differences.
+void BM_Monodromy(benchmark::State& state, bool derivative, const char* label) {
   Frene f;
-  const lub::steady::MonodromyOptions o{f.chart->units(), 1e-4, true, 0, false};
+  const lub::steady::MonodromyOptions o{f.chart->units(), 1e-4, true, 0, derivative};
   long long maps = 0;
   for (auto _ : state) maps = lub::steady::monodromy(*f.P, f.z, f.z, o).maps;
   state.counters["periods"] = static_cast<double>(maps);
-  state.SetLabel("central differences of whole periods, step 1e-4 of each unit");
+  state.SetLabel(label);
 }
-BENCHMARK(BM_MonodromyByDifferences)->Unit(benchmark::kMillisecond);
-
-void BM_MonodromyBySensitivities(benchmark::State& state) {
-  Frene f;
-  const lub::steady::MonodromyOptions o{f.chart->units(), 1e-4, true, 0, true};
-  long long maps = 0;
-  for (auto _ : state) maps = lub::steady::monodromy(*f.P, f.z, f.z, o).maps;
-  state.counters["periods"] = static_cast<double>(maps);
-  state.SetLabel("one period with its forward sensitivities");
-}
-BENCHMARK(BM_MonodromyBySensitivities)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Monodromy, ByDifferences, false, "central differences of whole periods, step 1e-4 of each unit")
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Monodromy, BySensitivities, true, "one period with its forward sensitivities")
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 BENCHMARK_MAIN();
