@@ -193,6 +193,7 @@ OrbitEvidence solve_orbit(SteadyContext& cx, Chart& chart, const StartState& bas
   OrbitEvidence ev;
   ev.final = final;
   ev.steady_tolerance = cx.sim.steady_tolerance;
+  ev.film_resolution = cx.tuning.film_resolution;
   // The period map at rtol × factor, and at rtol/100 of that: the Newton Jacobians' and
   // the monodromy's central differences (the map's noise at rtol over the difference step
   // would be ~1e-3 in them), and the error bars.

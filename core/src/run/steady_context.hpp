@@ -160,6 +160,7 @@ struct OrbitEvidence {
   ErrorBarEvidence bars;
   double orbit_error = kNaN;      ///< how far the orbit moves at rtol/100 [clearances]
   double steady_tolerance = 0.0;
+  double film_resolution = 0.0;   ///< SteadyTuning::film_resolution
   bool seeded = false;            ///< its seed made (a continuation can start from it)
 };
 

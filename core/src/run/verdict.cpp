@@ -215,6 +215,17 @@ bool orbit(RunResult& res, const OrbitEvidence& ev) {
     steady.kind = SteadyClass::not_converged;
     return false;
   }
+  const Metrics& m = res.metrics;
+  if (m.min_film_thickness_m_error > ev.film_resolution * m.min_film_thickness_m) {
+    // The film, and so where the journal sits against the wall, is not resolved at this rtol.
+    std::ostringstream msg;
+    msg << "the orbit's minimum film, " << m.min_film_thickness_m << " m, moves by " << m.min_film_thickness_m_error
+        << " m when its periods are integrated 100 times tighter (kappa " << ev.bars.conditioning
+        << "): more than " << ev.film_resolution << " of itself, not located";
+    prepend(res.message, msg.str());
+    steady.kind = SteadyClass::not_converged;
+    return false;
+  }
   return true;
 }
 
