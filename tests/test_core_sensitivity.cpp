@@ -126,8 +126,9 @@ TEST(Sensitivity, ItsErrorBarIsTheTruncationForASmoothMetricAndTheJumpAtAKink) {
       EXPECT_GT(s[0].d_metric_error[i], 0.0) << name;
       EXPECT_LT(s[0].d_metric_error[i], 1e-2 * std::abs(s[0].d_metric[i])) << name;
     }
-    if (name == "crank_angle_at_min_film_rad")
+    if (name == "crank_angle_at_min_film_rad") {
       EXPECT_GT(s[0].d_metric_error[i], 0.5 * std::abs(s[0].d_metric[i])) << name;
+    }
   }
   EXPECT_EQ(s[0].periods - s[1].periods, static_cast<long long>(lub::parse_scene(doc).simulation.metric_cycles));
 }

@@ -443,7 +443,11 @@ SegmentResult Runner::finish(double t) {
   }
   res_.series = series_.take();
   res_.stats.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0_).count();
-  return {std::move(res_), std::move(end), std::move(boundaries_)};
+  SegmentResult out;
+  out.res = std::move(res_);
+  out.end = std::move(end);
+  out.boundaries = std::move(boundaries_);
+  return out;
 }
 
 SegmentResult Runner::run() {
@@ -454,7 +458,9 @@ SegmentResult Runner::run() {
   initial_state();
   if (!start_integrator()) {
     res_.series = series_.take();
-    return {std::move(res_), {}, {}};
+    SegmentResult out;
+    out.res = std::move(res_);
+    return out;
   }
   first_observation();
   std::string sensitivity_note = opt_.sensitivities ? start_sensitivities() : std::string();
@@ -484,8 +490,12 @@ std::string Runner::start_sensitivities() {
   const size_t n = static_cast<size_t>(sys_->size());
   std::vector<double> S0(n * n, 0.0);
   for (size_t i = 0; i < n; ++i) S0[i * n + i] = 1.0;
-  if (!integ_->start_sensitivities(static_cast<int>(n), S0.data()))
-    return "the integration method has no forward sensitivities (cvode_bdf has)";
+  try {
+    if (!integ_->start_sensitivities(static_cast<int>(n), S0.data()))
+      return "the integration method has no forward sensitivities (cvode_bdf has)";
+  } catch (const std::exception& e) {
+    return std::string("the forward sensitivities could not be started: ") + e.what();
+  }
   return {};
 }
 
