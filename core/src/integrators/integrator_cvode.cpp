@@ -31,7 +31,7 @@ struct SensitivityData {
   std::vector<double> pbar;  ///< each column's scale (CVodeSetSensParams)
   N_Vector* atol = nullptr;  ///< their absolute tolerances
   bool off = false;          ///< stopped (Integrator::stop_sensitivities)
-  void allocate(int n_sens, N_Vector like, SUNContext) {
+  void allocate(int n_sens, N_Vector like) {
     yS = N_VCloneVectorArray(n_sens, like);
     if (!yS) throw std::runtime_error("N_VCloneVectorArray failed");
     ns = n_sens;
@@ -243,7 +243,7 @@ class CvodeIntegrator final : public Integrator {
   bool start_sensitivities(int ns, const double* S0) override {
     if (method_ != Method::cvode_bdf || ns < 1 || sens_.ns > 0) return false;
     const sunindextype n = N_VGetLength(y_);
-    sens_.allocate(ns, y_, ctx_);
+    sens_.allocate(ns, y_);
     data_.sens = &sens_;
     for (int k = 0; k < ns; ++k)
       for (sunindextype i = 0; i < n; ++i) NV_Ith_S(sens_.yS[k], i) = S0[static_cast<size_t>(k * n + i)];

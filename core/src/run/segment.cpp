@@ -66,6 +66,7 @@ class Runner {
   std::vector<int> root_flags_;
   double E0_ = 0.0;
   double t_restarted_ = -std::numeric_limits<double>::infinity();  // the last restart after a failure
+  std::string sensitivity_note_;  // why the segment has no sensitivities (empty while they run)
   std::chrono::steady_clock::time_point wall0_;
 
   void initial_state();
@@ -107,6 +108,9 @@ class Runner {
   SegmentResult finish(double t);
   /// SegmentOptions::sensitivities: starts them from the identity; why not, if not.
   std::string start_sensitivities();
+  /// The right-hand side switched at t (a film's mode): the sensitivities stop there, as
+  /// they would need the switch's saltation, and the segment's note says so.
+  void end_sensitivities(double t);
 };
 
 Runner::Runner(RunModel& rm, const SegmentOptions& opt)
@@ -301,7 +305,7 @@ Stop Runner::handle_root(double t, bool have_state) {
     return fail(RunStatus::solver_failure, "coordinate partitioning: the dependent coordinates cannot be recovered at t = " +
                                                std::to_string(t) + " s");
   res_.stats.mode_switches += sys_->switch_modes(root_flags_, t, yfull_.data());
-  if (opt_.sensitivities) integ_->stop_sensitivities();  // they would need the switch's saltation
+  end_sensitivities(t);
   restart_here(t);
   return Stop::none;
 }
@@ -392,7 +396,7 @@ Stop Runner::advance(double& t) {
     // A free mode that no longer matches the sign of ε̇: a crossing the root finder could
     // not see (ε̇ left zero from an exact zero at a restart). Restart on the branch that applies.
     res_.stats.mode_switches += resynced;
-    if (opt_.sensitivities) integ_->stop_sensitivities();
+    end_sensitivities(t);
     restart_here(t);
   }
   if (check_drift_and_budgets(t) == Stop::failed) return Stop::failed;
@@ -463,25 +467,29 @@ SegmentResult Runner::run() {
     return out;
   }
   first_observation();
-  std::string sensitivity_note = opt_.sensitivities ? start_sensitivities() : std::string();
+  if (opt_.sensitivities) sensitivity_note_ = start_sensitivities();
   double t = t0_;
   while (advance(t) == Stop::none) {
   }
-  const long long switches = res_.stats.mode_switches, repartitions = res_.stats.repartitions;
   std::vector<double> S;
-  if (opt_.sensitivities && sensitivity_note.empty()) {
+  if (opt_.sensitivities && sensitivity_note_.empty()) {
     S.assign(static_cast<size_t>(sys_->size()) * static_cast<size_t>(sys_->size()), 0.0);
-    if (switches > 0 || repartitions > 0)
-      sensitivity_note = "a film's mode switched or the coordinates were repartitioned: the variational "
-                         "equation would need its saltation there";
-    else if (!integ_->sensitivities(t, S.data()))
-      sensitivity_note = "the sensitivities could not be read at the segment's end";
-    if (!sensitivity_note.empty()) S.clear();
+    if (!integ_->sensitivities(t, S.data())) {
+      sensitivity_note_ = "the sensitivities could not be read at the segment's end";
+      S.clear();
+    }
   }
   SegmentResult out = finish(t);
   out.sensitivity = std::move(S);
-  out.sensitivity_note = std::move(sensitivity_note);
+  out.sensitivity_note = std::move(sensitivity_note_);
   return out;
+}
+
+void Runner::end_sensitivities(double t) {
+  if (!opt_.sensitivities || !sensitivity_note_.empty()) return;
+  integ_->stop_sensitivities();
+  sensitivity_note_ = "a film's mode switched at t = " + std::to_string(t) +
+                      " s: the variational equation would need its saltation there";
 }
 
 std::string Runner::start_sensitivities() {

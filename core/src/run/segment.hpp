@@ -38,7 +38,7 @@ struct SegmentOptions {
   /// steps (Integrator::start_sensitivities), so that the derivative is that of the computed
   /// map itself. Where the integration has none (a method without them, a formulation
   /// other than joint) or a switch of the right-hand side breaks them (a film's mode
-  /// change, which would need its saltation; a repartition), the result says why.
+  /// change, which would need its saltation), the result says why.
   bool sensitivities = false;
   /// Called after every completed cycle with the cycles so far: true stops the run there.
   std::function<bool(const std::vector<CycleMetrics>&)> stop_after_cycle;
