@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "lub/run/orbit.hpp"
+#include "lub/run/run_io.hpp"
 #include "run/metrics.hpp"
 
 namespace {
@@ -162,6 +163,36 @@ TEST(SteadyCycleMetrics, NoFilmWithoutALubricatedMetricJoint) {
   const Metrics none = steady_cycle_metrics(metric_scene(1, 2), {}, 0);
   EXPECT_EQ(none.min_film_thickness_m, 0.0);
   EXPECT_EQ(none.periodicity, -1.0);
+}
+
+// below_safe_film as a result (run_io.cpp): an orbit's film decides; a collapsed film is
+// below; a drifting film is below once its drift law crosses the safe film or when it is
+// already below and falling; anything else (a transient's last film) is unknown, NaN.
+TEST(SteadyCycleMetrics, BelowSafeFilmIsAResultOrUnknown) {
+  const auto& fields = lub::metric_fields();
+  const auto field = std::find_if(fields.begin(), fields.end(), [](const auto& f) { return f.name == "below_safe_film"; });
+  ASSERT_NE(field, fields.end());
+  const auto below = [&](lub::SteadyClass kind, bool under, double drift, double crossing,
+                         lub::RunStatus status = lub::RunStatus::ok) {
+    lub::RunResult r;
+    r.status = status;
+    r.steady.kind = kind;
+    r.metrics.below_safe_film = under;
+    r.steady.min_film_drift_m_per_cycle = drift;
+    r.steady.safe_film_cycle = crossing;
+    return field->get(r);
+  };
+  const double nan = std::nan("");
+  using K = lub::SteadyClass;
+  EXPECT_EQ(below(K::periodic, true, nan, nan), 1.0);
+  EXPECT_EQ(below(K::periodic_unstable, false, -1e-9, nan), 0.0);
+  EXPECT_EQ(below(K::drifting, false, -1e-9, 471.0), 1.0);   // its law crosses the safe film
+  EXPECT_EQ(below(K::drifting, true, -1e-9, nan), 1.0);      // already below, and falling
+  EXPECT_TRUE(std::isnan(below(K::drifting, false, -1e-9, nan)));  // above, law beyond reach
+  EXPECT_TRUE(std::isnan(below(K::drifting, true, 3e-9, nan)));    // below, but rising
+  EXPECT_TRUE(std::isnan(below(K::not_converged, true, -1e-9, nan)));
+  EXPECT_EQ(below(K::not_converged, false, nan, nan, lub::RunStatus::film_collapse), 1.0);
+  EXPECT_TRUE(std::isnan(below(K::periodic, false, nan, nan, lub::RunStatus::solver_failure)));
 }
 
 // How well posed an orbit is, from its multipliers (lub/run/orbit.hpp), against values

@@ -36,6 +36,25 @@ double multiplier(const RunResult& r, size_t k, bool angle) {
   if (k >= r.steady.multipliers.size()) return kNaN;
   return angle ? std::arg(r.steady.multipliers[k]) : std::abs(r.steady.multipliers[k]);
 }
+
+// Whether the film is below the safe film, as a result: 1, 0, or NaN (unknown). An orbit's
+// steady film decides; a film that collapsed is below it; a film that drifts down is below
+// it once its drift law crosses the safe film, or when it is already there. A transient's
+// last film is no result: any other case is unknown.
+double below_safe_film(const RunResult& r) {
+  if (r.status == RunStatus::film_collapse) return 1.0;
+  if (r.status != RunStatus::ok) return kNaN;
+  switch (r.steady.kind) {
+    case SteadyClass::periodic:
+    case SteadyClass::periodic_unstable: return r.metrics.below_safe_film ? 1.0 : 0.0;
+    case SteadyClass::drifting: {
+      const bool falling = r.steady.min_film_drift_m_per_cycle < 0.0;
+      return std::isfinite(r.steady.safe_film_cycle) || (falling && r.metrics.below_safe_film) ? 1.0 : kNaN;
+    }
+    case SteadyClass::not_converged: return kNaN;
+  }
+  return kNaN;
+}
 }  // namespace
 
 const std::vector<ResultField>& metric_fields() {
@@ -117,8 +136,10 @@ const std::vector<ResultField>& metric_fields() {
          "the same e-folding time in seconds (slowest_mode_cycles x the crank period)"},
         {"safe_film_thickness_m", "m", false, [](const RunResult& r) { return r.metrics.safe_film_thickness_m; },
          "safe minimum film thickness, 0.00015 mm per mm of bearing diameter (ESDU 84031)"},
-        {"below_safe_film", "1", true, [](const RunResult& r) { return r.metrics.below_safe_film ? 1.0 : 0.0; },
-         "1 if the minimum film thickness is below the safe film thickness"},
+        {"below_safe_film", "1", true, [](const RunResult& r) { return below_safe_film(r); },
+         "1 if the minimum film thickness is below the safe film thickness: an orbit's; a collapsed film's; a "
+         "drifting film's once its drift law crosses the safe film or it is already below and falling "
+         "(missing: unknown, a case without a steady film)"},
         {"load_reverses", "1", true, [](const RunResult& r) { return r.metrics.load_reverses ? 1.0 : 0.0; },
          "1 if the metric joint's film force turns by more than 90 degrees (in the bearing body's frame) within a metric cycle"},
     };
