@@ -399,6 +399,23 @@ def test_load_study(study_file):
     assert s.cases["max_eps"].values[0] != s.cases["max_eps"].values[1]
 
 
+def test_the_cases_table_is_what_the_netcdf_reader_decodes(study_file):
+    # lubjoint.study reads /cases with h5py (the netCDF reader takes seconds to size its
+    # dimension over a few hundred columns); what it returns is what xarray's CF decoding
+    # gives: every column, dtype, mask, attribute and unit.
+    import pandas as pd
+    import xarray as xr
+
+    with xr.open_dataset(study_file, group="cases", engine="h5netcdf") as ds:
+        decoded = ds.load()
+    xr.testing.assert_identical(lubjoint.load_study(study_file).cases, decoded)
+    df = lubjoint.study.cases(study_file)
+    pd.testing.assert_frame_equal(df, decoded.to_dataframe())
+    assert df.attrs["units"] == {k: decoded[k].attrs.get("units", "") for k in decoded.variables}
+    assert {k: str(v) for k, v in df.attrs.items() if k not in ("units", "lattice")} == \
+        {k: str(v) for k, v in decoded.attrs.items() if k != "units"}
+
+
 def test_study_series_is_the_readers_series_by_id_or_name(study_file):
     # Study.series reads through lubjoint.study.series: the same Dataset by the case's id or name.
     s = lubjoint.load_study(study_file)

@@ -130,13 +130,66 @@ def cases(path, group="cases"):
         with h5py.File(path, "r") as f:
             if CASE_GROUPS[group] not in f:
                 return None
-    ds = _open(path, CASE_GROUPS[group])
-    df = ds.to_dataframe()
-    df.attrs = dict(ds.attrs, units={k: ds[k].attrs.get("units", "") for k in ds.variables})
+    columns, column_attrs, attrs = _read_cases(path, CASE_GROUPS[group])
+    import pandas as pd
+
+    index = columns.pop("case")
+    df = pd.DataFrame(columns, index=pd.Index(index, name="case"))
+    df.attrs = dict(attrs, units={k: a.get("units", "") for k, a in column_attrs.items()})
     lattice = _lattice(path) if group == "cases" else None
     if lattice is not None:
         df.attrs["lattice"] = lattice
     return df
+
+
+#: HDF5 attributes of the dimension-scale machinery and the CF masks: not the column's own.
+_PLUMBING = {"CLASS", "NAME", "REFERENCE_LIST", "DIMENSION_LIST", "_Netcdf4Dimid", "_Netcdf4Coordinates",
+             "_FillValue", "missing_value"}
+
+
+def _attribute(value):
+    import numpy as np
+
+    if isinstance(value, bytes):
+        return value.decode()
+    if isinstance(value, np.ndarray) and value.size == 1 and value.ndim == 1:  # netCDF: one value, a scalar
+        return _attribute(value[0])
+    if isinstance(value, np.ndarray) and value.dtype.kind in "OS":  # netCDF: text values, a list
+        return [_text(v) for v in value.ravel()]
+    return value
+
+
+def _read_cases(path, group):
+    """A cases table's columns (numpy arrays, by name, in the file's order), each column's
+    attributes and the group's, as xarray's CF decoding gives them: a masked value
+    (``_FillValue``, ``missing_value``) NaN, an integer column with a mask as float64, text
+    as str. Read with h5py: the netCDF reader sizes the unlimited dimension once per column
+    over every column that shares it, seconds for a few hundred columns."""
+    import h5py
+    import numpy as np
+
+    columns, column_attrs = {}, {}
+    with h5py.File(path, "r") as f:
+        g = f[group]
+        for name, d in g.items():
+            if not isinstance(d, h5py.Dataset):
+                continue
+            a = {k: _attribute(v) for k, v in d.attrs.items()}
+            masks = [a[k] for k in ("_FillValue", "missing_value") if k in a]
+            column_attrs[name] = {k: v for k, v in a.items() if k not in _PLUMBING}
+            if h5py.check_string_dtype(d.dtype):
+                columns[name] = np.asarray(d.asstr()[()], dtype=object)
+                continue
+            v = d[()]
+            if masks and v.dtype.kind in "iuf":
+                out = v.astype(np.float64)
+                for m in masks:
+                    if not np.isnan(m):
+                        out[v == m] = np.nan
+                v = out if v.dtype.kind in "iu" or any(not np.isnan(m) for m in masks) else v
+            columns[name] = v
+        attrs = {k: _attribute(v) for k, v in g.attrs.items()}
+    return columns, column_attrs, attrs
 
 
 def _lattice(path):
@@ -292,6 +345,22 @@ def decode_seed(row, layout):
     return out
 
 
+def orbit_seed_row(path, case_id):
+    """The periodic orbit a case found as its packed /cases ``orbit_seed`` row (a list of
+    floats), as ``lubjoint.simulate(..., continue_from=(scene, row))`` takes it; None where
+    the case located no orbit."""
+    import h5py
+
+    with h5py.File(path, "r") as f:  # one cell (cases() reads the whole table)
+        for name in ("cases", "refinement/cases"):
+            if name in f and "orbit_seed" in f[name]:
+                ids = list(f[name]["case"][:])
+                if int(case_id) in ids:
+                    text = _text(f[name]["orbit_seed"][ids.index(int(case_id))])
+                    return json.loads(text) if text else None
+    return None
+
+
 def orbit_seed(path, case_id):
     """The periodic orbit a case found (``simulation.steady`` continuation or shooting in a
     study), decoded from /cases ``orbit_seed`` by the names the file gives its fields
@@ -406,4 +475,10 @@ def load_study(path):
             return ds.load()
 
     grids = {name: load(f"grids/{name}") for name in names}
-    return Study(path, grids, load("cases"), attrs)
+    import xarray as xr
+
+    columns, column_attrs, case_attrs = _read_cases(path, "cases")  # as _open would, faster
+    ids = columns.pop("case")
+    cases_ = xr.Dataset({k: ("case", v, column_attrs[k]) for k, v in columns.items()},
+                        coords={"case": ("case", ids, column_attrs["case"])}, attrs=case_attrs)
+    return Study(path, grids, cases_, attrs)
