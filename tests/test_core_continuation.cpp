@@ -148,4 +148,37 @@ TEST(Continuation, APathThatCannotBeFollowedFallsBackAndSaysWhere) {
   EXPECT_EQ(lub::classification(r), "periodic") << r.message;
 }
 
+// Without the run alone (ContinuationStart::alone_if_lost false, a boundary's existence test)
+// the same lost path ends there: not_converged, saying the neighbour's orbit was not
+// continued and where, with no orbit and only the path's periods spent.
+TEST(Continuation, APathThatCannotBeFollowedEndsThereWhenAskedTo) {
+  const json b = scene("pinkus_sternlicht", 2500, "shooting");
+  lub::OrbitSeed wrong;
+  wrong.deviation = {1.0, 2.0};
+  lub::ContinuationStart start{wrong, [b](double) { return lub::parse_scene(b); }};
+  start.alone_if_lost = false;
+  const RunResult r = lub::run_scene(lub::parse_scene(b), start);
+  EXPECT_EQ(r.status, RunStatus::ok);
+  EXPECT_EQ(lub::classification(r), "not_converged") << r.message;
+  EXPECT_NE(r.message.find("was not continued"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("another mechanism"), std::string::npos) << r.message;
+  EXPECT_FALSE(r.orbit_seed.valid());
+  EXPECT_EQ(r.steady.periods_integrated, 0);
+}
+
+// The path lubsweep and lubjoint continue along (lub::scene_path): a number that differs is
+// interpolated in its logarithm where both ends are positive, linearly otherwise; the ends
+// are the two scenes.
+TEST(Continuation, TheScenePathInterpolatesWhatDiffers) {
+  json a = scene("pinkus_sternlicht", 5000, "shooting"), b = scene("pinkus_sternlicht", 500, "shooting");
+  a["effects"]["gravity_m_s2"] = {0.0, -9.81};
+  b["effects"]["gravity_m_s2"] = {0.0, 9.81};
+  const auto path = lub::scene_path(a, b);
+  const double rpm = 2.0 * M_PI / 60.0;  // rad/s per rpm
+  EXPECT_NEAR(path(0.0).drivers[0].speed_rad_s, 5000.0 * rpm, 1e-9);
+  EXPECT_NEAR(path(1.0).drivers[0].speed_rad_s, 500.0 * rpm, 1e-9);
+  EXPECT_NEAR(path(0.5).drivers[0].speed_rad_s, std::sqrt(5000.0 * 500.0) * rpm, 1e-9);
+  EXPECT_NEAR((*path(0.25).gravity_m_s2)[1], -9.81 + 0.25 * 2 * 9.81, 1e-12);
+}
+
 }  // namespace

@@ -68,7 +68,8 @@ struct Column {
 py::dict simulate(const std::optional<std::string>& scene_path, const std::optional<std::string>& scene_text,
                   const std::string& origin, const std::vector<std::string>& assignments,
                   const std::optional<std::string>& output, const std::string& program, bool strict,
-                  const std::vector<std::string>& sensitivity) {
+                  const std::vector<std::string>& sensitivity, const std::optional<std::string>& from_scene,
+                  const std::vector<double>& from_orbit, bool single_step) {
   lub::RunResult r;
   std::string effective;
   std::vector<std::string> warnings;
@@ -92,7 +93,14 @@ py::dict simulate(const std::optional<std::string>& scene_path, const std::optio
       }
       effective = doc.dump(2);
       const std::vector<lub::SensitivityParameter> params = lub::sensitivity_parameters(doc, sensitivity, "sensitivity");
-      r = lub::run_scene(scene);  // throws InputError only if the mechanism cannot assemble
+      // From a neighbour's orbit (continued along the path of scenes from its scene, no run
+      // alone where it is lost), or from the scene's own start.
+      if (from_scene && !from_orbit.empty())
+        r = lub::run_scene(scene, lub::ContinuationStart{lub::unpack_seed(from_orbit),
+                                                         lub::scene_path(lub::parse_json(*from_scene), doc), false,
+                                                         single_step ? 1.0 : 0.0});
+      else
+        r = lub::run_scene(scene);  // throws InputError only if the mechanism cannot assemble
       if (!params.empty()) sens = lub::steady_sensitivities(r, params);
     } catch (const lub::InputError& e) {
       // lubsim prints "lubsim: SCENE: message"; the message here is "SCENE: message".
@@ -115,6 +123,7 @@ py::dict simulate(const std::optional<std::string>& scene_path, const std::optio
   out["revision"] = lub::build_revision();
   out["warnings"] = warnings;
   out["notes"] = r.notes;
+  out["orbit_seed"] = r.orbit_seed.valid() ? lub::pack_seed(r.orbit_seed) : std::vector<double>{};
   py::list sl;
   for (const lub::Sensitivity& s : sens) {
     py::dict d;
@@ -376,7 +385,8 @@ PYBIND11_MODULE(_lubjoint, m) {
       .def_readonly("values", &Column::values);
   m.def("simulate", &simulate, py::arg("scene_path"), py::arg("scene_text"), py::arg("origin"),
         py::arg("assignments"), py::arg("output"), py::arg("program") = "lubjoint", py::arg("strict") = false,
-        py::arg("sensitivity") = std::vector<std::string>{},
+        py::arg("sensitivity") = std::vector<std::string>{}, py::arg("from_scene") = std::nullopt,
+        py::arg("from_orbit") = std::vector<double>{}, py::arg("single_step") = false,
         "Runs one scene as lubsim does (GIL released); returns a dict with Scalar/Column records. See lubjoint.simulate.");
   m.def("force", &force, py::arg("law"), py::arg("eps"), py::arg("eps_dot"), py::arg("wedge_rad_s"),
         py::arg("radius_m"), py::arg("clearance_m"), py::arg("length_m"), py::arg("viscosity_Pa_s"),

@@ -109,28 +109,6 @@ CaseResult run_guarded(int case_id, int rank, const SceneOf& scene, const Run& r
 
 const auto kAlone = [](const Scene& s) { return run_scene(s); };
 
-/// The scene at λ on the path from `from` (λ = 0) to `to` (λ = 1): every number that
-/// differs interpolated, in its logarithm where both ends are positive (viscosities,
-/// speeds, radii), linearly otherwise; anything else as `to` has it.
-json between(const json& from, const json& to, double lambda) {
-  if (from.is_object() && to.is_object()) {
-    json out = to;
-    for (auto it = out.begin(); it != out.end(); ++it)
-      if (from.contains(it.key())) *it = between(from.at(it.key()), *it, lambda);
-    return out;
-  }
-  if (from.is_array() && to.is_array() && from.size() == to.size()) {
-    json out = to;
-    for (std::size_t i = 0; i < out.size(); ++i) out[i] = between(from[i], to[i], lambda);
-    return out;
-  }
-  if (from.is_number() && to.is_number() && !to.is_number_integer() && from != to) {
-    const double a = from.get<double>(), b = to.get<double>();
-    return a > 0.0 && b > 0.0 ? std::exp((1.0 - lambda) * std::log(a) + lambda * std::log(b))
-                              : (1.0 - lambda) * a + lambda * b;
-  }
-  return to;
-}
 
 }  // namespace
 
@@ -142,8 +120,8 @@ CaseResult run_task(const Task& task, int rank) {
   if (task.from_scene.empty() || task.from_orbit.empty())
     return run_guarded(
         task.case_id, rank, [&] { return parse_scene(nlohmann::json::parse(task.scene)); }, kAlone, &task);
-  const json from = json::parse(task.from_scene), to = json::parse(task.scene);
-  auto path = [from, to](double lambda) { return parse_scene(between(from, to, lambda)); };
+  const json to = json::parse(task.scene);
+  const auto path = scene_path(json::parse(task.from_scene), to);
   CaseResult r = run_guarded(
       task.case_id, rank, [&] { return parse_scene(to); },
       [&](const Scene& s) { return run_scene(s, ContinuationStart{unpack_seed(task.from_orbit), path}); }, &task);

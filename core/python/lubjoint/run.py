@@ -48,7 +48,8 @@ def _assignment(pointer, value):
     return f"{pointer}={json.dumps(value)}"
 
 
-def simulate(scene, overrides=None, output=None, *, strict=False, sensitivity=()):
+def simulate(scene, overrides=None, output=None, *, strict=False, sensitivity=(), continue_from=None,
+             single_step=False):
     """Run one scene, as ``lubsim`` does, and return it as an ``xarray.Dataset``.
 
     Parameters
@@ -75,6 +76,18 @@ def simulate(scene, overrides=None, output=None, *, strict=False, sensitivity=()
         slash, ``/`` as ``_``) with ``units`` "metric unit/(parameter unit)", ``parameter``
         and ``long_name``, and ``..._error``; ``attrs["sensitivities"]``: each pointer's
         status and message.
+    continue_from : (scene, orbit_seed), optional
+        Start from a neighbour's orbit instead of the scene's own start: ``scene`` the
+        neighbour's effective scene (a dict or JSON text) and ``orbit_seed`` its orbit packed
+        as a lubsweep study's ``/cases/orbit_seed`` row (``lubjoint.study.orbit_seed_row``,
+        or this function's own ``orbit_seed`` variable). The orbit is continued along the
+        path of scenes between the two (docs/theory/continuation.md); where it is lost on
+        the way the run ends ``not_converged`` and says where, with no run from the scene's
+        own start: the question "does this orbit continue to this scene?".
+    single_step : bool, optional
+        With ``continue_from``: one Newton from the neighbour's orbit straight at the scene,
+        no shorter steps along the path where it fails (a cheap existence test where the
+        neighbour is close).
 
     Returns
     -------
@@ -131,8 +144,19 @@ def simulate(scene, overrides=None, output=None, *, strict=False, sensitivity=()
 
     if isinstance(sensitivity, str):
         sensitivity = [sensitivity]
+    from_scene, from_orbit = None, []
+    if continue_from is not None:
+        try:
+            from_scene, from_orbit = continue_from
+        except (TypeError, ValueError):
+            raise InputError("continue_from: must be a pair (the neighbour's scene, its orbit_seed row)") from None
+        from_scene = from_scene if isinstance(from_scene, str) else json.dumps(from_scene)
+        from_orbit = [float(v) for v in from_orbit]
+        if not from_orbit:
+            raise InputError("continue_from: the neighbour's orbit_seed is empty: it located no orbit")
     r = _lubjoint.simulate(scene_path, scene_text, origin, assignments, out_path, strict=bool(strict),
-                           sensitivity=[str(p) for p in sensitivity])
+                           sensitivity=[str(p) for p in sensitivity], from_scene=from_scene, from_orbit=from_orbit,
+                           single_step=bool(single_step))
     for w in r["warnings"]:
         warnings.warn(w, PlausibilityWarning, stacklevel=2)
     for n in r["notes"]:
@@ -176,6 +200,9 @@ def simulate(scene, overrides=None, output=None, *, strict=False, sensitivity=()
                                        {"units": "1", "long_name": "Floquet multipliers' moduli, largest first"})
     data_vars["multiplier_angle_rad"] = ("multiplier", r["multiplier_angle_rad"],
                                          {"units": "rad", "long_name": "Floquet multipliers' angles"})
+    data_vars["orbit_seed"] = ("orbit_seed_value", np.asarray(r["orbit_seed"], dtype=np.float64), {
+        "units": "1", "long_name": "the located orbit packed as a lubsweep study's /cases/orbit_seed row, for "
+                                   "continue_from (empty: no orbit)"})
     sens_status = []
     for s in r["sensitivities"]:
         key = s["parameter"].lstrip("/").replace("/", "_")

@@ -5,6 +5,8 @@
 // (docs/theory/continuation.md).
 #include <cmath>
 
+#include <nlohmann/json.hpp>
+
 #include "run/orbit_seed.hpp"
 #include "run/steady_strategies.hpp"
 #include "run/verdict.hpp"
@@ -82,7 +84,8 @@ std::optional<RunResult> follow_path(const Scene& scene, const ContinuationStart
   double lambda = 0.0, step = 1.0;
   int steps = 0;
   why = seed.valid() ? "" : "the neighbour has no orbit";
-  while (seed.valid() && step >= tuning.min_path_step) {
+  const double min_step = from.min_step > 0.0 ? from.min_step : tuning.min_path_step;
+  while (seed.valid() && step >= min_step) {
     const long long used = before + spent.steady.periods_integrated;
     if (budget_spent(scene, used, why)) break;
     const double next = std::min(1.0, lambda + step);
@@ -162,6 +165,10 @@ RunResult run_continued(const Scene& scene, const ContinuationStart& from) {
     verdict::path_spent(spent, why);
     return finish_wall(std::move(spent), wall0);
   }
+  if (!from.alone_if_lost) {  // the seed's orbit is lost on the way: the run ends there
+    verdict::path_lost(spent, why);
+    return finish_wall(std::move(spent), wall0);
+  }
   // The path could not be followed: the scene alone.
   RunResult r = run_alone(scene, spent.steady.periods_integrated);
   add_costs(r, spent);
@@ -170,3 +177,40 @@ RunResult run_continued(const Scene& scene, const ContinuationStart& from) {
 }
 
 }  // namespace lub::detail
+
+namespace lub {
+
+namespace {
+
+using nlohmann::json;
+
+/// The scene's JSON at λ on the path from `from` (λ = 0) to `to` (λ = 1): every number that
+/// differs interpolated, in its logarithm where both ends are positive (viscosities,
+/// speeds, radii), linearly otherwise; anything else as `to` has it.
+json between(const json& from, const json& to, double lambda) {
+  if (from.is_object() && to.is_object()) {
+    json out = to;
+    for (auto it = out.begin(); it != out.end(); ++it)
+      if (from.contains(it.key())) *it = between(from.at(it.key()), *it, lambda);
+    return out;
+  }
+  if (from.is_array() && to.is_array() && from.size() == to.size()) {
+    json out = to;
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = between(from[i], to[i], lambda);
+    return out;
+  }
+  if (from.is_number() && to.is_number() && !to.is_number_integer() && from != to) {
+    const double a = from.get<double>(), b = to.get<double>();
+    return a > 0.0 && b > 0.0 ? std::exp((1.0 - lambda) * std::log(a) + lambda * std::log(b))
+                              : (1.0 - lambda) * a + lambda * b;
+  }
+  return to;
+}
+
+}  // namespace
+
+std::function<Scene(double lambda)> scene_path(const json& from, const json& to) {
+  return [from, to](double lambda) { return parse_scene(between(from, to, lambda)); };
+}
+
+}  // namespace lub

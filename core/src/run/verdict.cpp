@@ -423,6 +423,11 @@ void path_then_alone(RunResult& res, const std::string& why) { res.message = why
 
 void path_spent(RunResult& res, const std::string& why) { res.message = why; }
 
+void path_lost(RunResult& res, const std::string& why) {
+  res.steady.kind = SteadyClass::not_converged;
+  res.message = "the neighbour's orbit was not continued to this scene: " + why;
+}
+
 RunResult close(SteadyContext& cx, std::chrono::steady_clock::time_point wall0) {
   RunResult& res = cx.res;
   const SteadyCycle& steady = res.steady;

@@ -76,6 +76,9 @@ void budget_spent(RunResult& res, const std::string& why);
 void path_then_alone(RunResult& res, const std::string& why);
 /// A path from a neighbour given up where the budget is spent: its account is the case's.
 void path_spent(RunResult& res, const std::string& why);
+/// A path from a neighbour whose orbit was lost on the way (ContinuationStart::alone_if_lost
+/// false): not_converged, its account the case's.
+void path_lost(RunResult& res, const std::string& why);
 
 /// The run's result: the budget's note first, the steady flag and counts, the wall time.
 RunResult close(SteadyContext& cx, std::chrono::steady_clock::time_point wall0);

@@ -313,7 +313,20 @@ RunResult run_scene(const Scene& scene);
 struct ContinuationStart {
   OrbitSeed seed;
   std::function<Scene(double lambda)> path;
+  /// Where the path cannot be followed: true, the scene runs alone as run_scene(scene)
+  /// would; false, the run ends there, not_converged, and says where the seed's orbit was
+  /// lost (a boundary's existence test: does the orbit continue to this scene?).
+  bool alone_if_lost = true;
+  /// The smallest step along the path (a share of it) before the path is given up: 0, the
+  /// engine's (1/32); 1, one Newton from the seed straight at the scene.
+  double min_step = 0.0;
 };
+/// The path of scenes from the effective scene `from` (λ = 0) to `to` (λ = 1): every
+/// number that differs interpolated, in its logarithm where both ends are positive
+/// (viscosities, speeds, radii), linearly otherwise; anything else as `to` has it; each
+/// parsed (parse_scene, which may throw InputError).
+std::function<Scene(double lambda)> scene_path(const nlohmann::json& from, const nlohmann::json& to);
+
 /// A scene number whose steady metrics' sensitivity is asked for (lubsim --sensitivity):
 /// its name (the JSON Pointer), unit, value, and the scene with the number set to another
 /// value (which may throw InputError).
@@ -357,7 +370,8 @@ std::vector<Sensitivity> steady_sensitivities(const RunResult& r, const std::vec
 /// seed (its monodromy the first Jacobian), stepping along the path when a step fails
 /// (halved on failure, doubled on quick convergence), then the orbit's multipliers,
 /// metrics and error bars as shooting gives them. If the path cannot be followed, the
-/// scene runs as run_scene(scene) would, and the message says where the path ended.
+/// scene runs as run_scene(scene) would (from.alone_if_lost), and the message says where
+/// the path ended.
 RunResult run_scene(const Scene& scene, const ContinuationStart& from);
 
 }  // namespace lub
