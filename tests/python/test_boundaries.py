@@ -1,7 +1,9 @@
-"""Safe-film boundaries located between a study's grid points (lubjoint.boundaries, issue 44),
-on the paper grid's study (the nightly_paper fixture): the printed law at 0.5 mm and
-5000 rpm crosses the safe film between 0.1 and 0.2 Pa s; the located viscosity against a
-bisection of separate runs (each its own steady stage), to issue 44's 0.5 %."""
+"""Boundaries located between a study's grid points (lubjoint.boundaries, issue 44), on the
+paper grid's study (the nightly_paper fixture): the printed law at 0.5 mm and 5000 rpm
+crosses the safe film between 0.1 and 0.2 Pa s, the located viscosity against a bisection
+of separate runs (each its own steady stage), to issue 44's 0.5 %; at 0.4 Pa s its safe
+orbit is lost between 500 and 50 rpm, the located edge against continuation with halved
+steps on either side; a run continued from a case's orbit locates that orbit."""
 import warnings
 
 import pytest
@@ -10,15 +12,25 @@ import lubjoint
 from lubjoint import boundaries
 
 
-def test_the_safe_film_viscosity_matches_a_bisection_of_separate_runs(paper_study):
-    study = lubjoint.load_study(paper_study)
-    found = boundaries.safe_film_boundaries(study)
-    rows = found[(found["axis"] == "viscosity_Pa_s") & (found["force_law"] == "pinkus_sternlicht")]
+@pytest.fixture(scope="module")
+def found(paper_study):
+    """The paper study's safe-film boundaries, located once for the tests that read them."""
+    return boundaries.safe_film_boundaries(lubjoint.load_study(paper_study))
+
+
+def one_row(found, **where):
+    rows = found
+    for column, value in where.items():
+        rows = rows[rows[column] == value]
     assert len(rows) == 1, found
-    row = rows.iloc[0]
+    return rows.iloc[0]
+
+
+def test_the_safe_film_viscosity_matches_a_bisection_of_separate_runs(paper_study, found):
+    row = one_row(found, axis="viscosity_Pa_s", force_law="pinkus_sternlicht")
     assert row["converged"] and row["unit"] == "Pa s" and row["kind"] == "safe_film"
     assert 0.1 < row["value"] < 0.2 and row["error"] < 5e-3 * row["value"]
-    scene = lubjoint.study.scene(study.path, int(row["case_a"]))
+    scene = lubjoint.study.scene(paper_study, int(row["case_a"]))
 
     def gap(mu):  # h_min − safe film of the case's scene at viscosity mu, its own orbit
         with warnings.catch_warnings():
@@ -87,3 +99,51 @@ def test_a_stability_crossing_is_located_by_regula_falsi_and_named(angle, kind):
     assert converged and runs <= 10
     assert value == pytest.approx(0.137, rel=5e-3) and error <= 5e-3 * value
     assert boundaries._kind(found_angle) == kind
+
+
+def _scene_and_seed(path, case):
+    return lubjoint.study.scene(path, case), lubjoint.study.orbit_seed_row(path, case)
+
+
+def test_a_run_continued_from_a_cases_orbit_locates_that_orbit(paper_study):
+    # The study's reference case continued to its own scene: the same orbit (its film within
+    # the two error bars), for a fraction of the periods its steady stage took; the orbit
+    # comes back packed for the next continuation. An empty seed is refused.
+    cases = lubjoint.study.cases(paper_study)
+    case = int(cases.index[(cases["force_law"] == "pinkus_sternlicht") & (cases["clearance_m"] == 5e-4)
+                           & (cases["viscosity_Pa_s"] == 0.4) & (cases["speed_rpm"] == 5000.0)][0])
+    scene, seed = _scene_and_seed(paper_study, case)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ds = lubjoint.simulate(scene, {"/outputs/channels": []}, continue_from=(scene, seed), single_step=True)
+    row = cases.loc[case]
+    assert ds.attrs["classification"] == "periodic", ds.attrs["message"]
+    bars = float(ds["min_film_thickness_m_error"]) + row["min_film_thickness_m_error"]
+    assert abs(float(ds["min_film_thickness_m"]) - row["min_film_thickness_m"]) <= bars
+    assert int(ds["periods_integrated"]) < row["periods_integrated"]
+    assert ds["orbit_seed"].size == len(seed)
+    with pytest.raises(lubjoint.InputError, match="continue_from"):
+        lubjoint.simulate(scene, continue_from=(scene, []))
+
+
+def test_where_the_safe_orbit_is_lost_it_continues_on_one_side_only(paper_study, found):
+    # The printed law at 0.5 mm and 0.4 Pa s: a safe orbit at 500 rpm, and at 50 rpm none (the
+    # journal drifts onto the wall). Its orbit is lost between (the dominant multiplier real,
+    # nearing 1: a fold): an orbit_end to 0.5 %. By another route, continuation along the path
+    # with its steps halved where Newton fails (not the single Newton the search used): from
+    # the 500 rpm orbit the orbit reaches 1 % inside the value and not 1 % beyond it.
+    row = one_row(found, kind="orbit_end", axis="speed_rpm")
+    assert row["converged"] and 50.0 < row["value"] < 500.0 and row["error"] <= 5e-3 * row["value"]
+    scene, seed = _scene_and_seed(paper_study, int(row["case_a"]))
+    assert lubjoint.study.cases(paper_study).loc[int(row["case_a"]), "speed_rpm"] == 500.0
+
+    def classification(rpm):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            ds = lubjoint.simulate(scene, {"/drivers/0/speed_rpm": rpm, "/outputs/channels": []},
+                                   continue_from=(scene, seed))
+        return ds.attrs["classification"], ds.attrs["message"]
+
+    inside, outside = classification(row["value"] * 1.01), classification(row["value"] * 0.99)
+    assert inside[0] in ("periodic", "periodic_unstable"), inside
+    assert outside[0] == "not_converged" and "was not continued" in outside[1], outside

@@ -5,7 +5,14 @@ equals the safe film lies between two neighbours that differ. ``safe_film_bounda
 locates it by safeguarded Newton steps along that axis from the nearer orbit, each step a
 run of the case's scene at the new value with its sensitivity (``simulate(...,
 sensitivity=[pointer])``): the step uses h_min and dh_min/dλ of the orbit it starts from,
-and stays inside the bracket the two neighbours give (else it bisects).
+and stays inside the bracket the two neighbours give (else it bisects). Each run starts
+from the nearest orbit located on the line so far (``simulate(..., continue_from=...,
+single_step=True)``: one Newton from that orbit), and only where that finds none from the
+scene's own start. Where one neighbour has a safe orbit and the other none (its film
+collapses, or drifts below the safe film), the safe orbit is followed along the line until
+its film reaches the safe film (``safe_film``) or the orbit is lost (``orbit_end``: the
+edge of the safe orbit's branch, bisected between the last orbit and the first value where
+none continues from it).
 ``stability_boundaries`` locates where the dominant Floquet multiplier crosses the unit
 circle between neighbours whose orbits differ in stability, by regula falsi on ``|μ|max − 1``
 (no derivative of a multiplier is at hand), and names the crossing's kind.
@@ -42,10 +49,13 @@ def axis_override(scene, axis, pointer, value):
 
 
 class _Line:
-    """One lattice edge's axis as a function λ ↦ (h_min − safe film, d/dλ, its run) of the
-    scene of ``case``: the axis's pointer set to λ (a clearance c: the journal radius R − c)."""
+    """One lattice edge's axis as a function λ ↦ (h_min − safe film, d/dλ, its error) of the
+    scene of ``case``: the axis's pointer set to λ (a clearance c: the journal radius R − c),
+    run from the nearest orbit located on the line so far (``orbits``: (λ, effective scene,
+    orbit_seed row), the ends' and, if ``continued``, each run's), then, if ``fresh`` and that
+    finds none, from the scene's own start."""
 
-    def __init__(self, study, case, axis, pointer):
+    def __init__(self, study, case, axis, pointer, ends=(), fresh=True, continued=True):
         from . import study as st
 
         self.scene = st.scene(study.path, case)
@@ -53,6 +63,12 @@ class _Line:
         self.slope = "d_min_film_thickness_m_per_" + pointer.lstrip("/").replace("/", "_")  # its sensitivity
         self.runs = 0
         self.periods = 0  # crank periods the runs integrated, their sensitivities' included
+        self.fresh, self.continued = fresh, continued
+        self.orbits = []
+        for end, value in ends:  # the study's own orbits at the line's ends
+            seed = st.orbit_seed_row(study.path, end)
+            if seed:
+                self.orbits.append((float(value), st.scene(study.path, end), seed))
 
     def _count(self, ds):
         self.runs += 1
@@ -60,17 +76,36 @@ class _Line:
         if self.slope in ds:
             self.periods += int(ds[self.slope].attrs.get("periods_integrated", 0))
 
-    def __call__(self, value):
+    def run(self, value, sensitivity=True):
+        """The run of the line's scene at ``value``: from the nearest located orbit, else
+        (``fresh``) from the scene's own start. Records the orbit it locates."""
         from .run import simulate
 
-        override, sign = axis_override(self.scene, self.axis, self.pointer, value)
+        override, _ = axis_override(self.scene, self.axis, self.pointer, value)
+        overrides = {**override, "/outputs/channels": []}
+        wrt = [self.pointer] if sensitivity else []
+        ds = None
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            ds = simulate(self.scene, {**override, "/outputs/channels": []}, sensitivity=[self.pointer])
-        self._count(ds)
+            if self.orbits:
+                far = (lambda o: abs(math.log(value / o[0]))) if value > 0 and all(o[0] > 0 for o in self.orbits) \
+                    else (lambda o: abs(value - o[0]))
+                _, scene, seed = min(self.orbits, key=far)
+                ds = simulate(self.scene, overrides, sensitivity=wrt, continue_from=(scene, seed), single_step=True)
+                self._count(ds)
+            if (ds is None or ds.attrs["classification"] not in _ORBITS) and self.fresh:
+                ds = simulate(self.scene, overrides, sensitivity=wrt)
+                self._count(ds)
+        if self.continued and ds.attrs["classification"] in _ORBITS and ds["orbit_seed"].size:
+            self.orbits.append((float(value), ds.attrs["scene"], [float(v) for v in ds["orbit_seed"].values]))
+        return ds
+
+    def __call__(self, value, sensitivity=True):
+        ds = self.run(value, sensitivity)
         if ds.attrs["classification"] not in _ORBITS:
             return None
-        slope = float(ds[self.slope]) * sign
+        _, sign = axis_override(self.scene, self.axis, self.pointer, value)
+        slope = float(ds[self.slope]) * sign if sensitivity else math.nan
         gap = float(ds["min_film_thickness_m"]) - float(ds["safe_film_thickness_m"])
         return gap, slope, float(ds["min_film_thickness_m_error"])
 
@@ -103,17 +138,50 @@ def _locate(line, lo, hi, tolerance, max_runs):
     return x, step_error, line.runs, False
 
 
-def _orbit_edges(study):
-    """The lattice edges of ``study`` whose two ends both have a located orbit, along an axis
-    that sets a scene number: ``(case_a, case_b, axis, pointer, row_a, row_b)``."""
+def _edges(study, orbits=2):
+    """The lattice edges of ``study`` along an axis that sets a scene number with ``orbits``
+    of their ends located orbits (2: both; 1: exactly one, that end first):
+    ``(case_a, case_b, axis, pointer, row_a, row_b)``."""
     from . import study as st
 
     df = st.cases(study.path)  # with the lattice in its attrs
     pointers = axis_pointers(study)
     for a, b, axis in st.lattice_edges(df):
         ra, rb = df.loc[a], df.loc[b]
-        if ra["classification"] in _ORBITS and rb["classification"] in _ORBITS and axis in pointers:
-            yield a, b, axis, pointers[axis], ra, rb
+        located = (ra["classification"] in _ORBITS, rb["classification"] in _ORBITS)
+        if axis not in pointers or sum(located) != orbits:
+            continue
+        if orbits == 1 and not located[0]:
+            a, b, ra, rb = b, a, rb, ra
+        yield a, b, axis, pointers[axis], ra, rb
+
+
+def _edge(line, a, b, tolerance, max_runs):
+    """Along a line from a safe orbit ``a`` = (λ, gap > 0, slope) towards ``b``, a value
+    where no orbit is located and the film is below the safe film: the value where the
+    orbit's film reaches the safe film, by ``_locate`` once an orbit below it is found, or
+    where the orbit is lost, bisected (in the logarithm of positive values) between the
+    last orbit and the first value where none continues from it; Newton steps towards the
+    safe film first where they land inside. Returns (value, error, kind, converged)."""
+    log = a[0] > 0 and b > 0
+    mid = (lambda x, y: math.sqrt(x * y)) if log else (lambda x, y: 0.5 * (x + y))
+    for _ in range(max_runs):
+        lo, hi = sorted((a[0], b))
+        if hi - lo <= 2.0 * tolerance * mid(lo, hi):
+            break
+        new = a[0] - a[1] / a[2] if a[2] else math.inf
+        if not lo < new < hi:
+            new = mid(lo, hi)
+        at = line(new)
+        if at is None:
+            b = new
+        elif at[0] > 0:
+            a = (new, at[0], at[1])
+        else:  # an orbit below the safe film: the crossing lies between two orbits
+            value, error, _, converged = _locate(line, a, (new, at[0], at[1]), tolerance, max_runs)
+            return value, error, "safe_film", converged
+    lo, hi = sorted((a[0], b))
+    return mid(lo, hi), 0.5 * (hi - lo), "orbit_end", hi - lo <= 2.0 * tolerance * mid(lo, hi)
 
 
 def _row(study, a, b, axis, ra, line, value, error, kind, converged):
@@ -124,10 +192,13 @@ def _row(study, a, b, axis, ra, line, value, error, kind, converged):
             "case_a": a, "case_b": b, "runs": line.runs, "periods": line.periods, "converged": converged, **others}
 
 
-def safe_film_boundaries(study, tolerance=5e-3, max_runs=8):
+def safe_film_boundaries(study, tolerance=5e-3, max_runs=8, edge_runs=12):
     """The axis values where the minimum film reaches the safe film, between every two lattice
     neighbours of ``study`` (lubjoint.study.lattice_edges) whose ``below_safe_film`` differ and
-    that both have a located orbit with sensitivities.
+    that both have a located orbit with sensitivities; and between a safe orbit and a
+    neighbour without one whose film is below the safe film (it collapsed, or its drift law
+    crosses it): where the safe orbit's film reaches the safe film, or where that orbit is
+    lost (``orbit_end``).
 
     Parameters
     ----------
@@ -136,29 +207,48 @@ def safe_film_boundaries(study, tolerance=5e-3, max_runs=8):
     tolerance : float
         Relative accuracy of each value (0.5 %: issue 44's).
     max_runs : int
-        Runs of the scene per boundary at most.
+        Runs of the scene per boundary between two orbits at most.
+    edge_runs : int
+        Runs per boundary from a safe orbit towards a neighbour without one at most (a
+        bisection of a factor 10 to 0.5 % takes 9).
 
     Returns
     -------
     pandas.DataFrame
         One row per boundary: ``axis``, ``value`` and ``error`` (in the axis's unit, ``unit``),
-        ``kind`` (``safe_film``), ``case_a``, ``case_b`` (the neighbours), ``runs``,
+        ``kind`` (``safe_film``, or ``orbit_end`` where the safe orbit is lost before its film
+        reaches the safe film: ``value`` then the middle of the last orbit's value and the
+        first without, ``error`` half their distance), ``case_a`` (the orbit's end where one
+        has none), ``case_b`` (the neighbours), ``runs``, ``periods``,
         ``converged``, and the other axes' values of the line.
     """
     import pandas as pd
 
     rows = []
-    for a, b, axis, pointer, ra, rb in _orbit_edges(study):
+    key = "d_min_film_thickness_m_per_{}".format
+
+    def end(r, axis):
+        return float(r[axis]), float(r["min_film_thickness_m"] - r["safe_film_thickness_m"]), float(r[key(axis)])
+
+    for a, b, axis, pointer, ra, rb in _edges(study):
         if int(ra["below_safe_film"]) == int(rb["below_safe_film"]):
             continue
-        key = f"d_min_film_thickness_m_per_{axis}"
-        if key not in ra or not (math.isfinite(ra[key]) and math.isfinite(rb[key])):
+        if key(axis) not in ra or not (math.isfinite(ra[key(axis)]) and math.isfinite(rb[key(axis)])):
             continue
-        ends = [(float(r[axis]), float(r["min_film_thickness_m"] - r["safe_film_thickness_m"]), float(r[key]))
-                for r in (ra, rb)]
-        line = _Line(study, a, axis, pointer)
-        value, error, _, converged = _locate(line, ends[0], ends[1], tolerance, max_runs)
+        line = _Line(study, a, axis, pointer, ends=((a, ra[axis]), (b, rb[axis])))
+        value, error, _, converged = _locate(line, end(ra, axis), end(rb, axis), tolerance, max_runs)
         rows.append(_row(study, a, b, axis, ra, line, value, error, "safe_film", converged))
+    # A safe orbit at one end, none at the other, whose film is below the safe film (it
+    # collapsed, or drifts there): the safe orbit followed until its film reaches the safe
+    # film or it is lost; no run from the scene's own start, which may find another orbit.
+    for a, b, axis, pointer, ra, rb in _edges(study, orbits=1):
+        if not (ra["below_safe_film"] == 0 and rb["below_safe_film"] == 1):  # missing: NaN
+            continue
+        if key(axis) not in ra or not math.isfinite(ra[key(axis)]):
+            continue
+        line = _Line(study, a, axis, pointer, ends=((a, ra[axis]),), fresh=False)
+        value, error, kind, converged = _edge(line, end(ra, axis), float(rb[axis]), tolerance, edge_runs)
+        rows.append(_row(study, a, b, axis, ra, line, value, error, kind, converged))
     return pd.DataFrame(rows)
 
 
@@ -176,13 +266,7 @@ class _Stability(_Line):
     """An edge's axis as λ ↦ (``|μ|max − 1``, the dominant multiplier's angle, its run)."""
 
     def __call__(self, value):
-        from .run import simulate
-
-        override, _ = axis_override(self.scene, self.axis, self.pointer, value)
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            ds = simulate(self.scene, {**override, "/outputs/channels": []})
-        self._count(ds)
+        ds = self.run(value, sensitivity=False)
         if ds.attrs["classification"] not in _ORBITS:
             return None
         return float(ds["multiplier_1_modulus"]) - 1.0, float(ds["multiplier_1_angle_rad"])
@@ -235,13 +319,15 @@ def stability_boundaries(study, tolerance=5e-3, max_runs=10):
     import pandas as pd
 
     rows = []
-    for a, b, axis, pointer, ra, rb in _orbit_edges(study):
+    for a, b, axis, pointer, ra, rb in _edges(study):
         ma, mb = float(ra["multiplier_1_modulus"]), float(rb["multiplier_1_modulus"])
         if not (math.isfinite(ma) and math.isfinite(mb)) or (ma > 1.0) == (mb > 1.0):
             continue
         ends = [(float(r[axis]), float(r["multiplier_1_modulus"]) - 1.0, float(r["multiplier_1_angle_rad"]))
                 for r in (ra, rb)]
-        line = _Stability(study, a, axis, pointer)
+        # Each run from the scene's own start: near |mu| = 1 the full-film orbits continued
+        # from a neighbour often fail, and where they do not they may be another branch's.
+        line = _Stability(study, a, axis, pointer, continued=False)
         value, error, angle, _, converged = _falsi(line, ends[0], ends[1], tolerance, max_runs)
         rows.append(_row(study, a, b, axis, ra, line, value, error, _kind(angle), converged))
     return pd.DataFrame(rows)
@@ -291,7 +377,8 @@ def write(path, frame):
             g[name].attrs["units"] = units.get(name, "1")
         g.attrs["columns"] = np.array(names, dtype=object).astype(strings)
         g.attrs["long_name"] = ("boundaries located between grid points: where the minimum film reaches the safe film "
-                                "(kind safe_film) or the dominant multiplier crosses the unit circle "
+                                "(kind safe_film), the safe orbit is lost towards a neighbour whose film is below it "
+                                "(orbit_end), or the dominant multiplier crosses the unit circle "
                                 "(fold, period_doubling, neimark_sacker); lubjoint.boundaries")
 
 

@@ -621,7 +621,8 @@ def safe_envelope(study, x, y, grid=None, *, fix=None, boundaries=None):
     """The safe operating envelope over two axes of a sub-grid, one panel per force law: each
     grid cell a point (safe, below the safe film, or without a located orbit), the safe-film
     boundaries located between them (``lubjoint.boundaries.safe_film_boundaries``) joined into
-    a curve, and the unsafe side of it shaded.
+    a curve, and the unsafe side of it shaded; where the safe orbit is lost towards a cell
+    whose film is below the safe film (``orbit_end``), those located values as a dashed curve.
 
     Parameters
     ----------
@@ -662,6 +663,10 @@ def safe_envelope(study, x, y, grid=None, *, fix=None, boundaries=None):
         plane = _plane(v, x, y)
         _envelope_cells(ax, plane)
         _envelope_curve(ax, plane, _plane_boundaries(boundaries, v, x, y, law))
+        ends = _plane_boundaries(boundaries, v, x, y, law, "orbit_end")
+        if len(ends):  # where the safe orbit is lost towards a cell whose film is below the safe film
+            ax.plot(ends[:, 0], ends[:, 1], "--", color="darkorange", lw=1.2, marker="s", ms=4,
+                    label="safe orbit lost (located)")
         ax.set_title(str(law if law is not None else _law_of(study, g) or name), fontsize=9)
         ax.set_xlabel(_shown(g, x)[1])
         ax.set_ylabel(_shown(g, y)[1])
@@ -699,14 +704,14 @@ def _envelope_cells(ax, plane):
         ax.plot(X[where], Y[where], marker, color=colour, ms=6, ls="none", label=label)
 
 
-def _plane_boundaries(boundaries, v, x, y, law):
-    """The boundaries that lie in this plane, as drawn points (x, y) sorted along x."""
+def _plane_boundaries(boundaries, v, x, y, law, kind="safe_film"):
+    """The boundaries of ``kind`` that lie in this plane, as drawn points (x, y) sorted along x."""
     if boundaries is None or len(boundaries) == 0:
         return np.empty((0, 2))
     fx, fy = _display_factor(v, x), _display_factor(v, y)
     points = []
     for _, b in boundaries.iterrows():
-        if law is not None and b.get("force_law") != law:
+        if (law is not None and b.get("force_law") != law) or b.get("kind", "safe_film") != kind:
             continue
         held = [d for d in v["case_id"].dims if d not in (x, y, "force_law")]
         if any(d in b and not (b[d] == v[d].values[0]) for d in held):
