@@ -426,8 +426,13 @@ StudyWriter::StudyWriter(std::string path, const Grid& grid, const std::map<int,
   {
     h5::File f = h5::File::create(tmp);
     write_header(f, grid_, patches_, false);
-    if (!reuse_from.empty() && !reused.empty())
-      detail::copy_reused_series(h5::File::open(reuse_from, h5::File::Mode::ReadOnly), grid_, reused, f);
+    if (!reuse_from.empty() && !reused.empty()) {
+      const h5::File from = h5::File::open(reuse_from, h5::File::Mode::ReadOnly);
+      detail::copy_reused_series(from, grid_, reused, f);
+      // The refinement and the boundaries of a complete study stay with it while the grid
+      // is the one they were made from: every case reused (else the sweep says they go).
+      if (reused.size() == grid_.cases.size()) detail::copy_added_groups(from, f);
+    }
     h5::Table t = f.open_table("cases");
     append_rows(t, grid_, reused);
     t = h5::Table();
@@ -488,6 +493,7 @@ void StudyWriter::finalize() {
       const Case& c = grid_.cases.at(static_cast<std::size_t>(id));
       detail::copy_series(file_, c.name, f, c);
     }
+    detail::copy_added_groups(file_, f);
     h5::Table t = f.open_table("cases");
     append_rows(t, grid_, results_);
     t = h5::Table();

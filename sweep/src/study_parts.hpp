@@ -29,4 +29,11 @@ h5::Table create_cases_table(h5::Group& parent, const Grid& g, const std::vector
 void copy_reused_series(const h5::File& from, const Grid& grid, const std::map<int, CaseResult>& reused,
                         h5::File& to);
 
+/// The groups other tools add to a study file: lubsweep refine's /refinement and
+/// lubjoint.boundaries' /boundaries. A rewrite of the file keeps them while every case of
+/// the grid is one they were made from (study_added_groups_kept).
+std::vector<std::string> study_added_groups(const h5::File& from);
+/// Copies the added groups `from` holds to `to`.
+void copy_added_groups(const h5::File& from, h5::File& to);
+
 }  // namespace lub::sweep::detail

@@ -193,6 +193,7 @@ ResumeState read_existing(const std::string& path, const Grid& grid, bool retry_
   h5::File f;
   const h5::Table t = open_cases_table(path, f);
   ResumeState st;
+  st.added_groups = detail::study_added_groups(f);
   const std::size_t n = t.rows();
   if (!has_result_columns(t)) {
     if (n > 0 && !drop_other_cases)
@@ -263,6 +264,17 @@ void copy_reused_series(const h5::File& from, const Grid& grid, const std::map<i
     const auto it = group_of_hash.find(c.hash);
     if (it != group_of_hash.end()) copy_series(from, it->second, to, c);
   }
+}
+
+std::vector<std::string> study_added_groups(const h5::File& from) {
+  std::vector<std::string> out;
+  for (const char* g : {"refinement", "boundaries"})
+    if (from.exists(g)) out.emplace_back(g);
+  return out;
+}
+
+void copy_added_groups(const h5::File& from, h5::File& to) {
+  for (const std::string& g : study_added_groups(from)) from.copy_to(g, to);
 }
 
 }  // namespace detail

@@ -4,6 +4,7 @@
 #include "lub/sweep/sweep.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <mpi.h>
 
 #include <chrono>
@@ -123,6 +124,12 @@ void print_start(const Options& o, const Grid& grid, const ResumeState& resume, 
                  resume.other_revision, o.output);
     if (resume.retried) fmt::print(stderr, "lubsweep: running {} failed cases again\n", resume.retried);
   }
+  // Dropped ones are said even with --quiet: they took work to make.
+  if (reuse_file && !resume.added_groups.empty() && resume.done.size() < grid.cases.size())
+    fmt::print(stderr,
+               "lubsweep: {}'s /{} belong to its earlier cases, not to this grid's {}: they are not kept (run "
+               "lubsweep refine or python3 -m lubjoint.boundaries again once the study is complete)\n",
+               o.output, fmt::join(resume.added_groups, ", /"), grid.cases.size());
 }
 
 int finish(const Options& o, const Grid& grid, StudyWriter& writer, const Progress& progress, Clock::time_point t0);

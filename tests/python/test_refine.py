@@ -96,6 +96,36 @@ def test_the_edge_whose_below_safe_film_differs_is_refined_at_its_geometric_midp
     assert "0-1" in line and "below_safe_film" in line and "0.141421" in line, line
 
 
+def test_rerunning_the_sweep_keeps_the_refinement_and_the_boundaries_of_its_grid(copy, build_dir, source_dir):
+    # A re-run of the complete study (the README's study command does it) rewrites the file:
+    # what lubsweep refine and lubjoint.boundaries added stays, row for row. A grid with
+    # another case drops them and says so, even with -q.
+    assert lubsweep(build_dir, "refine", copy, "--budget", 1).returncode == 0
+    from lubjoint import boundaries
+
+    boundaries.write(copy, boundaries.safe_film_boundaries(lubjoint.load_study(copy)))
+    before = (table(copy), table(copy, "boundaries"))
+    grid = source_dir / "tests" / "mpi" / "refine_grid.json"
+    again = lubsweep(build_dir, grid, "-o", copy, "-q", "--no-summary")
+    assert again.returncode == 0, again.stderr
+    for old, new in zip(before, (table(copy), table(copy, "boundaries"))):
+        assert old.keys() == new.keys()
+        for name in old:
+            assert np.array_equal(old[name], new[name], equal_nan=old[name].dtype.kind == "f"), name
+    import json
+
+    doc = json.loads(grid.read_text())
+    doc["scene"] = str((grid.parent / doc["scene"]).resolve())
+    doc["axes"][0]["values"].append(0.8)
+    other = copy.parent / "other.json"
+    other.write_text(json.dumps(doc))
+    grown = lubsweep(build_dir, other, "-o", copy, "-q", "--no-summary")
+    assert grown.returncode == 0, grown.stderr
+    assert "/refinement, /boundaries belong to its earlier cases" in grown.stderr, grown.stderr
+    with h5py.File(copy, "r") as f:
+        assert "refinement" not in f and "boundaries" not in f
+
+
 def test_rounds_stay_in_the_budget_and_a_killed_run_resumes_without_running_a_case_again(copy, build_dir):
     killed = lubsweep(build_dir, "refine", copy, "--budget", 3, env={"LUBSWEEP_TEST_KILL_AFTER": "1"})
     assert killed.returncode != 0

@@ -256,6 +256,13 @@ std::vector<std::string> Group::list() const {
   return names;
 }
 
+void Group::copy_to(const std::string& path, Group& to) const {
+  quiet();
+  Hid lcpl = intermediate_lcpl(to.id_);
+  if (H5Ocopy(id_, path.c_str(), to.id_, path.c_str(), H5P_DEFAULT, lcpl.get()) < 0)
+    fail(id_, "cannot copy", path);
+}
+
 Dataset Group::write_dataset(const std::string& name, const std::vector<double>& values,
                              const std::string& units, const WriteOptions& options) {
   return write_dataset(name, values.data(), values.size(), units, options);

@@ -134,6 +134,9 @@ class Group : public Object {
   Group open_group(const std::string& path) const;
   /// Names of the links directly in this group, in name order.
   std::vector<std::string> list() const;
+  /// Copy the object at `path` (a group with all it holds, or a dataset, with attributes)
+  /// to `to` under the same path (H5Ocopy); throws if it is absent or `to` has that path.
+  void copy_to(const std::string& path, Group& to) const;
 
   /// Write a 1-D double dataset with a `units` attribute (shuffle + gzip, chunked, if
   /// longer than options.compress_min_size). Throws if `name` exists.

@@ -65,6 +65,9 @@ struct ResumeState {
   std::size_t incompatible_rows = 0;  ///< rows of a file without this build's result columns
   std::size_t retried = 0;         ///< failed rows left out to be run again (retry_failed)
   std::size_t other_revision = 0;  ///< rows computed by another build revision (run again)
+  /// Groups other tools added to the file (/refinement, /boundaries): kept by the rewrite
+  /// only while every case of the grid is reused.
+  std::vector<std::string> added_groups;
 };
 
 /// Reads the results an existing study file holds for `grid`'s cases, matched by hash.
