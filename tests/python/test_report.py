@@ -1,7 +1,8 @@
 """The HTML report of a study (lubjoint.report, `lubsweep report`) on the paper grid's study,
-opened in headless Chromium (Debian's chromium): the page loads without a console error, its
-charts draw (each records what it drew; a screenshot shows the map's classification colours
-and a case's orbit), its table sorts and filters, every case's panel draws; with the baseline
+with its boundaries and a refinement, opened in headless Chromium (Debian's chromium): the
+page loads without a console error, its charts draw (each records what it drew; a screenshot
+shows the map's classification colours and a case's orbit), its table sorts and filters,
+every case's panel draws, the boundaries and the refined cases are listed; with the baseline
 it shows the nightly comparison, a 1 % edit highlighted; bad input exits 2 naming the file
 and writes nothing."""
 import csv
@@ -47,11 +48,25 @@ def attribute(dom, name):
 
 
 @pytest.fixture(scope="module")
-def page(build_dir, source_dir, paper_study, tmp_path_factory):
-    """The report of the paper study against the committed baseline, written by `lubsweep report`."""
+def study_with_boundaries(build_dir, paper_study, tmp_path_factory):
+    """A copy of the paper study with its /boundaries (python3 -m lubjoint.boundaries) and a
+    refinement of one case (lubsweep refine --budget 1), as a user's study grows."""
+    path = tmp_path_factory.mktemp("grown") / "study.h5"
+    shutil.copy(paper_study, path)
+    env = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"}
+    for cmd in ([sys.executable, "-m", "lubjoint.boundaries", path], [lubsweep(build_dir), "refine", path, "--budget", "1"]):
+        p = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=300)
+        assert p.returncode == 0, p.stderr
+    return path
+
+
+@pytest.fixture(scope="module")
+def page(build_dir, source_dir, study_with_boundaries, tmp_path_factory):
+    """The report of the paper study (grown by its boundaries and a refinement) against the
+    committed baseline, written by `lubsweep report`."""
     d = tmp_path_factory.mktemp("report")
     out = d / "report.html"
-    p = subprocess.run([lubsweep(build_dir), "report", paper_study, "-o", out, "--baseline",
+    p = subprocess.run([lubsweep(build_dir), "report", study_with_boundaries, "-o", out, "--baseline",
                         source_dir / "tests" / "baselines" / "paper.csv"], capture_output=True, text=True, timeout=300)
     assert p.returncode == 0, p.stderr
     assert "wrote" in p.stdout and "0 regressions" in p.stdout, p.stdout
@@ -91,6 +106,15 @@ def selftest(dom):
     m = re.search(r'<pre id="selftest">([^<]*)</pre>', dom)
     assert m and m.group(1), "the page's selftest wrote nothing"
     return json.loads(html.unescape(m.group(1)))
+
+
+def test_the_boundaries_and_the_refinement_are_shown(selftest_dom, study_with_boundaries):
+    from lubjoint import boundaries, study
+
+    t = selftest(selftest_dom[0])
+    located = boundaries.read(study_with_boundaries)
+    assert sorted(t["boundaryKinds"]) == sorted(located["kind"]) and "orbit_end" in t["boundaryKinds"]
+    assert t["refinementCases"] == list(study.cases(study_with_boundaries, group="refinement")["name"])
 
 
 def test_the_table_sorts_and_filters(selftest_dom, paper_study):

@@ -88,6 +88,7 @@ footer { color: var(--muted); font-size: 12px; text-align: center; padding: 10px
   <div class="chartbox"><h3>Joint reaction</h3><div class="chart" style="height:190px"><canvas id="chart-reaction"></canvas></div></div></div></div>
   <p class="note" id="case-note"></p></section>
 <section id="edges-section"><h2>Bifurcation edges</h2><div id="edges"></div></section>
+<section id="boundaries-section"><h2>Boundaries and refinement</h2><div id="boundaries"></div></section>
 <section id="solver-section"><h2>Solver statistics</h2>
   <p class="note">Wall time of each case (bars, coloured by its classification) and the integrator's steps (line); the table has every statistic the study records.</p>
   <div class="chart" style="height:240px"><canvas id="chart-solver"></canvas></div>
@@ -273,7 +274,8 @@ function overview() {
   const nav = document.getElementById("nav");
   for (const [id, t] of [["overview", "Study"], ["comparison-section", "Nightly comparison"], ["summary-section", "Cases"],
                          ["maps-section", "Classification"], ["metrics-section", "Metrics"], ["case-section", "One case"],
-                         ["edges-section", "Bifurcation edges"], ["solver-section", "Solver"]])
+                         ["edges-section", "Bifurcation edges"], ["boundaries-section", "Boundaries"],
+                         ["solver-section", "Solver"]])
     if (id !== "comparison-section" || D.comparison) nav.append(el("a", {href: "#" + id, text: t}));
 }
 
@@ -427,6 +429,27 @@ function edges() {
   buildTable(t, spec, []);
 }
 
+function boundaries() {
+  const box = document.getElementById("boundaries"), B = D.boundaries;
+  const tables = [
+    ["Boundaries located between grid points", "Where the minimum film reaches the safe film (safe_film), a safe orbit is lost (orbit_end), or the dominant multiplier leaves the unit circle (fold, period_doubling, neimark_sacker), on the line between two lattice neighbours.",
+     "boundaries-table", B.boundaries, B.boundaries_note,
+     [["kind", "text"], ["axis", "text"], ["value", "num"], ["line", "text"], ["between", "text"], ["runs", "num"], ["periods", "num"], ["converged", "text"]]],
+    ["Cases a refinement added", "Each at the midpoint of a lattice edge whose labels differ or whose metric bends (lubsweep refine).",
+     "refinement-table", B.refinement, B.refinement_note,
+     [["case", "text"], ["edge", "text"], ["axis", "text"], ["value", "text"], ["reason", "text"], ["classification", "text"], ["h_min [µm]", "num"]]]];
+  for (const [title, about, id, rows, note, cols] of tables) {
+    box.append(el("h3", {text: title}), el("p", {class: "note", text: about}));
+    if (!rows.length) { box.append(el("p", {class: "note", text: note})); continue; }
+    const spec = {columns: cols.map(([n, k]) => ({name: n === "classification" ? n : n.replace(/\W+/g, "_"), label: n, kind: k})),
+                  rows: rows.map(r => r.map(v => [v]))};
+    if (id === "boundaries-table") spec.rows = rows.map(r => [[r[0]], [r[1]], [r[2], r[3]], ...r.slice(4).map(v => [v])]);  // value ± error
+    const t = el("table", {id});
+    box.append(el("div", {class: "scroll"}, t));
+    buildTable(t, spec, []);
+  }
+}
+
 function solver() {
   const S = D.solver, wi = S.columns.findIndex(c => c.name === "wall_time_s"), si = S.columns.findIndex(c => c.name === "steps");
   const names = S.rows.map(r => r[0][0]), cls = S.rows.map(r => r[1][0]);
@@ -498,11 +521,14 @@ function selftest() {
   }
   ms.value = "min_film_thickness_m"; ms.dispatchEvent(new Event("change"));
   out.metricDrawn = metricDrawn;
+  const cells = (id, k) => { const t = document.getElementById(id); return t ? Array.from(t.tBodies[0].rows).map(r => r.cells[k].dataset.v) : []; };
+  out.boundaryKinds = cells("boundaries-table", 0);
+  out.refinementCases = cells("refinement-table", 0);
   return out;
 }
 
 function main() {
-  const parts = [overview, comparison, summary, maps, metrics, cases, edges, solver];
+  const parts = [overview, comparison, summary, maps, metrics, cases, edges, boundaries, solver];
   for (const p of parts) {
     try { p(); } catch (e) { pageError(p.name + ": " + (e && e.stack ? e.stack : e)); }
   }

@@ -20,6 +20,8 @@ The page holds, from the study file alone (``lubjoint.study``):
   metric cycles, any other case's last cycles; the page says which, and says so where a
   case, or the study, stores none);
 - the grid edges where the periodic orbit changes (``lubjoint.study.bifurcation_edges``);
+- the boundaries located between grid points (``/boundaries``, ``lubjoint.boundaries``) and
+  the cases a refinement added (``/refinement``, ``lubsweep refine``), where the file has them;
 - the solver statistics of each case;
 - with ``baseline`` (a CSV of ``lubjoint.baseline``, e.g. tests/baselines/paper.csv): the
   nightly comparison, each metric of each case against its tolerance, outside highlighted.
@@ -328,6 +330,42 @@ def _edges(cases, units):
     return {"note": "", "rows": rows}
 
 
+def _boundaries(study_path, cases, axes, units):
+    """The study's /boundaries (``lubjoint.boundaries``) and /refinement (``lubsweep refine``)
+    as table rows, each with a note saying how to make it where the file has none."""
+    from . import boundaries as bd
+
+    names = {int(i): _text(n) for i, n in cases["name"].items()}
+    added = study_mod.cases(study_path, group="refinement")
+    if added is not None:
+        names.update({int(i): _text(n) for i, n in added["name"].items()})
+    out = {"boundaries": [], "refinement": [], "boundaries_note": "", "refinement_note": ""}
+    frame = bd.read(study_path)
+    if frame is None or not len(frame):
+        out["boundaries_note"] = ("none in the file: python3 -m lubjoint.boundaries STUDY.h5 locates them "
+                                  "(docs/theory/sensitivities.md)")
+    else:
+        for _, r in frame.iterrows():
+            unit = units.get(r["axis"], "")
+            line = ", ".join(f"{_label(a, units.get(a, ''))} = {_axis_value(r[a], units.get(a, ''))}" for a in axes
+                             if a != r["axis"] and a in r and r[a] == r[a] and r[a] != "")
+            factor = _display(unit)[1]
+            out["boundaries"].append([r["kind"], _label(r["axis"], unit), float(r["value"]) * factor,
+                                      float(r["error"]) * factor, line,
+                                      f"{names.get(int(r['case_a']), r['case_a'])} – {names.get(int(r['case_b']), r['case_b'])}",
+                                      int(r["runs"]), int(r.get("periods", -1)), "yes" if r["converged"] else "no"])
+    if added is None or not len(added):
+        out["refinement_note"] = "none in the file: lubsweep refine STUDY.h5 --budget K adds cases (docs/guide/lubsweep.md)"
+    else:
+        for i, r in added.iterrows():
+            unit = units.get(_text(r["axis"]), "")
+            out["refinement"].append([names[int(i)], f"{names.get(int(r['case_a']))} – {names.get(int(r['case_b']))}",
+                                      _label(_text(r["axis"]), unit), _axis_value(r[_text(r["axis"])], unit),
+                                      _text(r["reason"]), _text(r["classification"]),
+                                      _num(float(r["min_film_thickness_m"]) * 1e6, 6)])
+    return out
+
+
 def _solver(cases, units):
     """The solver statistics: a column per statistic, a row per case."""
     stats = [_text(s) for s in np.atleast_1d(cases.attrs.get("solver", [])) if _text(s) in cases.columns]
@@ -395,6 +433,7 @@ def collect(study_path, baseline=None):
     data = {"meta": meta, "axes": axes, "classes": _classes(cases), "summary": _summary(cases, axes, units),
             "grids": _drop_empty_metrics([_grid(name, g, cases, units) for name, g in grids.items()]),
             "cases": _cases_panel(study_path, cases, axes, units), "edges": _edges(cases, units),
+            "boundaries": _boundaries(study_path, cases, axes, units),
             "solver": _solver(cases, units), "comparison": None}
     if baseline is not None:
         data["comparison"] = _comparison(study_path, os.fspath(baseline), cases)
