@@ -100,12 +100,12 @@ class _Line:
             self.orbits.append((float(value), ds.attrs["scene"], [float(v) for v in ds["orbit_seed"].values]))
         return ds
 
-    def __call__(self, value, sensitivity=True):
-        ds = self.run(value, sensitivity)
+    def __call__(self, value):
+        ds = self.run(value)
         if ds.attrs["classification"] not in _ORBITS:
             return None
         _, sign = axis_override(self.scene, self.axis, self.pointer, value)
-        slope = float(ds[self.slope]) * sign if sensitivity else math.nan
+        slope = float(ds[self.slope]) * sign
         gap = float(ds["min_film_thickness_m"]) - float(ds["safe_film_thickness_m"])
         return gap, slope, float(ds["min_film_thickness_m_error"])
 
