@@ -77,6 +77,22 @@ def test_the_boundaries_are_stored_in_the_study_file_and_the_summary_prints_them
                          text=True)
     assert bad.returncode == 2 and "nope.h5" in bad.stderr, bad.stderr
     assert not missing.exists()
+    before = copy.read_bytes()
+    bad = subprocess.run([sys.executable, "-m", "lubjoint.boundaries", str(copy), "--kinds", "safe_film,fold"], env=env,
+                         capture_output=True, text=True)
+    assert bad.returncode == 2 and "--kinds = safe_film,fold: fold is not one of" in bad.stderr, bad.stderr
+    assert copy.read_bytes() == before
+
+
+def test_only_the_kinds_asked_for_are_located(paper_study, found):
+    # The orbit's edge is most of what the paper study's boundaries cost: asked for the
+    # safe-film boundaries alone, the same row, and none of the edge's runs.
+    only = boundaries.locate(lubjoint.load_study(paper_study), kinds=("safe_film",))
+    assert list(only["kind"]) == ["safe_film"]
+    assert only.iloc[0]["value"] == one_row(found, kind="safe_film")["value"]
+    assert only["runs"].sum() < found["runs"].sum()
+    with pytest.raises(ValueError, match="kinds: 'fold'"):
+        boundaries.locate(lubjoint.load_study(paper_study), kinds=("fold",))
 
 
 @pytest.mark.parametrize("angle, kind", [(0.0, "fold"), (3.14159265, "period_doubling"), (1.2, "neimark_sacker")])

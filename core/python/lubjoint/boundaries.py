@@ -192,7 +192,7 @@ def _row(study, a, b, axis, ra, line, value, error, kind, converged):
             "case_a": a, "case_b": b, "runs": line.runs, "periods": line.periods, "converged": converged, **others}
 
 
-def safe_film_boundaries(study, tolerance=5e-3, max_runs=8, edge_runs=12):
+def safe_film_boundaries(study, tolerance=5e-3, max_runs=8, edge_runs=12, pairs=True, edges=True):
     """The axis values where the minimum film reaches the safe film, between every two lattice
     neighbours of ``study`` (lubjoint.study.lattice_edges) whose ``below_safe_film`` differ and
     that both have a located orbit with sensitivities; and between a safe orbit and a
@@ -211,6 +211,11 @@ def safe_film_boundaries(study, tolerance=5e-3, max_runs=8, edge_runs=12):
     edge_runs : int
         Runs per boundary from a safe orbit towards a neighbour without one at most (a
         bisection of a factor 10 to 0.5 % takes 9).
+    pairs : bool
+        Whether to locate the boundaries between two orbits.
+    edges : bool
+        Whether to follow a safe orbit towards a neighbour without one (the ``orbit_end``
+        search, most of what boundaries cost: docs/validation/sensitivities.md).
 
     Returns
     -------
@@ -230,7 +235,7 @@ def safe_film_boundaries(study, tolerance=5e-3, max_runs=8, edge_runs=12):
     def end(r, axis):
         return float(r[axis]), float(r["min_film_thickness_m"] - r["safe_film_thickness_m"]), float(r[key(axis)])
 
-    for a, b, axis, pointer, ra, rb in _edges(study):
+    for a, b, axis, pointer, ra, rb in (_edges(study) if pairs else ()):
         if int(ra["below_safe_film"]) == int(rb["below_safe_film"]):
             continue
         if key(axis) not in ra or not (math.isfinite(ra[key(axis)]) and math.isfinite(rb[key(axis)])):
@@ -241,7 +246,7 @@ def safe_film_boundaries(study, tolerance=5e-3, max_runs=8, edge_runs=12):
     # A safe orbit at one end, none at the other, whose film is below the safe film (it
     # collapsed, or drifts there): the safe orbit followed until its film reaches the safe
     # film or it is lost; no run from the scene's own start, which may find another orbit.
-    for a, b, axis, pointer, ra, rb in _edges(study, orbits=1):
+    for a, b, axis, pointer, ra, rb in (_edges(study, orbits=1) if edges else ()):
         if not (ra["below_safe_film"] == 0 and rb["below_safe_film"] == 1):  # missing: NaN
             continue
         if key(axis) not in ra or not math.isfinite(ra[key(axis)]):
@@ -333,12 +338,26 @@ def stability_boundaries(study, tolerance=5e-3, max_runs=10):
     return pd.DataFrame(rows)
 
 
-def locate(study, tolerance=5e-3):
-    """Every boundary of ``study``: ``safe_film_boundaries`` then ``stability_boundaries``,
-    one DataFrame (``attrs["units"]``: each column's unit)."""
+#: What ``locate`` (``--kinds``) can be asked for: safe-film boundaries between two orbits,
+#: the edges where a safe orbit is lost, the stability crossings.
+KINDS = ("safe_film", "orbit_end", "stability")
+
+
+def locate(study, tolerance=5e-3, kinds=KINDS):
+    """The boundaries of ``study`` of ``kinds`` (``KINDS``, all by default):
+    ``safe_film_boundaries`` then ``stability_boundaries``, one DataFrame (``attrs["units"]``:
+    each column's unit)."""
     import pandas as pd
 
-    parts = [f for f in (safe_film_boundaries(study, tolerance), stability_boundaries(study, tolerance)) if len(f)]
+    unknown = [k for k in kinds if k not in KINDS]
+    if unknown:
+        raise ValueError(f"kinds: {unknown[0]!r}: each must be one of {', '.join(KINDS)}")
+    found = []
+    if "safe_film" in kinds or "orbit_end" in kinds:
+        found.append(safe_film_boundaries(study, tolerance, pairs="safe_film" in kinds, edges="orbit_end" in kinds))
+    if "stability" in kinds:
+        found.append(stability_boundaries(study, tolerance))
+    parts = [f for f in found if len(f)]
     frame = pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=_FIXED)
     frame.attrs["units"] = {"value": "(the row's unit)", "error": "(the row's unit)", "runs": "1", "periods": "1",
                             "converged": "1",
@@ -416,16 +435,24 @@ def main(argv=None):
     ap.add_argument("study", help="a lubsweep study file (its grid with sensitivities, the default)")
     ap.add_argument("--tolerance", type=float, default=5e-3, help="relative accuracy of each value (default 0.005)")
     ap.add_argument("--no-write", action="store_true", help="print only; leave the study file as it is")
+    ap.add_argument("--kinds", default=",".join(KINDS),
+                    help="which boundaries, comma separated (default all: " + ",".join(KINDS) + "); orbit_end "
+                         "and stability cost most")
     args = ap.parse_args(argv)
     if not (0.0 < args.tolerance < 1.0):
         print(f"--tolerance = {args.tolerance}: must lie in (0, 1)", file=sys.stderr)
+        return 2
+    kinds = [k.strip() for k in args.kinds.split(",") if k.strip()]
+    bad = [k for k in kinds if k not in KINDS] or ([] if kinds else ["(none)"])
+    if bad:
+        print(f"--kinds = {args.kinds}: {bad[0]} is not one of {', '.join(KINDS)}", file=sys.stderr)
         return 2
     try:
         st.check(args.study)
     except (st.StudyFormatError, FileNotFoundError, IsADirectoryError) as e:
         print(f"{ap.prog}: {e}", file=sys.stderr)
         return 2
-    frame = locate(st.load_study(args.study), args.tolerance)
+    frame = locate(st.load_study(args.study), args.tolerance, kinds)
     if not args.no_write:
         write(args.study, frame)
     if len(frame) == 0:
