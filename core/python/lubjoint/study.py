@@ -347,18 +347,23 @@ def decode_seed(row, layout):
 
 def orbit_seed_row(path, case_id):
     """The periodic orbit a case found as its packed /cases ``orbit_seed`` row (a list of
-    floats), as ``lubjoint.simulate(..., continue_from=(scene, row))`` takes it; None where
-    the case located no orbit."""
+    floats; a case ``lubsweep refine`` added: /refinement/cases'), as
+    ``lubjoint.simulate(..., continue_from=(scene, row))`` takes it; None where the case
+    located no orbit, or the file has no orbit_seed column. ``KeyError`` for a case id the
+    file does not hold."""
     import h5py
 
     with h5py.File(path, "r") as f:  # one cell (cases() reads the whole table)
         for name in ("cases", "refinement/cases"):
-            if name in f and "orbit_seed" in f[name]:
-                ids = list(f[name]["case"][:])
-                if int(case_id) in ids:
-                    text = _text(f[name]["orbit_seed"][ids.index(int(case_id))])
-                    return json.loads(text) if text else None
-    return None
+            if name not in f:
+                continue
+            ids = list(f[name]["case"][:])
+            if int(case_id) in ids:
+                if "orbit_seed" not in f[name]:
+                    return None
+                text = _text(f[name]["orbit_seed"][ids.index(int(case_id))])
+                return json.loads(text) if text else None
+    raise KeyError(int(case_id))
 
 
 def orbit_seed(path, case_id):
@@ -374,15 +379,12 @@ def orbit_seed(path, case_id):
     ``winding`` [rad per period], ``max_eps`` [1] and ``steps_per_period`` [1]: numpy arrays
     and scalars of the file's ``field_types``. See docs/theory/continuation.md.
     """
-    df = cases(path)
-    if "orbit_seed" not in df.columns:
-        return None
-    text = _text(df.loc[int(case_id), "orbit_seed"])
-    if not text:
+    row = orbit_seed_row(path, case_id)
+    if row is None:
         return None
     layout = orbit_seed_layout(path)
     try:
-        return decode_seed(json.loads(text), layout)
+        return decode_seed(row, layout)
     except StudyFormatError as e:
         raise StudyFormatError(f"{path}: case {case_id}: {e}") from None
 

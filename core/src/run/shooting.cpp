@@ -242,9 +242,7 @@ OrbitEvidence solve_orbit(SteadyContext& cx, Chart& chart, const StartState& bas
   // central differences at the orbit (error O(h²)). A step of a continuation's path needs
   // only a Jacobian for the next step: forward differences.
   const steady::Monodromy monodromy =
-      steady::monodromy(final ? *tight_period : *period, found.z, found.Pz,
-                        steady::MonodromyOptions{chart.units(), options.step, final, options.difference_retries,
-                                                 options.map_derivative});
+      steady::monodromy(final ? *tight_period : *period, found.z, found.Pz, options.monodromy_options(final));
   if (monodromy.failed) {
     ev.failure = final ? tight_period->last_failure() : period->last_failure();
     ev.outcome = Outcome::multipliers_failed;
