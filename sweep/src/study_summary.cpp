@@ -2,6 +2,7 @@
 // per case of a study file, its axes, status, classification and key metrics, in columns.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -195,8 +196,11 @@ void print_boundaries(std::FILE* out, const h5::File& f, const h5::Table& cases)
   const auto axis = b.read_strings("axis"), unit = b.read_strings("unit"), kind = b.read_strings("kind");
   const auto value = b.read_doubles("value"), error = b.read_doubles("error");
   const auto a = b.read_int64s("case_a"), c = b.read_int64s("case_b"), converged = b.read_int64s("converged");
-  static const std::vector<std::string> fixed = {"axis",   "value", "error",   "unit",     "kind",
-                                                 "case_a", "case_b", "runs", "periods", "converged"};
+  // Found by following case_a's safe orbit towards a neighbour without one (files since
+  // the column came).
+  const auto edge = b.has_column("edge") ? b.read_int64s("edge") : std::vector<std::int64_t>(n, 0);
+  static const std::vector<std::string> fixed = {"axis",   "value",  "error", "unit",    "kind",     "case_a",
+                                                 "case_b", "runs",   "periods", "converged", "edge", "lost"};
   // Each row's other axes ("name = value"), a column at a time.
   std::vector<std::string> others(n);
   for (const h5::Column& col : b.columns()) {
@@ -217,9 +221,13 @@ void print_boundaries(std::FILE* out, const h5::File& f, const h5::Table& cases)
   const double spent = sum_periods(b, "periods");
   fmt::print(out, "boundaries located between grid points ({:.0f} periods, {:.1f} % of the study's {:.0f}; {}):\n",
              spent, study > 0.0 ? 100.0 * spent / study : 0.0, study, data_path("docs/theory/sensitivities.md"));
-  for (std::size_t i = 0; i < n; ++i)
-    fmt::print(out, "  {}: {} = {:.6g} ± {:.2g} {} between cases {} and {} ({}){}\n", kind[i], axis[i], value[i],
-               error[i], unit[i], a[i], c[i], others[i], converged[i] ? "" : ", not converged");
+  for (std::size_t i = 0; i < n; ++i) {
+    const char* lost = !edge[i] || kind[i] == "safe_film" ? ""
+                       : kind[i] == "orbit_end"          ? "; the safe orbit's branch ends"
+                                                         : "; the safe orbit turns unstable";
+    fmt::print(out, "  {}: {} = {:.6g} ± {:.2g} {} between cases {} and {} ({}{}){}\n", kind[i], axis[i], value[i],
+               error[i], unit[i], a[i], c[i], others[i], lost, converged[i] ? "" : ", not converged");
+  }
 }
 
 /// What the sensitivities cost, where the study has them: their periods against the steady

@@ -113,7 +113,7 @@ def test_the_boundaries_and_the_refinement_are_shown(selftest_dom, study_with_bo
 
     t = selftest(selftest_dom[0])
     located = boundaries.read(study_with_boundaries)
-    assert sorted(t["boundaryKinds"]) == sorted(located["kind"]) and "orbit_end" in t["boundaryKinds"]
+    assert sorted(t["boundaryKinds"]) == sorted(located["kind"]) and "fold" in t["boundaryKinds"]
     assert t["refinementCases"] == list(study.cases(study_with_boundaries, group="refinement")["name"])
 
 

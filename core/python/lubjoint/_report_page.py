@@ -432,7 +432,7 @@ function edges() {
 function boundaries() {
   const box = document.getElementById("boundaries"), B = D.boundaries;
   const tables = [
-    ["Boundaries located between grid points", "Where the minimum film reaches the safe film (safe_film), a safe orbit is lost (orbit_end), or the dominant multiplier leaves the unit circle (fold, period_doubling, neimark_sacker), on the line between two lattice neighbours.",
+    ["Boundaries located between grid points", "Where the minimum film reaches the safe film (safe_film) or the dominant multiplier leaves the unit circle (fold, period_doubling, neimark_sacker), on the line between two lattice neighbours; following a stable safe orbit towards a neighbour without one, where it turns unstable (the crossing's kind) or its branch ends (orbit_end).",
      "boundaries-table", B.boundaries, B.boundaries_note,
      [["kind", "text"], ["axis", "text"], ["value", "num"], ["line", "text"], ["between", "text"], ["runs", "num"], ["periods", "num"], ["converged", "text"]]],
     ["Cases a refinement added", "Each at the midpoint of a lattice edge whose labels differ or whose metric bends (lubsweep refine).",

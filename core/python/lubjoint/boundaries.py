@@ -10,9 +10,11 @@ from the nearest orbit located on the line so far (``simulate(..., continue_from
 single_step=True)``: one Newton from that orbit), and only where that finds none from the
 scene's own start. Where one neighbour has a safe orbit and the other none (its film
 collapses, or drifts below the safe film), the safe orbit is followed along the line until
-its film reaches the safe film (``safe_film``) or the orbit is lost (``orbit_end``: the
-edge of the safe orbit's branch, bisected between the last orbit and the first value where
-none continues from it).
+its film reaches the safe film (``safe_film``) or the orbit is lost, bisected between the last
+orbit and the first value where none continues from it: a stable orbit is lost where the
+orbit continued from it is unstable (its dominant multiplier's crossing names the kind:
+``fold``, ``period_doubling``, ``neimark_sacker``) or where none is (``orbit_end``: the edge of
+the orbit's branch). These rows have ``edge`` set.
 ``stability_boundaries`` locates where the dominant Floquet multiplier crosses the unit
 circle between neighbours whose orbits differ in stability, by regula falsi on ``|μ|max − 1``
 (no derivative of a multiplier is at hand), and names the crossing's kind.
@@ -55,7 +57,7 @@ class _Line:
     orbit_seed row), the ends' and, if ``continued``, each run's), then, if ``fresh`` and that
     finds none, from the scene's own start."""
 
-    def __init__(self, study, case, axis, pointer, ends=(), fresh=True, continued=True):
+    def __init__(self, study, case, axis, pointer, ends=(), fresh=True, continued=True, stable=False):
         from . import study as st
 
         self.scene = st.scene(study.path, case)
@@ -64,6 +66,10 @@ class _Line:
         self.runs = 0
         self.periods = 0  # crank periods the runs integrated, their sensitivities' included
         self.fresh, self.continued = fresh, continued
+        # The orbits the line follows: located ones, or (``stable``) stable ones only, an
+        # unstable orbit then counting as the stable one lost.
+        self.accepted = ("periodic",) if stable else _ORBITS
+        self.last = None  # the last run's Dataset
         self.orbits = []
         for end, value in ends:  # the study's own orbits at the line's ends
             seed = st.orbit_seed_row(study.path, end)
@@ -93,16 +99,17 @@ class _Line:
                 _, scene, seed = min(self.orbits, key=far)
                 ds = simulate(self.scene, overrides, sensitivity=wrt, continue_from=(scene, seed), single_step=True)
                 self._count(ds)
-            if (ds is None or ds.attrs["classification"] not in _ORBITS) and self.fresh:
+            if (ds is None or ds.attrs["classification"] not in self.accepted) and self.fresh:
                 ds = simulate(self.scene, overrides, sensitivity=wrt)
                 self._count(ds)
-        if self.continued and ds.attrs["classification"] in _ORBITS and ds["orbit_seed"].size:
+        if self.continued and ds.attrs["classification"] in self.accepted and ds["orbit_seed"].size:
             self.orbits.append((float(value), ds.attrs["scene"], [float(v) for v in ds["orbit_seed"].values]))
+        self.last = ds
         return ds
 
     def __call__(self, value):
         ds = self.run(value)
-        if ds.attrs["classification"] not in _ORBITS:
+        if ds.attrs["classification"] not in self.accepted:
             return None
         _, sign = axis_override(self.scene, self.axis, self.pointer, value)
         slope = float(ds[self.slope]) * sign
@@ -162,9 +169,14 @@ def _edge(line, a, b, tolerance, max_runs):
     orbit's film reaches the safe film, by ``_locate`` once an orbit below it is found, or
     where the orbit is lost, bisected (in the logarithm of positive values) between the
     last orbit and the first value where none continues from it; Newton steps towards the
-    safe film first where they land inside. Returns (value, error, kind, converged)."""
+    safe film first where they land inside. On a ``stable`` line an unstable orbit counts as
+    the stable one lost: the kind is then its dominant multiplier's crossing (``_kind``),
+    else ``orbit_end``. Returns (value, error, kind, converged, what the run at the lost end
+    said: its classification and message, "" where that end is the grid's neighbour)."""
     log = a[0] > 0 and b > 0
     mid = (lambda x, y: math.sqrt(x * y)) if log else (lambda x, y: 0.5 * (x + y))
+    crossing = None  # the dominant multiplier's angle at b, where an unstable orbit was found there
+    lost = ""  # what the run at b said
     for _ in range(max_runs):
         lo, hi = sorted((a[0], b))
         if hi - lo <= 2.0 * tolerance * mid(lo, hi):
@@ -175,21 +187,26 @@ def _edge(line, a, b, tolerance, max_runs):
         at = line(new)
         if at is None:
             b = new
+            last = line.last
+            crossing = float(last["multiplier_1_angle_rad"]) if last.attrs["classification"] in _ORBITS else None
+            lost = f"{last.attrs['classification']}: {last.attrs.get('message', '')}"
         elif at[0] > 0:
             a = (new, at[0], at[1])
         else:  # an orbit below the safe film: the crossing lies between two orbits
             value, error, _, converged = _locate(line, a, (new, at[0], at[1]), tolerance, max_runs)
-            return value, error, "safe_film", converged
+            return value, error, "safe_film", converged, ""
     lo, hi = sorted((a[0], b))
-    return mid(lo, hi), 0.5 * (hi - lo), "orbit_end", hi - lo <= 2.0 * tolerance * mid(lo, hi)
+    kind = "orbit_end" if crossing is None else _kind(crossing)
+    return mid(lo, hi), 0.5 * (hi - lo), kind, hi - lo <= 2.0 * tolerance * mid(lo, hi), lost
 
 
-def _row(study, a, b, axis, ra, line, value, error, kind, converged):
+def _row(study, a, b, axis, ra, line, value, error, kind, converged, edge=False, lost=""):
     """One boundary's row: the fixed columns, then the other axes' values of its line."""
     cases = study.cases
     others = {k: ra[k] for k in cases.attrs.get("axes", []) if k != axis and k in ra}
     return {"axis": axis, "value": value, "error": error, "unit": cases[axis].attrs.get("units", ""), "kind": kind,
-            "case_a": a, "case_b": b, "runs": line.runs, "periods": line.periods, "converged": converged, **others}
+            "case_a": a, "case_b": b, "runs": line.runs, "periods": line.periods, "converged": converged,
+            "edge": edge, "lost": lost, **others}
 
 
 def safe_film_boundaries(study, tolerance=5e-3, max_runs=8, edge_runs=12, pairs=True, edges=True):
@@ -221,11 +238,14 @@ def safe_film_boundaries(study, tolerance=5e-3, max_runs=8, edge_runs=12, pairs=
     -------
     pandas.DataFrame
         One row per boundary: ``axis``, ``value`` and ``error`` (in the axis's unit, ``unit``),
-        ``kind`` (``safe_film``, or ``orbit_end`` where the safe orbit is lost before its film
-        reaches the safe film: ``value`` then the middle of the last orbit's value and the
-        first without, ``error`` half their distance), ``case_a`` (the orbit's end where one
-        has none), ``case_b`` (the neighbours), ``runs``, ``periods``,
-        ``converged``, and the other axes' values of the line.
+        ``kind`` (``safe_film``; where the safe orbit is lost before its film reaches the
+        safe film, ``orbit_end``, or for a stable orbit that turns unstable the crossing's
+        kind, ``fold``, ``period_doubling`` or ``neimark_sacker``: ``value`` then the middle
+        of the last orbit's value and the first without, ``error`` half their distance),
+        ``case_a`` (the orbit's end where one has none), ``case_b`` (the neighbours), ``runs``,
+        ``periods``, ``converged``, ``edge`` (found by following a safe orbit towards a
+        neighbour without one), ``lost`` (an edge's: what the run nearest beyond it said, its
+        classification and message), and the other axes' values of the line.
     """
     import pandas as pd
 
@@ -251,9 +271,12 @@ def safe_film_boundaries(study, tolerance=5e-3, max_runs=8, edge_runs=12, pairs=
             continue
         if key(axis) not in ra or not math.isfinite(ra[key(axis)]):
             continue
-        line = _Line(study, a, axis, pointer, ends=((a, ra[axis]),), fresh=False)
-        value, error, kind, converged = _edge(line, end(ra, axis), float(rb[axis]), tolerance, edge_runs)
-        rows.append(_row(study, a, b, axis, ra, line, value, error, kind, converged))
+        # From a stable orbit, the stable orbit followed: where it turns unstable the
+        # journal leaves it, and the crossing's kind is named.
+        stable = ra["classification"] == "periodic"
+        line = _Line(study, a, axis, pointer, ends=((a, ra[axis]),), fresh=False, stable=stable)
+        value, error, kind, converged, lost = _edge(line, end(ra, axis), float(rb[axis]), tolerance, edge_runs)
+        rows.append(_row(study, a, b, axis, ra, line, value, error, kind, converged, edge=True, lost=lost))
     return pd.DataFrame(rows)
 
 
@@ -360,13 +383,13 @@ def locate(study, tolerance=5e-3, kinds=KINDS):
     parts = [f for f in found if len(f)]
     frame = pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=_FIXED)
     frame.attrs["units"] = {"value": "(the row's unit)", "error": "(the row's unit)", "runs": "1", "periods": "1",
-                            "converged": "1",
+                            "converged": "1", "edge": "1",
                             **{k: study.cases[k].attrs.get("units", "") for k in study.cases.attrs.get("axes", [])}}
     return frame
 
 
 #: The /boundaries columns every row has; the study's other axes follow.
-_FIXED = ["axis", "value", "error", "unit", "kind", "case_a", "case_b", "runs", "periods", "converged"]
+_FIXED = ["axis", "value", "error", "unit", "kind", "case_a", "case_b", "runs", "periods", "converged", "edge", "lost"]
 
 
 def write(path, frame):
@@ -386,9 +409,9 @@ def write(path, frame):
         units = getattr(frame, "attrs", {}).get("units", {})
         for name in names:
             col = frame[name] if name in frame else pd.Series([], dtype=float)
-            if name in ("case_a", "case_b", "runs", "periods", "converged"):
+            if name in ("case_a", "case_b", "runs", "periods", "converged", "edge"):
                 g.create_dataset(name, data=np.asarray(col, dtype=np.int64), maxshape=(None,))
-            elif name in ("axis", "unit", "kind") or col.dtype == object:
+            elif name in ("axis", "unit", "kind", "lost") or col.dtype == object:
                 text = ["" if not isinstance(v, str) else v for v in col]  # NaN: the row's own axis
                 g.create_dataset(name, data=np.array(text, dtype=object), dtype=strings, maxshape=(None,))
             else:
@@ -396,9 +419,10 @@ def write(path, frame):
             g[name].attrs["units"] = units.get(name, "1")
         g.attrs["columns"] = np.array(names, dtype=object).astype(strings)
         g.attrs["long_name"] = ("boundaries located between grid points: where the minimum film reaches the safe film "
-                                "(kind safe_film), the safe orbit is lost towards a neighbour whose film is below it "
-                                "(orbit_end), or the dominant multiplier crosses the unit circle "
-                                "(fold, period_doubling, neimark_sacker); lubjoint.boundaries")
+                                "(kind safe_film), or the dominant multiplier crosses the unit circle (fold, "
+                                "period_doubling, neimark_sacker), or, following a safe orbit towards a neighbour "
+                                "whose film is below it (edge 1), where that orbit is lost (orbit_end); "
+                                "lubjoint.boundaries")
 
 
 def read(path):
@@ -417,8 +441,9 @@ def read(path):
             data[n] = d.asstr()[()] if h5py.check_string_dtype(d.dtype) else d[()]
         frame = pd.DataFrame(data)
         frame.attrs["units"] = {n: g[n].attrs.get("units", "") for n in names}
-    if "converged" in frame:
-        frame["converged"] = frame["converged"].astype(bool)
+    for flag in ("converged", "edge"):
+        if flag in frame:
+            frame[flag] = frame[flag].astype(bool)
     return frame
 
 

@@ -622,7 +622,8 @@ def safe_envelope(study, x, y, grid=None, *, fix=None, boundaries=None):
     grid cell a point (safe, below the safe film, or without a located orbit), the safe-film
     boundaries located between them (``lubjoint.boundaries.safe_film_boundaries``) joined into
     a curve, and the unsafe side of it shaded; where the safe orbit is lost towards a cell
-    whose film is below the safe film (``orbit_end``), those located values as a dashed curve.
+    whose film is below the safe film (it turns unstable, or its branch ends: rows with
+    ``edge``), those located values as a dashed curve.
 
     Parameters
     ----------
@@ -663,7 +664,7 @@ def safe_envelope(study, x, y, grid=None, *, fix=None, boundaries=None):
         plane = _plane(v, x, y)
         _envelope_cells(ax, plane)
         _envelope_curve(ax, plane, _plane_boundaries(boundaries, v, x, y, law))
-        ends = _plane_boundaries(boundaries, v, x, y, law, "orbit_end")
+        ends = _plane_boundaries(boundaries, v, x, y, law, "edge")
         if len(ends):  # where the safe orbit is lost towards a cell whose film is below the safe film
             ax.plot(ends[:, 0], ends[:, 1], "--", color="darkorange", lw=1.2, marker="s", ms=4,
                     label="safe orbit lost (located)")
@@ -704,14 +705,25 @@ def _envelope_cells(ax, plane):
         ax.plot(X[where], Y[where], marker, color=colour, ms=6, ls="none", label=label)
 
 
+def _is_edge_end(b):
+    """Whether boundary row ``b`` is where a safe orbit is lost towards a neighbour without one
+    (``edge``, its kind not ``safe_film``; files without the column: kind ``orbit_end``)."""
+    edge = b.get("edge")
+    if edge is None or edge != edge:  # no such column (NaN where concatenated with one)
+        return b["kind"] == "orbit_end"
+    return bool(edge) and b["kind"] != "safe_film"
+
+
 def _plane_boundaries(boundaries, v, x, y, law, kind="safe_film"):
-    """The boundaries of ``kind`` that lie in this plane, as drawn points (x, y) sorted along x."""
+    """The boundaries of ``kind`` (``safe_film``, or ``edge``: where a safe orbit is lost) that
+    lie in this plane, as drawn points (x, y) sorted along x."""
     if boundaries is None or len(boundaries) == 0:
         return np.empty((0, 2))
     fx, fy = _display_factor(v, x), _display_factor(v, y)
     points = []
     for _, b in boundaries.iterrows():
-        if (law is not None and b.get("force_law") != law) or b.get("kind", "safe_film") != kind:
+        wanted = _is_edge_end(b) if kind == "edge" else b.get("kind", "safe_film") == kind
+        if (law is not None and b.get("force_law") != law) or not wanted:
             continue
         held = [d for d in v["case_id"].dims if d not in (x, y, "force_law")]
         if any(d in b and not (b[d] == v[d].values[0]) for d in held):
