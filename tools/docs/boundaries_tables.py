@@ -6,9 +6,11 @@ whose /boundaries table `python3 -m lubjoint.boundaries STUDY.h5` has written:
     PYTHONPATH=build/python /usr/bin/python3 -m lubjoint.boundaries ff.h5
     PYTHONPATH=build/python /usr/bin/python3 tools/docs/boundaries_tables.py ff.h5
 
-One table per kind of boundary (safe_film, orbit_end, the stability crossings together),
-each row a lattice line: its force law, the other axes' values, the located value with its
-error, the runs and periods it took; then what they cost against the study's own periods.
+One table per kind of search (the safe-film crossings; the edges, where a safe orbit followed
+towards a neighbour without one turns unstable or is lost; the stability crossings between
+two orbits), each row a lattice line: its force law, the other axes' values, the located
+value with its error, the runs and periods it took; then what they cost against the study's
+own periods.
 """
 import argparse
 import sys
@@ -41,6 +43,18 @@ def table(rows, kind_column):
     return "\n".join(out)
 
 
+CROSSINGS = ("fold", "period_doubling", "neimark_sacker")
+
+
+def parts(frame):
+    """(title, rows, whether the kind is shown) of each table: the safe-film crossings, the
+    edges (files without the ``edge`` column: kind orbit_end), the stability crossings."""
+    edge = frame["edge"] if "edge" in frame else frame["kind"] == "orbit_end"
+    safe = frame["kind"] == "safe_film"
+    return (("safe_film", frame[safe], False), ("edge", frame[edge & ~safe], True),
+            ("stability", frame[~edge & frame["kind"].isin(CROSSINGS)], True))
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("study", help="a study file with a /boundaries table")
@@ -51,11 +65,9 @@ def main(argv=None):
               file=sys.stderr)
         return 2
     frame = frame.sort_values(["kind", "force_law", "axis", "value"], kind="stable")
-    for title, kinds in (("safe_film", ("safe_film",)), ("orbit_end", ("orbit_end",)),
-                         ("stability", ("fold", "period_doubling", "neimark_sacker"))):
-        rows = frame[frame["kind"].isin(kinds)]
+    for title, rows, kinds in parts(frame):
         print(f"### {title} ({len(rows)})\n")
-        print(table(rows, title == "stability") if len(rows) else "none")
+        print(table(rows, kinds) if len(rows) else "none")
         print()
     cases = lubjoint.study.cases(args.study)
     steady = float(cases["periods_integrated"].clip(lower=0).sum())
@@ -64,9 +76,7 @@ def main(argv=None):
     print("|---|---|---|---|")
     print(f"| steady stages | {steady:.0f} | | |")
     print(f"| sensitivities | {sens:.0f} | | {100 * sens / steady:.1f} % |")
-    for title, kinds in (("safe_film", ("safe_film",)), ("orbit_end", ("orbit_end",)),
-                         ("stability", ("fold", "period_doubling", "neimark_sacker"))):
-        rows = frame[frame["kind"].isin(kinds)]
+    for title, rows, _ in parts(frame):
         p = float(rows["periods"].sum())
         print(f"| {title} boundaries | {p:.0f} | {int(rows['runs'].sum())} | {100 * p / steady:.1f} % |")
     total = sens + float(frame["periods"].sum())
