@@ -172,3 +172,32 @@ def test_where_the_safe_orbit_turns_unstable_it_is_stable_on_one_side_only(paper
     outside = classification(row["value"] - 2.0 * row["error"])
     assert inside[0] == "periodic", inside
     assert outside[0] == "periodic_unstable" or "was not continued" in outside[1], outside
+
+
+def test_a_single_step_stalled_at_the_maps_noise_is_retried_on_tighter_periods(paper_study):
+    # Frene long at 0.5 mm and 0.4 Pa s: a stable orbit at 2500 rpm whose dominant pair has
+    # |mu| within 4e-4 of 1, and at 2044 rpm, past its Neimark-Sacker crossing, an unstable
+    # one. One Newton from the first to the second stalls at the period map's noise
+    # (residual ~3e-6, above the 1e-6 it accepts there); once more on periods at rtol/10 it
+    # locates the orbit. By another route, the scene's own steady stage from its transient:
+    # the same orbit, its film within twice the two error bars (each bar an estimate, the
+    # map's error at rtol against rtol/100, not a bound).
+    import json
+
+    cases = lubjoint.study.cases(paper_study)
+    base = lubjoint.study.scene(paper_study, int(cases.index[cases["force_law"] == "frene_long"][0]))
+    speed = "/drivers/0/speed_rpm"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        start = lubjoint.simulate(base, {speed: 2500.0, "/outputs/channels": []})
+        assert start.attrs["classification"] == "periodic", start.attrs["message"]
+        scene = json.loads(start.attrs["scene"])
+        seed = [float(v) for v in start["orbit_seed"].values]
+        there = {speed: 2044.41, "/outputs/channels": []}
+        continued = lubjoint.simulate(scene, there, continue_from=(scene, seed), single_step=True)
+        fresh = lubjoint.simulate(base, there)
+    for ds in (continued, fresh):
+        assert ds.attrs["classification"] == "periodic_unstable", ds.attrs["message"]
+        assert 1.0 < float(ds["multiplier_1_modulus"]) < 1.001
+    bars = float(continued["min_film_thickness_m_error"]) + float(fresh["min_film_thickness_m_error"])
+    assert abs(float(continued["min_film_thickness_m"]) - float(fresh["min_film_thickness_m"])) <= 2.0 * bars

@@ -41,8 +41,10 @@ RunResult finish_wall(RunResult r, std::chrono::steady_clock::time_point wall0) 
 }
 
 /// One step of a path: Newton from a neighbour's orbit placed into this context's scene;
-/// `final`: the run's own scene (metrics, error bars).
-verdict::ContinuationStep continue_from(SteadyContext& cx, const OrbitSeed& seed, bool final) {
+/// `final`: the run's own scene (metrics, error bars); `single`: the path's only step
+/// (ContinuationStart::min_step 1), which retries a Newton stalled at the map's noise on
+/// tighter periods where a path would shorten its step.
+verdict::ContinuationStep continue_from(SteadyContext& cx, const OrbitSeed& seed, bool final, bool single) {
   using Outcome = verdict::ContinuationStep::Outcome;
   verdict::ContinuationStep step;
   try {
@@ -66,7 +68,7 @@ verdict::ContinuationStep continue_from(SteadyContext& cx, const OrbitSeed& seed
     }
     // The neighbour's steps per period, with room for a thinner film's smaller steps.
     const long long budget = static_cast<long long>(cx.tuning.path_step_factor * seed.steps_per_period) + 1000;
-    step.orbit = solve_orbit(cx, chart, *base, seed.winding, budget, options, final, seed);
+    step.orbit = solve_orbit(cx, chart, *base, seed.winding, budget, options, final, seed, single);
   } catch (const std::exception& e) {
     step.outcome = Outcome::error;
     step.error = e.what();
@@ -92,7 +94,7 @@ std::optional<RunResult> follow_path(const Scene& scene, const ContinuationStart
     const bool final = next >= 1.0;
     const Scene between = final ? Scene{} : from.path(next);
     SteadyContext cx(final ? scene : between, PeriodBudget(scene.simulation.max_periods, used));
-    const verdict::ContinuationStep tried = continue_from(cx, seed, final);
+    const verdict::ContinuationStep tried = continue_from(cx, seed, final, min_step >= 1.0);
     const bool ok = verdict::continuation_step(cx.res, tried);
     ++steps;
     const long iterations = tried.outcome == verdict::ContinuationStep::Outcome::orbit ? tried.orbit.newton.iterations : 0;

@@ -186,7 +186,8 @@ bool take_error_bars(SteadyContext& cx, Chart& chart, const StartState& base, Pe
 }  // namespace
 
 OrbitEvidence solve_orbit(SteadyContext& cx, Chart& chart, const StartState& base, const std::vector<double>& winding,
-                          long long budget, steady::ShootingOptions options, bool final, const OrbitSeed& from) {
+                          long long budget, steady::ShootingOptions options, bool final, const OrbitSeed& from,
+                          bool tighten_stalled) {
   using Outcome = OrbitEvidence::Outcome;
   const SteadyTuning& t = cx.tuning;
   SteadyCycle& steady = cx.res.steady;
@@ -211,12 +212,12 @@ OrbitEvidence solve_orbit(SteadyContext& cx, Chart& chart, const StartState& bas
   ev.predicted_shift = estimate.predicted_shift;
   ev.start_dominant = estimate.dominant;
   ev.unlocatable = t.unlocatable;
-  if (!from.valid() && found.outcome != steady::ShootingOutcome::converged &&
+  if ((!from.valid() || tighten_stalled) && found.outcome != steady::ShootingOutcome::converged &&
       found.outcome != steady::ShootingOutcome::refused && found.residual >= 0 && found.residual <= t.tighten_below &&
       !(estimate.predicted_shift * t.tighten_factor > t.unlocatable * cx.sim.steady_tolerance)) {
     // Stalled at the map's own noise (near |μ| = 1 its fixed point moves by that noise
     // over 1 − |μ|): Newton again on periods at rtol × tighten_factor (a start from the
-    // transient).
+    // transient, or a continuation's single step).
     maps_at(t.tighten_factor);
     const Eigen::VectorXd z = found.z;
     found = better_of(std::move(found), steady::solve_periodic_orbit(*period, z, options));

@@ -51,9 +51,13 @@ steady::NewtonPicardOptions newton_picard_options(const steady::ShootingOptions&
 /// Newton on the period map from `base`, then the monodromy and the multipliers; if
 /// `final`, the orbit's metrics and error bars. Sets the orbit's seed where accepted.
 /// `from`: the orbit Newton started from (a continuation's), whose ε_max and steps per
-/// period a path step's seed keeps (only the final step measures its own).
+/// period a path step's seed keeps (only the final step measures its own). A Newton from
+/// the transient that stalls at the map's noise runs once more on periods at rtol ×
+/// tighten_factor; from a continuation's orbit only where `tighten_stalled` (a single step,
+/// which no shorter step can replace).
 OrbitEvidence solve_orbit(SteadyContext& cx, Chart& chart, const StartState& base, const std::vector<double>& winding,
-                          long long budget, steady::ShootingOptions options, bool final, const OrbitSeed& from);
+                          long long budget, steady::ShootingOptions options, bool final, const OrbitSeed& from,
+                          bool tighten_stalled = false);
 /// Shooting from where the transient ended.
 ShootingEvidence shoot_from_transient(SteadyContext& cx);
 

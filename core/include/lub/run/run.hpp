@@ -318,7 +318,9 @@ struct ContinuationStart {
   /// lost (a boundary's existence test: does the orbit continue to this scene?).
   bool alone_if_lost = true;
   /// The smallest step along the path (a share of it) before the path is given up: 0, the
-  /// engine's (1/32); 1, one Newton from the seed straight at the scene.
+  /// engine's (1/32); 1, one Newton from the seed straight at the scene, which, where it
+  /// stalls at the period map's noise, runs once more on periods at a tenth of rtol (a
+  /// start from a transient does the same).
   double min_step = 0.0;
 };
 /// The path of scenes from the effective scene `from` (λ = 0) to `to` (λ = 1): every
