@@ -87,8 +87,10 @@ def simulate(scene, overrides=None, output=None, *, strict=False, sensitivity=()
     single_step : bool, optional
         With ``continue_from``: one Newton from the neighbour's orbit straight at the scene,
         no shorter steps along the path where it fails (a cheap existence test where the
-        neighbour is close); where it stalls at the period map's noise, once more on periods
-        at a tenth of rtol, as a start from the transient does.
+        neighbour is close). Where it stalls at the period map's noise it is accepted if,
+        through the neighbour's monodromy, its residual moves the orbit by less than a tenth
+        of steady_tolerance (the error bars then measure the orbit), else run once more on
+        periods at a tenth of rtol, as a start from the transient is.
 
     Returns
     -------

@@ -42,8 +42,8 @@ RunResult finish_wall(RunResult r, std::chrono::steady_clock::time_point wall0) 
 
 /// One step of a path: Newton from a neighbour's orbit placed into this context's scene;
 /// `final`: the run's own scene (metrics, error bars); `single`: the path's only step
-/// (ContinuationStart::min_step 1), which retries a Newton stalled at the map's noise on
-/// tighter periods where a path would shorten its step.
+/// (ContinuationStart::min_step 1), which accepts or retries a Newton stalled at the map's
+/// noise where a path would shorten its step (solve_orbit).
 verdict::ContinuationStep continue_from(SteadyContext& cx, const OrbitSeed& seed, bool final, bool single) {
   using Outcome = verdict::ContinuationStep::Outcome;
   verdict::ContinuationStep step;

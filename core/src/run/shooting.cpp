@@ -143,6 +143,24 @@ steady::ShootingResult newton_from_start(const SteadyContext& cx, PeriodMap& per
   return found;
 }
 
+/// Whether a Newton stalled at the map's noise, from a neighbour's orbit whose monodromy
+/// gave its first Jacobian J = M − I, has located the orbit anyway: its residual r moves
+/// the fixed point by J⁻¹ r to first order, accepted within `within` (the error bars then
+/// measure how far the orbit really is). Marks `found` converged at the noise floor.
+bool accept_at_noise(steady::ShootingResult& found, const steady::ShootingOptions& options, double below,
+                     double within) {
+  if (!options.initial_jacobian || found.outcome != steady::ShootingOutcome::not_converged || found.residual < 0.0 ||
+      found.residual > below || found.z.size() != found.Pz.size())
+    return false;
+  const Eigen::VectorXd shift = options.initial_jacobian->fullPivLu().solve(found.Pz - found.z);
+  if (!(steady::scaled_distance(shift, Eigen::VectorXd::Zero(shift.size()), options.residual_units()) <= within))
+    return false;
+  found.outcome = steady::ShootingOutcome::converged;
+  found.at_noise_floor = true;
+  found.message.clear();
+  return true;
+}
+
 /// The orbit's metrics and channels at chart coordinates z (evidence: measured or why not).
 void measure_orbit(SteadyContext& cx, Chart& chart, const StartState& base, const Eigen::VectorXd& z,
                    OrbitEvidence& ev) {
@@ -212,6 +230,9 @@ OrbitEvidence solve_orbit(SteadyContext& cx, Chart& chart, const StartState& bas
   ev.predicted_shift = estimate.predicted_shift;
   ev.start_dominant = estimate.dominant;
   ev.unlocatable = t.unlocatable;
+  // A single continuation step stalled at the noise: located where the neighbour's
+  // monodromy says the residual moves the orbit by little; else tighter periods, below.
+  if (tighten_stalled) accept_at_noise(found, options, t.tighten_below, t.chord_located * cx.sim.steady_tolerance);
   if ((!from.valid() || tighten_stalled) && found.outcome != steady::ShootingOutcome::converged &&
       found.outcome != steady::ShootingOutcome::refused && found.residual >= 0 && found.residual <= t.tighten_below &&
       !(estimate.predicted_shift * t.tighten_factor > t.unlocatable * cx.sim.steady_tolerance)) {

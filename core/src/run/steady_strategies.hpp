@@ -54,7 +54,8 @@ steady::NewtonPicardOptions newton_picard_options(const steady::ShootingOptions&
 /// period a path step's seed keeps (only the final step measures its own). A Newton from
 /// the transient that stalls at the map's noise runs once more on periods at rtol ×
 /// tighten_factor; from a continuation's orbit only where `tighten_stalled` (a single step,
-/// which no shorter step can replace).
+/// which no shorter step can replace), and only after the stall is not accepted as located
+/// through the seed's monodromy.
 OrbitEvidence solve_orbit(SteadyContext& cx, Chart& chart, const StartState& base, const std::vector<double>& winding,
                           long long budget, steady::ShootingOptions options, bool final, const OrbitSeed& from,
                           bool tighten_stalled = false);

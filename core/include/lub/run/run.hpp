@@ -318,9 +318,10 @@ struct ContinuationStart {
   /// lost (a boundary's existence test: does the orbit continue to this scene?).
   bool alone_if_lost = true;
   /// The smallest step along the path (a share of it) before the path is given up: 0, the
-  /// engine's (1/32); 1, one Newton from the seed straight at the scene, which, where it
-  /// stalls at the period map's noise, runs once more on periods at a tenth of rtol (a
-  /// start from a transient does the same).
+  /// engine's (1/32); 1, one Newton from the seed straight at the scene. Where that stalls
+  /// at the period map's noise it is accepted if, through the seed's monodromy, its
+  /// residual moves the orbit by less than a tenth of steady_tolerance (the error bars
+  /// then measure the orbit), else run once more on periods at a tenth of rtol.
   double min_step = 0.0;
 };
 /// The path of scenes from the effective scene `from` (λ = 0) to `to` (λ = 1): every
