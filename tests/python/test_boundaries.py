@@ -3,7 +3,9 @@ paper grid's study (the nightly_paper fixture): the printed law at 0.5 mm and 50
 crosses the safe film between 0.1 and 0.2 Pa s, the located viscosity against a bisection
 of separate runs (each its own steady stage), to issue 44's 0.5 %; at 0.4 Pa s its stable safe
 orbit turns unstable between 500 and 50 rpm, the located fold against continuation with halved
-steps on either side; a run continued from a case's orbit locates that orbit."""
+steps on either side; a run continued from a case's orbit locates that orbit, and a single
+Newton stalled at the map's noise is located anyway; on a small Frene long study, stability
+crossings along two axes lie on one similarity line."""
 import warnings
 
 import pytest
@@ -222,3 +224,35 @@ def test_a_single_step_stalled_where_it_would_move_the_orbit_far_is_retried_on_t
     at = {"/joints/3/journal_radius_m": 0.0098, "/drivers/0/speed_rpm": 2500.0, "/joints/3/viscosity_Pa_s": 0.2}
     continued = _continued_and_fresh(paper_study, at, {"/joints/3/viscosity_Pa_s": 0.2017})
     assert float(continued["orbit_residual"]) <= 1e-6
+
+
+def test_stability_crossings_along_two_axes_lie_on_one_similarity_line(source_dir, build_dir, tmp_path):
+    # Frene long at 0.5 mm (tests/mpi/stability_grid.json): its orbit turns unstable between
+    # 0.4 and 0.2 Pa s at 5000 rpm and between 5000 and 2500 rpm at 0.2 Pa s. Each crossing
+    # is located by runs continued from the nearest orbit on its line, converged to 0.5 %,
+    # a Neimark-Sacker pair. By another route: the inertia loads scale as N^2 and the film's
+    # force as mu N, so (gravity aside) the orbit depends on mu/N alone, and the two
+    # crossings must give one mu*/N*: within 1.5 % (each value to 0.5 %, and the multipliers'
+    # own accuracy, |mu| - 1 known to ~1e-5 where it changes by ~1e-6 per rpm).
+    import os
+    import shutil
+    import subprocess
+
+    mpirun = shutil.which("mpirun")
+    if not mpirun:
+        pytest.skip("no mpirun")
+    path = tmp_path / "study.h5"
+    env = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"}
+    done = subprocess.run([mpirun, "--oversubscribe", "-np", "1", str(build_dir / "sweep" / "lubsweep"),
+                           str(source_dir / "tests" / "mpi" / "stability_grid.json"), "-o", str(path), "-q",
+                           "--no-summary"], capture_output=True, text=True, env=env, timeout=300)
+    assert done.returncode == 0, done.stderr
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        found = boundaries.stability_boundaries(lubjoint.load_study(path))
+    assert sorted(found["axis"]) == ["speed_rpm", "viscosity_Pa_s"], found
+    assert found["converged"].all() and (found["kind"] == "neimark_sacker").all(), found
+    assert (found["error"] <= 5e-3 * found["value"]).all(), found
+    mu = one_row(found, axis="viscosity_Pa_s")["value"] / 5000.0
+    speed = 0.2 / one_row(found, axis="speed_rpm")["value"]
+    assert mu == pytest.approx(speed, rel=1.5e-2)

@@ -340,8 +340,8 @@ def stability_boundaries(study, tolerance=5e-3, max_runs=10):
     """The axis values where the dominant Floquet multiplier crosses the unit circle, between
     every two lattice neighbours of ``study`` whose located orbits differ in stability
     (``|μ|max < 1`` at one, ``> 1`` at the other). Each by regula falsi on ``|μ|max − 1`` in the
-    logarithm of the axis value, a run of the case's scene a step, to ``tolerance`` of the
-    value (the error: half the last bracket). ``kind``: ``fold`` (the unstable end's
+    logarithm of the axis value, a run of the case's scene a step (from the nearest orbit
+    located on the line), to ``tolerance`` of the value (the error: half the last bracket). ``kind``: ``fold`` (the unstable end's
     dominant multiplier real, through +1), ``period_doubling`` (through −1) or
     ``neimark_sacker`` (a complex pair). Columns as ``safe_film_boundaries``'."""
     import pandas as pd
@@ -353,9 +353,10 @@ def stability_boundaries(study, tolerance=5e-3, max_runs=10):
             continue
         ends = [(float(r[axis]), float(r["multiplier_1_modulus"]) - 1.0, float(r["multiplier_1_angle_rad"]))
                 for r in (ra, rb)]
-        # Each run from the scene's own start: near |mu| = 1 the full-film orbits continued
-        # from a neighbour often fail, and where they do not they may be another branch's.
-        line = _Stability(study, a, axis, pointer, continued=False)
+        # Each run continued from the nearest orbit on the line (one Newton, whose stall at
+        # the map's noise near |mu| = 1 is accepted or retried), from the scene's own
+        # start only where that finds none: a run from the start may reach another orbit.
+        line = _Stability(study, a, axis, pointer, ends=((a, ra[axis]), (b, rb[axis])))
         value, error, angle, _, converged = _falsi(line, ends[0], ends[1], tolerance, max_runs)
         rows.append(_row(study, a, b, axis, ra, line, value, error, _kind(angle), converged))
     return pd.DataFrame(rows)
