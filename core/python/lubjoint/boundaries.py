@@ -256,7 +256,8 @@ def safe_film_boundaries(study, tolerance=5e-3, max_runs=8, edge_runs=12, pairs=
         return float(r[axis]), float(r["min_film_thickness_m"] - r["safe_film_thickness_m"]), float(r[key(axis)])
 
     for a, b, axis, pointer, ra, rb in (_edges(study) if pairs else ()):
-        if int(ra["below_safe_film"]) == int(rb["below_safe_film"]):
+        la, lb = ra["below_safe_film"], rb["below_safe_film"]
+        if not (la == la and lb == lb) or int(la) == int(lb):  # unknown (NaN: an unstable orbit), or alike
             continue
         if key(axis) not in ra or not (math.isfinite(ra[key(axis)]) and math.isfinite(rb[key(axis)])):
             continue

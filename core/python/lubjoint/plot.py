@@ -619,7 +619,7 @@ def _log_scales(ax, xs):
 
 def safe_envelope(study, x, y, grid=None, *, fix=None, boundaries=None):
     """The safe operating envelope over two axes of a sub-grid, one panel per force law: each
-    grid cell a point (safe, below the safe film, or without a located orbit), the safe-film
+    grid cell a point (safe, below the safe film, an unstable orbit, or none located), the safe-film
     boundaries located between them (``lubjoint.boundaries.safe_film_boundaries``) joined into
     a curve, and the unsafe side of it shaded; where the safe orbit is lost towards a cell
     whose film is below the safe film (it turns unstable, or its branch ends: rows with
@@ -685,24 +685,27 @@ def safe_envelope(study, x, y, grid=None, *, fix=None, boundaries=None):
 
 def _plane(v, x, y):
     """One force law's plane: the drawn axis values as a mesh (X, Y), and per cell whether it
-    has a located orbit and whether that orbit is below the safe film (over y, x)."""
+    has a stable orbit, an unstable one, and a stable orbit below the safe film (over y, x)."""
     def cells(name):
         da = v[name]
         return da.squeeze([d for d in da.dims if d not in (x, y)]).transpose(y, x).values
 
     X, Y = np.meshgrid(_shown(v, x)[0], _shown(v, y)[0])
-    orbit = np.isin(cells("classification").astype(str), ("periodic", "periodic_unstable"))
-    return X, Y, orbit, orbit & (cells("below_safe_film") == 1)
+    kind = cells("classification").astype(str)
+    stable = kind == "periodic"
+    return X, Y, stable, kind == "periodic_unstable", stable & (cells("below_safe_film") == 1)
 
 
 def _envelope_cells(ax, plane):
-    """Each cell of one force law's plane (``_plane``) as a point: safe, below the safe film, no
-    located orbit."""
-    X, Y, orbit, below = plane
-    kinds = (("safe", orbit & ~below, "o", "seagreen"), ("below the safe film", below, "o", "firebrick"),
-             ("no located orbit", ~orbit, "x", "0.45"))
-    for label, where, marker, colour in kinds:
-        ax.plot(X[where], Y[where], marker, color=colour, ms=6, ls="none", label=label)
+    """Each cell of one force law's plane (``_plane``) as a point: safe, below the safe film, an
+    unstable orbit (which the journal leaves: no label), no located orbit."""
+    X, Y, stable, unstable, below = plane
+    kinds = (("safe", stable & ~below, "o", "seagreen", "seagreen"),
+             ("below the safe film", below, "o", "firebrick", "firebrick"),
+             ("unstable orbit", unstable, "o", "0.3", "none"),
+             ("no located orbit", ~stable & ~unstable, "x", "0.45", None))
+    for label, where, marker, colour, face in kinds:
+        ax.plot(X[where], Y[where], marker, color=colour, mfc=face or colour, ms=6, ls="none", label=label)
 
 
 def _is_edge_end(b):
@@ -742,7 +745,7 @@ def _envelope_curve(ax, plane, points):
         return
     ax.plot(points[:, 0], points[:, 1], "-", color="firebrick", lw=1.5, marker="D", ms=4,
             label="safe film reached (located)")
-    X, Y, _, below = plane
+    X, Y, _, _, below = plane
     inside = below & (X >= points[0, 0]) & (X <= points[-1, 0])  # the cells the curve spans
     if not inside.any() or len(points) < 2:
         return

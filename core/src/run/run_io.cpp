@@ -45,8 +45,9 @@ double below_safe_film(const RunResult& r) {
   if (r.status == RunStatus::film_collapse) return 1.0;
   if (r.status != RunStatus::ok) return kNaN;
   switch (r.steady.kind) {
-    case SteadyClass::periodic:
-    case SteadyClass::periodic_unstable: return r.metrics.below_safe_film ? 1.0 : 0.0;
+    case SteadyClass::periodic: return r.metrics.below_safe_film ? 1.0 : 0.0;
+    // The journal leaves an unstable orbit: its film is the orbit's, not the bearing's.
+    case SteadyClass::periodic_unstable: return kNaN;
     case SteadyClass::drifting: {
       const bool falling = r.steady.min_film_drift_m_per_cycle < 0.0;
       return std::isfinite(r.steady.safe_film_cycle) || (falling && r.metrics.below_safe_film) ? 1.0 : kNaN;
