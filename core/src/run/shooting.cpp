@@ -69,6 +69,21 @@ struct StartEstimate {
   double dominant = kNaN;         ///< |μ|max of the start's monodromy
 };
 
+/// How far a residual r of P(z) = z moves the fixed point, to first order J⁻¹ r (J = M − I),
+/// in the residual's units: the map's error over a slow direction, magnified by 1/|1 − μ|.
+double fixed_point_shift(const Eigen::MatrixXd& J, const Eigen::VectorXd& r, const steady::ShootingOptions& options) {
+  const Eigen::VectorXd shift = J.fullPivLu().solve(r);
+  return steady::scaled_distance(shift, Eigen::VectorXd::Zero(shift.size()), options.residual_units());
+}
+
+/// A Newton stalled at the map's noise, taken as located there (the error bars then measure
+/// how far the orbit really is).
+void accept_at_noise_floor(steady::ShootingResult& found) {
+  found.outcome = steady::ShootingOutcome::converged;
+  found.at_noise_floor = true;
+  found.message.clear();
+}
+
 /// find_orbit from z0, its first Jacobian options.initial_jacobian (a neighbour's
 /// monodromy) or, if none, the monodromy at z0 (central differences of `tight`); where
 /// that contracts every direction below chord_contraction, Newton–Picard chord steps on
@@ -105,11 +120,8 @@ steady::ShootingResult newton_from_start(const SteadyContext& cx, PeriodMap& per
     // steady_tolerance. The error bars' re-solve measures how far the orbit really is.
     const double located = chords.residual / (1.0 - std::abs(mu.front()));
     if (chords.outcome == steady::ShootingOutcome::not_converged && chords.residual >= 0.0 &&
-        located <= t.chord_located * cx.sim.steady_tolerance) {
-      chords.outcome = steady::ShootingOutcome::converged;
-      chords.at_noise_floor = true;
-      chords.message.clear();
-    }
+        located <= t.chord_located * cx.sim.steady_tolerance)
+      accept_at_noise_floor(chords);
     if (chords.outcome == steady::ShootingOutcome::converged || chords.outcome == steady::ShootingOutcome::refused)
       return chords;
   }
@@ -121,9 +133,7 @@ steady::ShootingResult newton_from_start(const SteadyContext& cx, PeriodMap& per
     // follows: without it, Newton walking into the wall is the evidence that it drifts.
     Eigen::VectorXd P0(z0.size()), T0(z0.size());
     if (period.apply(z0.data(), P0.data()) == 0 && tight.apply(z0.data(), T0.data()) == 0) {
-      const Eigen::VectorXd shift = J.fullPivLu().solve(P0 - T0);
-      estimate.predicted_shift =
-          steady::scaled_distance(shift, Eigen::VectorXd::Zero(z0.size()), options.residual_units());
+      estimate.predicted_shift = fixed_point_shift(J, P0 - T0, options);
       start_maps += 2;
       if (estimate.predicted_shift > t.unlocatable * cx.sim.steady_tolerance) {
         steady::ShootingResult out;
@@ -144,20 +154,15 @@ steady::ShootingResult newton_from_start(const SteadyContext& cx, PeriodMap& per
 }
 
 /// Whether a Newton stalled at the map's noise, from a neighbour's orbit whose monodromy
-/// gave its first Jacobian J = M − I, has located the orbit anyway: its residual r moves
-/// the fixed point by J⁻¹ r to first order, accepted within `within` (the error bars then
-/// measure how far the orbit really is). Marks `found` converged at the noise floor.
+/// gave its first Jacobian J = M − I, has located the orbit anyway: its residual moves the
+/// fixed point by no more than `within` (fixed_point_shift). Marks `found` so if it has.
 bool accept_at_noise(steady::ShootingResult& found, const steady::ShootingOptions& options, double below,
                      double within) {
   if (!options.initial_jacobian || found.outcome != steady::ShootingOutcome::not_converged || found.residual < 0.0 ||
       found.residual > below || found.z.size() != found.Pz.size())
     return false;
-  const Eigen::VectorXd shift = options.initial_jacobian->fullPivLu().solve(found.Pz - found.z);
-  if (!(steady::scaled_distance(shift, Eigen::VectorXd::Zero(shift.size()), options.residual_units()) <= within))
-    return false;
-  found.outcome = steady::ShootingOutcome::converged;
-  found.at_noise_floor = true;
-  found.message.clear();
+  if (!(fixed_point_shift(*options.initial_jacobian, found.Pz - found.z, options) <= within)) return false;
+  accept_at_noise_floor(found);
   return true;
 }
 
