@@ -49,9 +49,9 @@ CROSSINGS = ("fold", "period_doubling", "neimark_sacker")
 def parts(frame):
     """(title, rows, whether the kind is shown) of each table: the safe-film crossings, the
     edges (files without the ``edge`` column: kind orbit_end), the stability crossings."""
-    edge = frame["edge"] if "edge" in frame else frame["kind"] == "orbit_end"
+    edge = boundaries.edge_ends(frame)
     safe = frame["kind"] == "safe_film"
-    return (("safe_film", frame[safe], False), ("edge", frame[edge & ~safe], True),
+    return (("safe_film", frame[safe], False), ("edge", frame[edge], True),
             ("stability", frame[~edge & frame["kind"].isin(CROSSINGS)], True))
 
 

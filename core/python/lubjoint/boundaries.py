@@ -342,9 +342,9 @@ def stability_boundaries(study, tolerance=5e-3, max_runs=10):
     every two lattice neighbours of ``study`` whose located orbits differ in stability
     (``|μ|max < 1`` at one, ``> 1`` at the other). Each by regula falsi on ``|μ|max − 1`` in the
     logarithm of the axis value, a run of the case's scene a step (from the nearest orbit
-    located on the line), to ``tolerance`` of the value (the error: half the last bracket). ``kind``: ``fold`` (the unstable end's
-    dominant multiplier real, through +1), ``period_doubling`` (through −1) or
-    ``neimark_sacker`` (a complex pair). Columns as ``safe_film_boundaries``'."""
+    located on the line), to ``tolerance`` of the value (the error: half the last bracket).
+    ``kind``: ``fold`` (the unstable end's dominant multiplier real, through +1),
+    ``period_doubling`` (through −1) or ``neimark_sacker`` (a complex pair). Columns as ``safe_film_boundaries``'."""
     import pandas as pd
 
     rows = []
@@ -361,6 +361,16 @@ def stability_boundaries(study, tolerance=5e-3, max_runs=10):
         value, error, angle, _, converged = _falsi(line, ends[0], ends[1], tolerance, max_runs)
         rows.append(_row(study, a, b, axis, ra, line, value, error, _kind(angle), converged))
     return pd.DataFrame(rows)
+
+
+def edge_ends(frame):
+    """Which rows of a /boundaries ``frame`` are where a safe orbit, followed towards a
+    neighbour without one, is lost (``edge`` set, the kind not ``safe_film``; in files
+    without the column, kind ``orbit_end``): a boolean Series."""
+    if "edge" not in frame:
+        return frame["kind"] == "orbit_end"
+    edge = frame["edge"]
+    return edge.where(edge == edge, frame["kind"] == "orbit_end").astype(bool) & (frame["kind"] != "safe_film")
 
 
 #: What ``locate`` (``--kinds``) can be asked for: safe-film boundaries between two orbits,

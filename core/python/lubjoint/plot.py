@@ -708,25 +708,18 @@ def _envelope_cells(ax, plane):
         ax.plot(X[where], Y[where], marker, color=colour, mfc=face or colour, ms=6, ls="none", label=label)
 
 
-def _is_edge_end(b):
-    """Whether boundary row ``b`` is where a safe orbit is lost towards a neighbour without one
-    (``edge``, its kind not ``safe_film``; files without the column: kind ``orbit_end``)."""
-    edge = b.get("edge")
-    if edge is None or edge != edge:  # no such column (NaN where concatenated with one)
-        return b["kind"] == "orbit_end"
-    return bool(edge) and b["kind"] != "safe_film"
-
-
 def _plane_boundaries(boundaries, v, x, y, law, kind="safe_film"):
     """The boundaries of ``kind`` (``safe_film``, or ``edge``: where a safe orbit is lost) that
     lie in this plane, as drawn points (x, y) sorted along x."""
     if boundaries is None or len(boundaries) == 0:
         return np.empty((0, 2))
+    from .boundaries import edge_ends
+
     fx, fy = _display_factor(v, x), _display_factor(v, y)
     points = []
-    for _, b in boundaries.iterrows():
-        wanted = _is_edge_end(b) if kind == "edge" else b.get("kind", "safe_film") == kind
-        if (law is not None and b.get("force_law") != law) or not wanted:
+    wanted = edge_ends(boundaries) if kind == "edge" else boundaries["kind"] == kind
+    for _, b in boundaries[wanted].iterrows():
+        if law is not None and b.get("force_law") != law:
             continue
         held = [d for d in v["case_id"].dims if d not in (x, y, "force_law")]
         if any(d in b and not (b[d] == v[d].values[0]) for d in held):
