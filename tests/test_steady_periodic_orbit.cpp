@@ -84,6 +84,39 @@ TEST(PeriodicOrbit, WalkingOutOfTheDomainIsReportedAsSuch) {
   EXPECT_EQ(sh.outcome, lub::steady::ShootingOutcome::left_domain) << sh.message;
 }
 
+TEST(PeriodicOrbit, AStepToleranceAtTheMapsNoiseEndsTheLineSearchThere) {
+  // A map whose fixed point lies under noise of 1e-6 (a deterministic function of z, as an
+  // adaptive integration's step sequence is): Newton reaches the noise, then its line search
+  // backtracks, a map a trial. With the shortest step at the noise it stops there, at a
+  // residual as good, in fewer maps; the fixed point of the smooth part is still found.
+  class Noisy final : public lub::steady::CycleMap {
+   public:
+    int dim() const override { return 2; }
+    int apply(const double* z, double* Pz) override {
+      for (int i = 0; i < 2; ++i)
+        Pz[i] = 0.5 + 0.9 * (z[i] - 0.5) + 1e-6 * std::sin(1e9 * z[i] + 3.0 * z[1 - i]);
+      return 0;
+    }
+  };
+  lub::steady::ShootingOptions o;
+  o.scales = {1.0, 1.0};
+  o.tolerance = 1e-12;  // below the noise: never reached
+  o.noise_factor = 1.0;
+  o.step = 1e-2;
+  o.max_iterations = 50;
+  Noisy P;
+  const auto fine = lub::steady::solve_periodic_orbit(P, Eigen::Vector2d(0.2, 0.7), o);
+  o.step_tolerance = 1e-6;
+  const auto coarse = lub::steady::solve_periodic_orbit(P, Eigen::Vector2d(0.2, 0.7), o);
+  ASSERT_NE(fine.outcome, lub::steady::ShootingOutcome::converged);
+  ASSERT_NE(coarse.outcome, lub::steady::ShootingOutcome::converged);
+  EXPECT_LT(coarse.maps, fine.maps);
+  // Both within the noise (2e-6 in P − z) over 1 − μ = 0.1 of the point.
+  EXPECT_LT(std::abs(coarse.z(0) - 0.5), 2e-5);
+  EXPECT_LT(std::abs(coarse.z(1) - 0.5), 2e-5);
+  EXPECT_LT(coarse.residual, 1e-5);
+}
+
 // x'' + 2ζω x' + ω² x = F cos(Ω t), one forcing period T = 2π/Ω per map, by CVODE BDF.
 class ForcedOscillator final : public lub::OdeSystem {
  public:

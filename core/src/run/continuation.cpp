@@ -61,6 +61,10 @@ verdict::ContinuationStep continue_from(SteadyContext& cx, const OrbitSeed& seed
     // Within the neighbour's gap, as from a transient.
     steady::ShootingOptions options = cx.shooting_options(chart, seed.max_eps);
     options.max_iterations = cx.tuning.continuation_iterations;
+    // A single step's line search stops at the map's noise: a shorter step cannot change the
+    // residual measurably, and each trial costs a period (a step with no orbit near spent
+    // most of its periods there).
+    if (single) options.step_tolerance = cx.orbit_noise_floor();
     Eigen::MatrixXd J0;
     if (const std::optional<Eigen::MatrixXd> M0 = seed_monodromy(seed, chart)) {
       J0 = *M0 - Eigen::MatrixXd::Identity(chart.size(), chart.size());

@@ -247,6 +247,8 @@ OrbitEvidence solve_orbit(SteadyContext& cx, Chart& chart, const StartState& bas
     maps_at(t.tighten_factor);
     const Eigen::VectorXd z = found.z;
     found = better_of(std::move(found), steady::solve_periodic_orbit(*period, z, options));
+    // A single step's retry stalled at the tighter map's noise: the same acceptance.
+    if (tighten_stalled) accept_at_noise(found, options, t.tighten_below, t.chord_located * cx.sim.steady_tolerance);
   }
   steady.newton_iterations += static_cast<int>(found.iterations);
   steady.orbit_residual = found.residual;

@@ -273,7 +273,8 @@ ShootingResult solve_periodic_orbit(CycleMap& P, const Eigen::VectorXd& z0, cons
   check(KINSetLinearSolver(m, LS.get(), J.get()), "KINSetLinearSolver");
   check(KINSetJacFn(m, jacobian_cb), "KINSetJacFn");
   check(KINSetFuncNormTol(m, opt.tolerance), "KINSetFuncNormTol");
-  check(KINSetScaledStepTol(m, 1e-3 * opt.tolerance), "KINSetScaledStepTol");
+  check(KINSetScaledStepTol(m, opt.step_tolerance > 0.0 ? opt.step_tolerance : 1e-3 * opt.tolerance),
+        "KINSetScaledStepTol");
   check(KINSetNumMaxIters(m, opt.max_iterations), "KINSetNumMaxIters");
   // From the transient: a fresh Jacobian every iteration (a slowly contracting cycle has
   // M − I nearly singular, where a stale one points the step the wrong way). From a

@@ -79,6 +79,11 @@ struct ShootingOptions {
   double tolerance = 1e-9;        ///< converged when max_i |P(z)_i − z_i| / r_i <= tolerance
   double step = 1e-4;             ///< difference step of the Newton Jacobians, × s_i
   int max_iterations = 25;        ///< Newton iterations
+  /// The shortest Newton step, scaled (units s_i), its line search's included: shorter, Newton
+  /// stops (KIN_STEP_LT_STPTOL). ≤ 0: 1e-3 × tolerance. A step below the map's own noise
+  /// cannot change its residual measurably: a line search that backtracks below it spends a
+  /// period a trial for nothing.
+  double step_tolerance = 0.0;
   double max_newton_step = 0.3;   ///< largest Newton step, scaled 2-norm (units s_i)
   /// A Newton that stalls (no decrease along its direction) within this factor of the
   /// tolerance has reached the map's own noise: converged, with its residual reported.
