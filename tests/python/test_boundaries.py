@@ -118,10 +118,41 @@ def test_a_stability_crossing_is_located_by_regula_falsi_and_named(angle, kind):
             return 2e-3 * u + 1e-3 * u * u, angle
 
     a, b = (0.1, *Line()(0.1)), (0.2, *Line()(0.2))
-    value, error, found_angle, runs, converged = boundaries._falsi(Line(), a, b, 5e-3, 10)
+    line = Line()
+    value, error, found_angle, runs, converged, ends = boundaries._falsi(line, a, b, 5e-3, 10)
     assert converged and runs <= 10
     assert value == pytest.approx(0.137, rel=5e-3) and error <= 5e-3 * value
     assert boundaries._kind(found_angle) == kind
+    # The last bracket's ends with their own |mu|max - 1 (not Illinois' halved ones).
+    (la, fa), (lb, fb) = ends
+    assert min(la, lb) <= value <= max(la, lb) and fa * fb < 0
+    assert fa == line(la)[0] and fb == line(lb)[0]
+
+
+def test_a_stability_crossings_error_includes_how_far_its_multipliers_move_on_refinement():
+    # Ends of a bracket where |mu|max - 1 changes by 2e-4 over 0.01 of the axis; run again at
+    # rtol/10 each multiplier moves by 1e-5 (the larger): the crossing moves by 1e-5 / slope =
+    # 5e-4 of the axis. A refined run that locates no orbit leaves the error unknown.
+    import xarray as xr
+
+    class Line:
+        scene = {"solver": {"rtol": 1e-8}}
+        asked = []
+
+        def __init__(self, shift, classification="periodic"):
+            self.shift, self.classification = shift, classification
+
+        def run(self, value, sensitivity=True, extra=None):
+            self.asked.append(extra)
+            f = 1e-4 if value > 1.0 else -1e-4
+            ds = xr.Dataset({"multiplier_1_modulus": 1.0 + f + self.shift[value]})
+            ds.attrs["classification"] = self.classification
+            return ds
+
+    ends = ((1.0, -1e-4), (1.01, 1e-4))
+    assert boundaries._multiplier_error(Line({1.0: 5e-6, 1.01: -1e-5}), ends) == pytest.approx(5e-4)
+    assert Line.asked == [{"/solver/rtol": 1e-9}] * 2
+    assert boundaries._multiplier_error(Line({1.0: 0.0, 1.01: 0.0}, "not_converged"), ends) == float("inf")
 
 
 def _scene_and_seed(path, case):
@@ -254,6 +285,6 @@ def test_stability_crossings_along_two_axes_lie_on_one_similarity_line(source_di
     assert sorted(found["axis"]) == ["speed_rpm", "viscosity_Pa_s"], found
     assert found["converged"].all() and (found["kind"] == "neimark_sacker").all(), found
     assert (found["error"] <= 5e-3 * found["value"]).all(), found
-    mu = one_row(found, axis="viscosity_Pa_s")["value"] / 5000.0
-    speed = 0.2 / one_row(found, axis="speed_rpm")["value"]
-    assert mu == pytest.approx(speed, rel=1.5e-2)
+    viscosity, speed = one_row(found, axis="viscosity_Pa_s"), one_row(found, axis="speed_rpm")
+    mu, speed_mu = viscosity["value"] / 5000.0, 0.2 / speed["value"]
+    assert mu == pytest.approx(speed_mu, rel=1.5e-2)

@@ -82,13 +82,14 @@ class _Line:
         if self.slope in ds:
             self.periods += int(ds[self.slope].attrs.get("periods_integrated", 0))
 
-    def run(self, value, sensitivity=True):
+    def run(self, value, sensitivity=True, extra=None):
         """The run of the line's scene at ``value``: from the nearest located orbit, else
-        (``fresh``) from the scene's own start. Records the orbit it locates."""
+        (``fresh``) from the scene's own start. Records the orbit it locates, unless ``extra``
+        (more overrides, e.g. a finer rtol) changes the scene otherwise."""
         from .run import simulate
 
         override, _ = axis_override(self.scene, self.axis, self.pointer, value)
-        overrides = {**override, "/outputs/channels": []}
+        overrides = {**override, "/outputs/channels": [], **(extra or {})}
         wrt = [self.pointer] if sensitivity else []
         ds = None
         with warnings.catch_warnings():
@@ -102,7 +103,7 @@ class _Line:
             if (ds is None or ds.attrs["classification"] not in self.accepted) and self.fresh:
                 ds = simulate(self.scene, overrides, sensitivity=wrt)
                 self._count(ds)
-        if self.continued and ds.attrs["classification"] in self.accepted and ds["orbit_seed"].size:
+        if self.continued and not extra and ds.attrs["classification"] in self.accepted and ds["orbit_seed"].size:
             self.orbits.append((float(value), ds.attrs["scene"], [float(v) for v in ds["orbit_seed"].values]))
         self.last = ds
         return ds
@@ -303,12 +304,14 @@ class _Stability(_Line):
 
 def _falsi(line, a, b, tolerance, max_runs):
     """λ where ``|μ|max − 1`` changes sign in [a, b] (each (λ, ``|μ|max − 1``, angle)): regula falsi
-    (Illinois) in the logarithm of λ. Returns (value, error, angle, runs, converged): the
-    error the last bracket's width; the angle the unstable end's."""
+    (Illinois) in the logarithm of λ. Returns (value, error, angle, runs, converged, ends):
+    the error half the last bracket's width; the angle the unstable end's; ``ends`` the last
+    bracket's (λ, ``|μ|max − 1``) pair."""
     log = a[0] > 0 and b[0] > 0
     t = (lambda v: math.log(v)) if log else (lambda v: v)
     inv = (lambda u: math.exp(u)) if log else (lambda u: u)
     (ua, fa, aa), (ub, fb, ab) = (t(a[0]), a[1], a[2]), (t(b[0]), b[1], b[2])
+    raw = [a[1], b[1]]  # |μ|max − 1 at the bracket's ends (fa, fb are Illinois-scaled)
     side = 0
     for _ in range(max_runs):
         u = ub - fb * (ub - ua) / (fb - fa) if fb != fa else 0.5 * (ua + ub)
@@ -319,12 +322,12 @@ def _falsi(line, a, b, tolerance, max_runs):
             break
         f, angle = at
         if (f > 0) == (fb > 0):
-            ub, fb, ab = u, f, angle
+            ub, fb, ab, raw[1] = u, f, angle, f
             if side == -1:
                 fa /= 2.0
             side = -1
         else:
-            ua, fa, aa = u, f, angle
+            ua, fa, aa, raw[0] = u, f, angle, f
             if side == 1:
                 fb /= 2.0
             side = 1
@@ -334,7 +337,27 @@ def _falsi(line, a, b, tolerance, max_runs):
     lo, hi = sorted((inv(ua), inv(ub)))
     unstable_angle = aa if fa > 0 else ab
     converged = hi - lo <= tolerance * abs(0.5 * (lo + hi))
-    return 0.5 * (lo + hi), 0.5 * (hi - lo), unstable_angle, line.runs, converged
+    ends = ((inv(ua), raw[0]), (inv(ub), raw[1]))
+    return 0.5 * (lo + hi), 0.5 * (hi - lo), unstable_angle, line.runs, converged, ends
+
+
+def _multiplier_error(line, ends, refine=0.1):
+    """How far a stability crossing moves with its multipliers' own accuracy: each end of the
+    last bracket (λ, ``|μ|max − 1``) run again at rtol × ``refine`` (continued from its
+    orbit), the larger change of ``|μ|max`` over the slope of ``|μ|max − 1`` across the
+    bracket. Near |μ| = 1 a change of 1e-5 in a multiplier can move the crossing by more
+    than the bracket's width. Inf where a refined run locates no orbit."""
+    rtol = float(_at(line.scene, "/solver/rtol"))
+    (la, fa), (lb, fb) = ends
+    if la == lb or fa == fb:
+        return math.inf
+    spread = 0.0
+    for value, f in ends:
+        ds = line.run(value, sensitivity=False, extra={"/solver/rtol": refine * rtol})
+        if ds.attrs["classification"] not in _ORBITS:
+            return math.inf
+        spread = max(spread, abs(float(ds["multiplier_1_modulus"]) - 1.0 - f))
+    return spread * abs(lb - la) / abs(fb - fa)
 
 
 def stability_boundaries(study, tolerance=5e-3, max_runs=10):
@@ -358,7 +381,10 @@ def stability_boundaries(study, tolerance=5e-3, max_runs=10):
         # the map's noise near |mu| = 1 is accepted or retried), from the scene's own
         # start only where that finds none: a run from the start may reach another orbit.
         line = _Stability(study, a, axis, pointer, ends=((a, ra[axis]), (b, rb[axis])))
-        value, error, angle, _, converged = _falsi(line, ends[0], ends[1], tolerance, max_runs)
+        value, error, angle, _, converged, last = _falsi(line, ends[0], ends[1], tolerance, max_runs)
+        if converged:  # the bracket's half-width and the multipliers' accuracy
+            error += _multiplier_error(line, last)
+            converged = error <= tolerance * abs(value)
         rows.append(_row(study, a, b, axis, ra, line, value, error, _kind(angle), converged))
     return pd.DataFrame(rows)
 
