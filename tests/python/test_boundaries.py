@@ -129,6 +129,31 @@ def test_a_stability_crossing_is_located_by_regula_falsi_and_named(angle, kind):
     assert fa == line(la)[0] and fb == line(lb)[0]
 
 
+def test_an_edge_where_the_safe_orbit_turns_unstable_gives_its_multipliers_at_both_ends():
+    # A stable orbit whose dominant pair leaves the circle at lambda* = 1 (|mu| = lambda*/lambda,
+    # angle 0.5): bisected from 2 towards 0.6, the edge is a Neimark-Sacker crossing at 1 to
+    # 0.5 %, and the last bracket's ends carry |mu|max - 1 of the stable orbit above and of
+    # the unstable one below, for the multipliers' error term.
+    import xarray as xr
+
+    class Line:
+        runs = 0
+        last = None
+
+        def __call__(self, value):
+            self.runs += 1
+            mu = 1.0 / value
+            self.last = xr.Dataset({"multiplier_1_modulus": mu, "multiplier_1_angle_rad": 0.5})
+            self.last.attrs.update(classification="periodic" if mu < 1.0 else "periodic_unstable", message="")
+            return (1e-6, 0.0, 1e-9) if mu < 1.0 else None
+
+    value, error, kind, converged, lost, ends = boundaries._edge(Line(), (2.0, 1e-6, 0.0), 0.6, 5e-3, 12, 0.5)
+    assert kind == "neimark_sacker" and converged and lost.startswith("periodic_unstable")
+    assert value == pytest.approx(1.0, rel=5e-3) and error <= 5e-3 * value
+    (la, fa), (lb, fb) = ends
+    assert lb <= 1.0 < la and fa == pytest.approx(1.0 / la - 1.0) and fb == pytest.approx(1.0 / lb - 1.0)
+
+
 def test_a_stability_crossings_error_includes_how_far_its_multipliers_move_on_refinement():
     # Ends of a bracket where |mu|max - 1 changes by 2e-4 over 0.01 of the axis; run again at
     # rtol/10 each multiplier moves by 1e-5 (the larger): the crossing moves by 1e-5 / slope =
@@ -153,6 +178,10 @@ def test_a_stability_crossings_error_includes_how_far_its_multipliers_move_on_re
     assert boundaries._multiplier_error(Line({1.0: 5e-6, 1.01: -1e-5}), ends) == pytest.approx(5e-4)
     assert Line.asked == [{"/solver/rtol": 1e-9}] * 2
     assert boundaries._multiplier_error(Line({1.0: 0.0, 1.01: 0.0}, "not_converged"), ends) == float("inf")
+    # Both ends far from the circle (a fold whose multiplier jumps from 0.77 to 4.7): the
+    # crossing is inside the bracket whatever such errors, and nothing is run.
+    Line.asked.clear()
+    assert boundaries._multiplier_error(Line({}), ((1.0, -0.23), (1.01, 3.7))) == 0.0 and not Line.asked
 
 
 def _scene_and_seed(path, case):

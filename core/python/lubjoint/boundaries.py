@@ -164,7 +164,7 @@ def _edges(study, orbits=2):
         yield a, b, axis, pointers[axis], ra, rb
 
 
-def _edge(line, a, b, tolerance, max_runs):
+def _edge(line, a, b, tolerance, max_runs, mu_a=math.nan):
     """Along a line from a safe orbit ``a`` = (λ, gap > 0, slope) towards ``b``, a value
     where no orbit is located and the film is below the safe film: the value where the
     orbit's film reaches the safe film, by ``_locate`` once an orbit below it is found, or
@@ -173,11 +173,14 @@ def _edge(line, a, b, tolerance, max_runs):
     safe film first where they land inside. On a ``stable`` line an unstable orbit counts as
     the stable one lost: the kind is then its dominant multiplier's crossing (``_kind``),
     else ``orbit_end``. Returns (value, error, kind, converged, what the run at the lost end
-    said: its classification and message, "" where that end is the grid's neighbour)."""
+    said: its classification and message, "" where that end is the grid's neighbour, and
+    for a crossing the last bracket's (λ, ``|μ|max − 1``) pair, ``mu_a`` the start's
+    ``|μ|max``; else None)."""
     log = a[0] > 0 and b > 0
     mid = (lambda x, y: math.sqrt(x * y)) if log else (lambda x, y: 0.5 * (x + y))
     crossing = None  # the dominant multiplier's angle at b, where an unstable orbit was found there
     lost = ""  # what the run at b said
+    fa, fb = mu_a - 1.0, math.nan  # |μ|max − 1 at a and (an unstable orbit) at b
     for _ in range(max_runs):
         lo, hi = sorted((a[0], b))
         if hi - lo <= 2.0 * tolerance * mid(lo, hi):
@@ -186,19 +189,23 @@ def _edge(line, a, b, tolerance, max_runs):
         if not lo < new < hi:
             new = mid(lo, hi)
         at = line(new)
+        last = line.last
         if at is None:
             b = new
-            last = line.last
-            crossing = float(last["multiplier_1_angle_rad"]) if last.attrs["classification"] in _ORBITS else None
+            located = last.attrs["classification"] in _ORBITS
+            crossing = float(last["multiplier_1_angle_rad"]) if located else None
+            fb = float(last["multiplier_1_modulus"]) - 1.0 if located else math.nan
             lost = f"{last.attrs['classification']}: {last.attrs.get('message', '')}"
         elif at[0] > 0:
             a = (new, at[0], at[1])
+            fa = float(last["multiplier_1_modulus"]) - 1.0
         else:  # an orbit below the safe film: the crossing lies between two orbits
             value, error, _, converged = _locate(line, a, (new, at[0], at[1]), tolerance, max_runs)
-            return value, error, "safe_film", converged, ""
+            return value, error, "safe_film", converged, "", None
     lo, hi = sorted((a[0], b))
     kind = "orbit_end" if crossing is None else _kind(crossing)
-    return mid(lo, hi), 0.5 * (hi - lo), kind, hi - lo <= 2.0 * tolerance * mid(lo, hi), lost
+    ends = ((a[0], fa), (b, fb)) if crossing is not None and math.isfinite(fa) else None
+    return mid(lo, hi), 0.5 * (hi - lo), kind, hi - lo <= 2.0 * tolerance * mid(lo, hi), lost, ends
 
 
 def _row(study, a, b, axis, ra, line, value, error, kind, converged, edge=False, lost=""):
@@ -277,7 +284,11 @@ def safe_film_boundaries(study, tolerance=5e-3, max_runs=8, edge_runs=12, pairs=
         # journal leaves it, and the crossing's kind is named.
         stable = ra["classification"] == "periodic"
         line = _Line(study, a, axis, pointer, ends=((a, ra[axis]),), fresh=False, stable=stable)
-        value, error, kind, converged, lost = _edge(line, end(ra, axis), float(rb[axis]), tolerance, edge_runs)
+        value, error, kind, converged, lost, ends = _edge(line, end(ra, axis), float(rb[axis]), tolerance,
+                                                         edge_runs, float(ra["multiplier_1_modulus"]))
+        if converged and ends:  # a crossing: the multipliers' accuracy too, as a stability crossing's
+            error += _multiplier_error(line, ends, lost_end=True)
+            converged = error <= tolerance * abs(value)
         rows.append(_row(study, a, b, axis, ra, line, value, error, kind, converged, edge=True, lost=lost))
     return pd.DataFrame(rows)
 
@@ -341,20 +352,28 @@ def _falsi(line, a, b, tolerance, max_runs):
     return 0.5 * (lo + hi), 0.5 * (hi - lo), unstable_angle, line.runs, converged, ends
 
 
-def _multiplier_error(line, ends, refine=0.1):
+def _multiplier_error(line, ends, refine=0.1, lost_end=False, sure=1e-2):
     """How far a stability crossing moves with its multipliers' own accuracy: each end of the
     last bracket (λ, ``|μ|max − 1``) run again at rtol × ``refine`` (continued from its
     orbit), the larger change of ``|μ|max`` over the slope of ``|μ|max − 1`` across the
     bracket. Near |μ| = 1 a change of 1e-5 in a multiplier can move the crossing by more
-    than the bracket's width. Inf where a refined run locates no orbit."""
+    than the bracket's width. Inf where a refined run locates no orbit, except at the second
+    end with ``lost_end`` (an edge's, where the stable orbit is lost either way). Zero, with
+    no run, where both ends are ``sure`` or more from the circle: a hundred times the largest
+    change refinement has shown (1e-4), so the crossing lies inside the bracket (the printed
+    law's folds, whose multiplier jumps past 1)."""
     rtol = float(_at(line.scene, "/solver/rtol"))
     (la, fa), (lb, fb) = ends
     if la == lb or fa == fb:
         return math.inf
+    if min(abs(fa), abs(fb)) >= sure:
+        return 0.0
     spread = 0.0
     for value, f in ends:
         ds = line.run(value, sensitivity=False, extra={"/solver/rtol": refine * rtol})
         if ds.attrs["classification"] not in _ORBITS:
+            if lost_end and value == lb:
+                continue
             return math.inf
         spread = max(spread, abs(float(ds["multiplier_1_modulus"]) - 1.0 - f))
     return spread * abs(lb - la) / abs(fb - fa)
