@@ -114,6 +114,9 @@ def test_the_boundaries_and_the_refinement_are_shown(selftest_dom, study_with_bo
     t = selftest(selftest_dom[0])
     located = boundaries.read(study_with_boundaries)
     assert sorted(t["boundaryKinds"]) == sorted(located["kind"]) and "fold" in t["boundaryKinds"]
+    # An edge says what the run beyond it found (the paper's fold: an unstable orbit, or none).
+    beyond = dict(zip(t["boundaryKinds"], t["boundaryLost"]))
+    assert beyond["fold"] in ("periodic_unstable", "not_converged") and beyond["safe_film"] == ""
     assert t["refinementCases"] == list(study.cases(study_with_boundaries, group="refinement")["name"])
 
 

@@ -432,9 +432,9 @@ function edges() {
 function boundaries() {
   const box = document.getElementById("boundaries"), B = D.boundaries;
   const tables = [
-    ["Boundaries located between grid points", "Where the minimum film reaches the safe film (safe_film) or the dominant multiplier leaves the unit circle (fold, period_doubling, neimark_sacker), on the line between two lattice neighbours; following a stable safe orbit towards a neighbour without one, where it turns unstable (the crossing's kind) or its branch ends (orbit_end).",
+    ["Boundaries located between grid points", "Where the minimum film reaches the safe film (safe_film) or the dominant multiplier leaves the unit circle (fold, period_doubling, neimark_sacker), on the line between two lattice neighbours; following a stable safe orbit towards a neighbour without one, where it turns unstable (the crossing's kind) or its branch ends (orbit_end); for those, what the run just beyond found.",
      "boundaries-table", B.boundaries, B.boundaries_note,
-     [["kind", "text"], ["axis", "text"], ["value", "num"], ["line", "text"], ["between", "text"], ["runs", "num"], ["periods", "num"], ["converged", "text"]]],
+     [["kind", "text"], ["axis", "text"], ["value", "num"], ["line", "text"], ["between", "text"], ["runs", "num"], ["periods", "num"], ["converged", "text"], ["beyond an edge", "text"]]],
     ["Cases a refinement added", "Each at the midpoint of a lattice edge whose labels differ or whose metric bends (lubsweep refine).",
      "refinement-table", B.refinement, B.refinement_note,
      [["case", "text"], ["edge", "text"], ["axis", "text"], ["value", "text"], ["reason", "text"], ["classification", "text"], ["h_min [µm]", "num"]]]];
@@ -523,6 +523,7 @@ function selftest() {
   out.metricDrawn = metricDrawn;
   const cells = (id, k) => { const t = document.getElementById(id); return t ? Array.from(t.tBodies[0].rows).map(r => r.cells[k].dataset.v) : []; };
   out.boundaryKinds = cells("boundaries-table", 0);
+  out.boundaryLost = cells("boundaries-table", 8);
   out.refinementCases = cells("refinement-table", 0);
   return out;
 }

@@ -330,6 +330,13 @@ def _edges(cases, units):
     return {"note": "", "rows": rows}
 
 
+def _lost(row):
+    """An edge row's ``lost`` as the page shows it: what the run just beyond the edge found
+    (its classification; "" for other rows and in files without the column)."""
+    lost = row.get("lost", "")
+    return lost.split(":", 1)[0] if isinstance(lost, str) else ""
+
+
 def _boundaries(study_path, cases, axes, units):
     """The study's /boundaries (``lubjoint.boundaries``) and /refinement (``lubsweep refine``)
     as table rows, each with a note saying how to make it where the file has none."""
@@ -353,7 +360,8 @@ def _boundaries(study_path, cases, axes, units):
             out["boundaries"].append([r["kind"], _label(r["axis"], unit), float(r["value"]) * factor,
                                       float(r["error"]) * factor, line,
                                       f"{names.get(int(r['case_a']), r['case_a'])} – {names.get(int(r['case_b']), r['case_b'])}",
-                                      int(r["runs"]), int(r.get("periods", -1)), "yes" if r["converged"] else "no"])
+                                      int(r["runs"]), int(r.get("periods", -1)), "yes" if r["converged"] else "no",
+                                      _lost(r)])
     if added is None or not len(added):
         out["refinement_note"] = "none in the file: lubsweep refine STUDY.h5 --budget K adds cases (docs/guide/lubsweep.md)"
     else:
