@@ -6,6 +6,7 @@ orbit turns unstable between 500 and 50 rpm, the located fold against continuati
 steps on either side; a run continued from a case's orbit locates that orbit, and a single
 Newton stalled at the map's noise is located anyway; on a small Frene long study, stability
 crossings along two axes lie on one similarity line."""
+import math
 import warnings
 
 import pytest
@@ -140,7 +141,7 @@ def test_an_edge_where_the_safe_orbit_turns_unstable_gives_its_multipliers_at_bo
         runs = 0
         last = None
 
-        def __call__(self, value):
+        def __call__(self, value, sensitivity=True):
             self.runs += 1
             mu = 1.0 / value
             self.last = xr.Dataset({"multiplier_1_modulus": mu, "multiplier_1_angle_rad": 0.5})
@@ -152,6 +153,37 @@ def test_an_edge_where_the_safe_orbit_turns_unstable_gives_its_multipliers_at_bo
     assert value == pytest.approx(1.0, rel=5e-3) and error <= 5e-3 * value
     (la, fa), (lb, fb) = ends
     assert lb <= 1.0 < la and fa == pytest.approx(1.0 / la - 1.0) and fb == pytest.approx(1.0 / lb - 1.0)
+
+
+def test_an_edge_whose_film_reaches_the_safe_film_is_found_by_secant_steps_without_sensitivities():
+    # The safe orbit's film gap (lambda - 1)(1 + 0.1 lambda) reaches zero at lambda = 1 before
+    # the orbit is lost (below 0.7). Followed from 2 towards 0.5, the search steps along the
+    # secant from the last safe orbit (the start's slope its own), asking no sensitivity
+    # until an orbit below the safe film brackets the crossing; then Newton locates it.
+    import xarray as xr
+
+    class Line:
+        runs = 0
+        last = None
+        asked = []
+
+        def __call__(self, value, sensitivity=True):
+            self.runs += 1
+            self.asked.append(sensitivity)
+            self.last = xr.Dataset({"multiplier_1_modulus": 0.5, "multiplier_1_angle_rad": 0.0})
+            self.last.attrs.update(classification="periodic" if value >= 0.7 else "not_converged", message="")
+            if value < 0.7:
+                return None
+            gap = (value - 1.0) * (1.0 + 0.1 * value)
+            return gap, (0.9 + 0.2 * value) if sensitivity else math.nan, 1e-9
+
+    line = Line()
+    start = (2.0, 1.0 * 1.2, 1.3)
+    value, error, kind, converged, lost, ends = boundaries._edge(line, start, 0.5, 5e-3, 12, 0.5)
+    assert kind == "safe_film" and converged and ends is None
+    assert value == pytest.approx(1.0, rel=5e-3) and error <= 5e-3 * value
+    first_below = line.asked.index(True)  # sensitivities only once the crossing is bracketed
+    assert first_below > 0 and not any(line.asked[:first_below])
 
 
 def test_a_stability_crossings_error_includes_how_far_its_multipliers_move_on_refinement():

@@ -108,12 +108,12 @@ class _Line:
         self.last = ds
         return ds
 
-    def __call__(self, value):
-        ds = self.run(value)
+    def __call__(self, value, sensitivity=True):
+        ds = self.run(value, sensitivity)
         if ds.attrs["classification"] not in self.accepted:
             return None
         _, sign = axis_override(self.scene, self.axis, self.pointer, value)
-        slope = float(ds[self.slope]) * sign
+        slope = float(ds[self.slope]) * sign if sensitivity else math.nan
         gap = float(ds["min_film_thickness_m"]) - float(ds["safe_film_thickness_m"])
         return gap, slope, float(ds["min_film_thickness_m_error"])
 
@@ -169,8 +169,9 @@ def _edge(line, a, b, tolerance, max_runs, mu_a=math.nan):
     where no orbit is located and the film is below the safe film: the value where the
     orbit's film reaches the safe film, by ``_locate`` once an orbit below it is found, or
     where the orbit is lost, bisected (in the logarithm of positive values) between the
-    last orbit and the first value where none continues from it; Newton steps towards the
-    safe film first where they land inside. On a ``stable`` line an unstable orbit counts as
+    last orbit and the first value where none continues from it; secant steps towards the
+    safe film first where they land inside (from the last safe orbit, the first with the
+    study's own sensitivity at ``a``; the runs ask for none). On a ``stable`` line an unstable orbit counts as
     the stable one lost: the kind is then its dominant multiplier's crossing (``_kind``),
     else ``orbit_end``. Returns (value, error, kind, converged, what the run at the lost end
     said: its classification and message, "" where that end is the grid's neighbour, and
@@ -188,8 +189,12 @@ def _edge(line, a, b, tolerance, max_runs, mu_a=math.nan):
         new = a[0] - a[1] / a[2] if a[2] else math.inf
         if not lo < new < hi:
             new = mid(lo, hi)
-        at = line(new)
+        # No sensitivity: the step towards the safe film takes the secant from the last
+        # safe orbit (the study's end its own sensitivity); its only use here.
+        at = line(new, sensitivity=False)
         last = line.last
+        if at is not None:
+            at = (at[0], (at[0] - a[1]) / (new - a[0]), at[2])
         if at is None:
             b = new
             located = last.attrs["classification"] in _ORBITS
