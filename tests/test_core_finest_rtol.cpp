@@ -68,14 +68,15 @@ TEST(FinestRtol, AnIllConditionedOrbitIsNotLocatedWithoutRoomToRefine) {
   EXPECT_LT(r.stats.steps, 3000000) << r.message;
 }
 
-// The same rule without error bars: Frêne short at 0.2 mm, 400 cP, 5000 rpm (a full-factorial
-// cell whose journal creeps toward the wall). With its error bars (the default) the orbit
-// shooting finds at 3.5 µm (κ ~ 1e4) moves under refinement and the case drifts; with
-// simulation.error_bars = false nothing shows it stops moving, so it is not located either.
+// The same rule without error bars: Frêne short at 0.5 mm, 400 cP, 5000 rpm, the journal at
+// rest 1 µm from the wall (tests/test_core_near_wall_orbits.cpp). With its error bars (the
+// default) the orbit Newton finds there from cycle 8 (κ ~ 2e4) moves under refinement and
+// the case drifts; with simulation.error_bars = false nothing shows it stops moving, so it
+// is not located either.
 TEST(FinestRtol, WithoutErrorBarsAnIllConditionedOrbitIsNotLocated) {
   json doc = reference(1e-8);
   doc["joints"][3]["force_law"] = "frene_short";
-  doc["joints"][3]["journal_radius_m"] = 0.0098;
+  doc["joints"][3]["initial_eccentricity_m"] = {-4.9850e-4, -2.0768e-5};
   doc["simulation"]["max_cycles"] = 40;
   doc["simulation"]["stop_when_steady"] = true;
   doc["simulation"]["steady_tolerance"] = 1e-3;

@@ -219,8 +219,9 @@ TEST(SteadyCycle, NoNewtonWhereTheMapsErrorWouldMoveTheOrbitBeyondLocating) {
   // Frêne short, 0.2 mm, 400 cP, 500 rpm (full factorial): at the transient's end the
   // map's error at rtol, over 1 − |μ|max, would move its orbit by ~0.17 c, beyond 10 ×
   // steady_tolerance: no Newton, at rtol or rtol/10. The independent route: the same
-  // case with steady_tolerance 0.1 lets Newton run from the same 8 cycles, and it walks
-  // into the wall after 20 iterations and ~470 periods, no orbit.
+  // case with steady_tolerance 0.1 lets Newton run from the same 8 cycles, and it finds no
+  // orbit (it walked into the wall after 20 iterations and ~470 periods; it is now stopped
+  // where its residual stops halving, SteadyTuning::stagnation_maps).
   // With the slow flow, which says where the journal goes instead (the default).
   json doc = cell("frene_short", 2e-4, 0.4, 500);
   doc["simulation"]["steady"] = "shooting";
@@ -239,7 +240,7 @@ TEST(SteadyCycle, NoNewtonWhereTheMapsErrorWouldMoveTheOrbitBeyondLocating) {
   ASSERT_EQ(newton.status, RunStatus::ok) << newton.message;
   EXPECT_EQ(lub::classification(newton).rfind("periodic", 0), std::string::npos) << newton.message;
   EXPECT_NE(newton.message.find("shooting did not converge"), std::string::npos) << newton.message;
-  EXPECT_GE(newton.steady.newton_iterations, 10);
+  EXPECT_GE(newton.steady.newton_iterations, 1);
 }
 
 TEST(SteadyCycle, WithoutTheSlowFlowNewtonRunsWhereItCouldNotLocateAnOrbit) {
@@ -256,22 +257,22 @@ TEST(SteadyCycle, WithoutTheSlowFlowNewtonRunsWhereItCouldNotLocateAnOrbit) {
   EXPECT_GT(r.steady.newton_iterations, 0);
 }
 
-TEST(SteadyCycle, AnOrbitThatMovesByMoreThanTheToleranceAtTighterRtolIsNotLocated) {
-  // Frêne short, 0.2 mm, 200 cP, 5000 rpm (full factorial): Newton at rtol/10 converges
-  // to a fixed point of the map with |μ|max 0.9998; re-solved 100 times tighter it moves by
-  // 3.7e-3 c, the map's error over 1 − |μ|. That is no orbit located within
-  // steady_tolerance (1e-3 c): not converged, and the case says so.
-  // The slow flow off: it would follow the journal on from there (SlowFlow.*); this pins
-  // shooting's own verdict.
+TEST(SteadyCycle, ANewtonThatCreepsAlongASlowManifoldIsStopped) {
+  // Frêne short, 0.2 mm, 200 cP, 5000 rpm (full factorial): from the transient's end Newton
+  // creeps, its residual falling by ~10 % an iteration of ~10 periods (a fresh Jacobian
+  // each), and at rtol/10 on to a fixed point of the map's error (|μ|max 0.9998) that moves
+  // by 1.3e-2 c when re-solved 100 times tighter: 50 iterations and 668 periods for an
+  // orbit the error bars then refuse. Inside Newton's region of convergence every iteration
+  // halves the residual; this Newton is stopped after five trial periods without, and
+  // the case says so: the same verdict for a sixth of the periods. (The error bars' refusal
+  // itself: NearWallOrbits.*.) The slow flow off: this pins shooting's own verdict.
   json doc = cell("frene_short", 2e-4, 0.2, 5000);
   doc["simulation"]["slow_flow"] = false;
   const RunResult r = run(doc);
   ASSERT_EQ(r.status, RunStatus::ok) << r.message;
   EXPECT_EQ(lub::classification(r), "not_converged") << r.message;
-  EXPECT_GT(r.steady.orbit_error, 1e-3) << r.message;
-  EXPECT_NE(r.message.find("not located"), std::string::npos) << r.message;
-  ASSERT_FALSE(r.steady.multipliers.empty());
-  EXPECT_GT(std::abs(r.steady.multipliers.front()), 0.999);
+  EXPECT_NE(r.message.find("its residual did not halve in 5 trial periods"), std::string::npos) << r.message;
+  EXPECT_LT(r.steady.periods_integrated, 668 / 3) << r.message;
 }
 
 TEST(SteadyCycle, AutoDoesNotDependOnMaxCyclesBeyondWhatItUses) {

@@ -44,13 +44,19 @@ class AffineMap final : public lub::steady::CycleMap {
   double fail_;
 };
 
-TEST(PeriodicOrbit, AffineMapFixedPointAndMultipliersToRoundOff) {
-  // A slowly turning, weakly damped pair (like Frêne long's) and a fast decaying mode.
-  AffineMap P(0.998, 0.93, 1e-3);
+/// Shooting on an AffineMap to round-off: unit scales, difference steps of 1e-2.
+lub::steady::ShootingOptions affine_options() {
   lub::steady::ShootingOptions o;
   o.scales = {1.0, 1.0, 1.0};
   o.tolerance = 1e-13;
   o.step = 1e-2;
+  return o;
+}
+
+TEST(PeriodicOrbit, AffineMapFixedPointAndMultipliersToRoundOff) {
+  // A slowly turning, weakly damped pair (like Frêne long's) and a fast decaying mode.
+  AffineMap P(0.998, 0.93, 1e-3);
+  const lub::steady::ShootingOptions o = affine_options();
   const auto sh = lub::steady::solve_periodic_orbit(P, Eigen::Vector3d(0.5, 0.5, 0.5), o);
   ASSERT_EQ(sh.outcome, lub::steady::ShootingOutcome::converged) << sh.message;
   // A linear residual: Newton with the exact Jacobian (differences of an affine map are
@@ -115,6 +121,45 @@ TEST(PeriodicOrbit, AStepToleranceAtTheMapsNoiseEndsTheLineSearchThere) {
   EXPECT_LT(std::abs(coarse.z(0) - 0.5), 2e-5);
   EXPECT_LT(std::abs(coarse.z(1) - 0.5), 2e-5);
   EXPECT_LT(coarse.residual, 1e-5);
+}
+
+TEST(PeriodicOrbit, ANewtonWhoseResidualStopsHalvingIsStoppedAndOneThatConvergesIsNot) {
+  // P(z) − z = (0.5 + 0.1 sin 5 z₀, −0.5 z₁): no fixed point (the first component stays
+  // above 0.4), so the residual can never halve from its start; Newton wanders where the
+  // first component's slope turns. With stagnation_maps it stops after that many trial
+  // periods without progress, not_converged (not a walk out of the domain), its best
+  // iterate kept; without, it spends its iterations.
+  class NoFixedPoint final : public lub::steady::CycleMap {
+   public:
+    int dim() const override { return 2; }
+    int apply(const double* z, double* Pz) override {
+      Pz[0] = z[0] + 0.5 + 0.1 * std::sin(5.0 * z[0]);
+      Pz[1] = 0.5 * z[1];
+      return 0;
+    }
+  };
+  lub::steady::ShootingOptions o;
+  o.scales = {1.0, 1.0};
+  o.step = 1e-3;
+  NoFixedPoint P;
+  const auto spent = lub::steady::solve_periodic_orbit(P, Eigen::Vector2d(0.1, 0.3), o);
+  o.stagnation_maps = 5;
+  o.stagnation_floor = 1e-4;
+  const auto stopped = lub::steady::solve_periodic_orbit(P, Eigen::Vector2d(0.1, 0.3), o);
+  EXPECT_EQ(stopped.outcome, lub::steady::ShootingOutcome::not_converged) << stopped.message;
+  EXPECT_NE(stopped.message.find("did not halve in 5"), std::string::npos) << stopped.message;
+  EXPECT_LT(stopped.maps, spent.maps);
+  EXPECT_LE(stopped.residual, 0.61);  // its best iterate: the start's residual or better
+  // A Newton that converges halves its residual every iteration: the same result.
+  AffineMap A(0.998, 0.93, 1e-3);
+  lub::steady::ShootingOptions a = affine_options();
+  const auto free = lub::steady::solve_periodic_orbit(A, Eigen::Vector3d(0.5, 0.5, 0.5), a);
+  a.stagnation_maps = 5;
+  a.stagnation_floor = 1e-4;
+  const auto watched = lub::steady::solve_periodic_orbit(A, Eigen::Vector3d(0.5, 0.5, 0.5), a);
+  ASSERT_EQ(watched.outcome, lub::steady::ShootingOutcome::converged);
+  EXPECT_EQ(watched.maps, free.maps);
+  EXPECT_EQ((watched.z - free.z).lpNorm<Eigen::Infinity>(), 0.0);
 }
 
 // x'' + 2ζω x' + ω² x = F cos(Ω t), one forcing period T = 2π/Ω per map, by CVODE BDF.

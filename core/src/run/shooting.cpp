@@ -229,6 +229,10 @@ OrbitEvidence solve_orbit(SteadyContext& cx, Chart& chart, const StartState& bas
   maps_at(1.0);
   // The fallback (simulation.shooting_fallback) serves a start from the transient only.
   const bool fallback = !from.valid() && cx.sim.shooting_fallback == ShootingFallback::anderson;
+  if (!from.valid()) {  // from the transient: a Newton that stops making progress is stopped
+    options.stagnation_maps = t.stagnation_maps;
+    options.stagnation_floor = t.tighten_below;
+  }
   const Eigen::VectorXd z0 = chart.reduce(base.qv);
   StartEstimate estimate;
   steady::ShootingResult found = newton_from_start(cx, *period, *tight_period, z0, options, fallback, estimate);

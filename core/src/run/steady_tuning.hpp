@@ -33,6 +33,12 @@ struct SteadyTuning {
   /// runs again on periods at rtol × tighten_factor.
   double tighten_below = 1e-4;
   double tighten_factor = 0.1;
+  /// A Newton from the transient stops where its best residual, above tighten_below, has
+  /// not halved in this many trial periods (ShootingOptions::stagnation_maps): about two
+  /// iterations with their line searches. Inside Newton's region of convergence every
+  /// iteration halves it; the Newtons that did not (walking along a slow manifold or into
+  /// the wall) spent a seventh of the full factorial's periods and located no orbit.
+  int stagnation_maps = 5;
   /// Chord (Newton–Picard) steps first where the start's monodromy has |μ|max below this …
   double chord_contraction = 0.5;
   /// … at most this many, the orbit located when their residual over 1 − |μ|max is within

@@ -117,6 +117,9 @@ struct Problem {
   Eigen::VectorXd z, Pz;       // scratch
   Eigen::VectorXd best_z, best_Pz;
   double best = std::numeric_limits<double>::infinity();
+  double halving = std::numeric_limits<double>::infinity();  // a residual at or below this is progress
+  int stagnant = 0;            // trial points since the last progress
+  bool stagnated = false;      // stopped by ShootingOptions::stagnation_maps
   const Eigen::MatrixXd* initial = nullptr;  // ShootingOptions::initial_jacobian, until used
   std::vector<double> residual_scales;       // r_i
   int jacobians = 0;
@@ -142,6 +145,14 @@ int residual_cb(N_Vector u, N_Vector f, void* data) {
     pb.best = r;
     pb.best_z = pb.z;
     pb.best_Pz = pb.Pz;
+  }
+  if (r <= pb.halving) {
+    pb.halving = 0.5 * r;
+    pb.stagnant = 0;
+  } else if (pb.opt->stagnation_maps > 0 && pb.best > pb.opt->stagnation_floor &&
+             ++pb.stagnant >= pb.opt->stagnation_maps) {
+    pb.stagnated = true;
+    return -1;  // KINSOL stops; verdict() reports the best iterate
   }
   return 0;
 }
@@ -198,11 +209,16 @@ ShootingResult verdict(const Problem& pb, int flag, long iterations, const Eigen
   // the tolerance.
   // So has one that ran out of iterations there: near a multiplier close to 1 the
   // difference Jacobian's noise slows Newton to a crawl at that level.
-  if ((flag == KIN_LINESEARCH_NONCONV || flag == KIN_STEP_LT_STPTOL || flag == KIN_MAXITER_REACHED) &&
+  if ((flag == KIN_LINESEARCH_NONCONV || flag == KIN_STEP_LT_STPTOL || flag == KIN_MAXITER_REACHED || pb.stagnated) &&
       out.residual >= 0 &&
       out.residual <= opt.noise_factor * opt.tolerance) {
     out.outcome = ShootingOutcome::converged;
     out.at_noise_floor = true;
+    return out;
+  }
+  if (pb.stagnated) {
+    out.message = "Newton on P(z) = z: its residual did not halve in " + std::to_string(opt.stagnation_maps) +
+                  " trial periods";
     return out;
   }
   const char* name = KINGetReturnFlagName(flag);

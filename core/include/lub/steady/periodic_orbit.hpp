@@ -84,6 +84,14 @@ struct ShootingOptions {
   /// cannot change its residual measurably: a line search that backtracks below it spends a
   /// period a trial for nothing.
   double step_tolerance = 0.0;
+  /// Newton stops where its best residual has not halved over this many of its trial points
+  /// (periods of its line search; its Jacobians' differences not counted), while that
+  /// residual is above `stagnation_floor`; 0: never. A residual form of Deuflhard's
+  /// monotonicity test: inside Newton's region of convergence each iteration at least
+  /// halves the residual, so one that does not for this long is not converging to an orbit
+  /// (from a transient's end: walking along the slow manifold, or into the wall).
+  int stagnation_maps = 0;
+  double stagnation_floor = 0.0;
   double max_newton_step = 0.3;   ///< largest Newton step, scaled 2-norm (units s_i)
   /// A Newton that stalls (no decrease along its direction) within this factor of the
   /// tolerance has reached the map's own noise: converged, with its residual reported.
