@@ -101,6 +101,8 @@ def test_only_the_kinds_asked_for_are_located(paper_study, found):
     assert only["runs"].sum() < found["runs"].sum()
     with pytest.raises(ValueError, match="kinds: 'fold'"):
         boundaries.locate(lubjoint.load_study(paper_study), kinds=("fold",))
+    # The edges' former name asks for every edge, whatever kind each row turns out to be.
+    assert boundaries.asked(("orbit_end", "stability")) == ("edge", "stability")
 
 
 @pytest.mark.parametrize("angle, kind", [(0.0, "fold"), (3.14159265, "period_doubling"), (1.2, "neimark_sacker")])

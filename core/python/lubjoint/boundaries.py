@@ -244,8 +244,8 @@ def safe_film_boundaries(study, tolerance=5e-3, max_runs=8, edge_runs=12, pairs=
     pairs : bool
         Whether to locate the boundaries between two orbits.
     edges : bool
-        Whether to follow a safe orbit towards a neighbour without one (the ``orbit_end``
-        search, most of what boundaries cost: docs/validation/sensitivities.md).
+        Whether to follow a safe orbit towards a neighbour without one (the edge search,
+        most of what boundaries cost: docs/validation/sensitivities.md).
 
     Returns
     -------
@@ -424,8 +424,21 @@ def edge_ends(frame):
 
 
 #: What ``locate`` (``--kinds``) can be asked for: safe-film boundaries between two orbits,
-#: the edges where a safe orbit is lost, the stability crossings.
-KINDS = ("safe_film", "orbit_end", "stability")
+#: the edges where a safe orbit is lost (their rows' kind says how: a crossing, or
+#: ``orbit_end``), the stability crossings.
+KINDS = ("safe_film", "edge", "stability")
+#: Earlier names still accepted: ``orbit_end`` asked for every edge, whatever its kind.
+_FORMER = {"orbit_end": "edge"}
+
+
+def asked(kinds):
+    """``kinds`` (names of ``KINDS``, or their former names) as ``KINDS`` names; ValueError
+    naming the first that is neither."""
+    names = [_FORMER.get(k, k) for k in kinds]
+    unknown = [k for k, n in zip(kinds, names) if n not in KINDS]
+    if unknown:
+        raise ValueError(f"kinds: {unknown[0]!r}: each must be one of {', '.join(KINDS)}")
+    return tuple(names)
 
 
 def locate(study, tolerance=5e-3, kinds=KINDS):
@@ -434,12 +447,10 @@ def locate(study, tolerance=5e-3, kinds=KINDS):
     each column's unit)."""
     import pandas as pd
 
-    unknown = [k for k in kinds if k not in KINDS]
-    if unknown:
-        raise ValueError(f"kinds: {unknown[0]!r}: each must be one of {', '.join(KINDS)}")
+    kinds = asked(kinds)
     found = []
-    if "safe_film" in kinds or "orbit_end" in kinds:
-        found.append(safe_film_boundaries(study, tolerance, pairs="safe_film" in kinds, edges="orbit_end" in kinds))
+    if "safe_film" in kinds or "edge" in kinds:
+        found.append(safe_film_boundaries(study, tolerance, pairs="safe_film" in kinds, edges="edge" in kinds))
     if "stability" in kinds:
         found.append(stability_boundaries(study, tolerance))
     parts = [f for f in found if len(f)]
@@ -523,14 +534,16 @@ def main(argv=None):
     ap.add_argument("--tolerance", type=float, default=5e-3, help="relative accuracy of each value (default 0.005)")
     ap.add_argument("--no-write", action="store_true", help="print only; leave the study file as it is")
     ap.add_argument("--kinds", default=",".join(KINDS),
-                    help="which boundaries, comma separated (default all: " + ",".join(KINDS) + "); orbit_end "
-                         "and stability cost most")
+                    help="which boundaries, comma separated (default all: " + ",".join(KINDS) + "): safe_film "
+                         "between two orbits, edge where a safe orbit followed towards a neighbour without one is "
+                         "lost (orbit_end, its former name, is accepted), stability crossings; edge and "
+                         "stability cost most")
     args = ap.parse_args(argv)
     if not (0.0 < args.tolerance < 1.0):
         print(f"--tolerance = {args.tolerance}: must lie in (0, 1)", file=sys.stderr)
         return 2
     kinds = [k.strip() for k in args.kinds.split(",") if k.strip()]
-    bad = [k for k in kinds if k not in KINDS] or ([] if kinds else ["(none)"])
+    bad = [k for k in kinds if _FORMER.get(k, k) not in KINDS] or ([] if kinds else ["(none)"])
     if bad:
         print(f"--kinds = {args.kinds}: {bad[0]} is not one of {', '.join(KINDS)}", file=sys.stderr)
         return 2
