@@ -150,11 +150,24 @@ def test_an_edge_where_the_safe_orbit_turns_unstable_gives_its_multipliers_at_bo
             self.last.attrs.update(classification="periodic" if mu < 1.0 else "periodic_unstable", message="")
             return (1e-6, 0.0, 1e-9) if mu < 1.0 else None
 
-    value, error, kind, converged, lost, ends = boundaries._edge(Line(), (2.0, 1e-6, 0.0), 0.6, 5e-3, 12, 0.5)
+    line = Line()
+    value, error, kind, converged, lost, ends = boundaries._edge(line, (2.0, 1e-6, 0.0), 0.6, 5e-3, 12, 0.5)
     assert kind == "neimark_sacker" and converged and lost.startswith("periodic_unstable")
     assert value == pytest.approx(1.0, rel=5e-3) and error <= 5e-3 * value
     (la, fa), (lb, fb) = ends
     assert lb <= 1.0 < la and fa == pytest.approx(1.0 / la - 1.0) and fb == pytest.approx(1.0 / lb - 1.0)
+    # The multipliers' accuracy joins the error. Where the sum is above 0.5 % but a narrower
+    # bracket meets it, the bisection goes on; where the accuracy alone exceeds it, no
+    # bracket can: not converged.
+    half = error  # the bracket's own half-width, at lambda ~ 1 (the allowed error: 5e-3 * value)
+    for share in (0.5 * (5e-3 - half) / 5e-3, 0.8, 1.2):  # the term's share of the allowed error
+        again = Line()
+        v, e, _, c, _, _ = boundaries._edge(again, (2.0, 1e-6, 0.0), 0.6, 5e-3, 12, 0.5, lambda ends: share * 5e-3)
+        more = half + share * 5e-3 > 5e-3 * value and share < 1.0
+        assert (again.runs > line.runs) == more and c == (share < 1.0), (share, again.runs, line.runs)
+        assert e >= share * 5e-3
+        if c:
+            assert e <= 5e-3 * v and v == pytest.approx(1.0, abs=e)
 
 
 def test_an_edge_whose_film_reaches_the_safe_film_is_found_by_secant_steps_without_sensitivities():

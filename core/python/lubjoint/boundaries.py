@@ -164,7 +164,7 @@ def _edges(study, orbits=2):
         yield a, b, axis, pointers[axis], ra, rb
 
 
-def _edge(line, a, b, tolerance, max_runs, mu_a=math.nan):
+def _edge(line, a, b, tolerance, max_runs, mu_a=math.nan, term=None):
     """Along a line from a safe orbit ``a`` = (λ, gap > 0, slope) towards ``b``, a value
     where no orbit is located and the film is below the safe film: the value where the
     orbit's film reaches the safe film, by ``_locate`` once an orbit below it is found, or
@@ -176,16 +176,27 @@ def _edge(line, a, b, tolerance, max_runs, mu_a=math.nan):
     else ``orbit_end``. Returns (value, error, kind, converged, what the run at the lost end
     said: its classification and message, "" where that end is the grid's neighbour, and
     for a crossing the last bracket's (λ, ``|μ|max − 1``) pair, ``mu_a`` the start's
-    ``|μ|max``; else None)."""
+    ``|μ|max``; else None). ``term``, given such a pair, says how far the multipliers'
+    accuracy moves the crossing (``_multiplier_error``): for a crossing it is added to the
+    error once the bracket has converged, and where the sum exceeds ``tolerance`` but a
+    narrower bracket would meet it, the bisection goes on to that width."""
     log = a[0] > 0 and b > 0
     mid = (lambda x, y: math.sqrt(x * y)) if log else (lambda x, y: 0.5 * (x + y))
     crossing = None  # the dominant multiplier's angle at b, where an unstable orbit was found there
     lost = ""  # what the run at b said
     fa, fb = mu_a - 1.0, math.nan  # |μ|max − 1 at a and (an unstable orbit) at b
+    width, extra = tolerance, None  # the half-bracket aimed at (relative); the multipliers' term
     for _ in range(max_runs):
         lo, hi = sorted((a[0], b))
-        if hi - lo <= 2.0 * tolerance * mid(lo, hi):
-            break
+        if hi - lo <= 2.0 * width * mid(lo, hi):
+            if term is None or crossing is None or not math.isfinite(fa) or extra is not None:
+                break
+            extra = term(((a[0], fa), (b, fb)))
+            budget = tolerance * mid(lo, hi) - extra  # what the half-bracket may take of the error
+            if not budget > 0.0 or 0.5 * (hi - lo) <= budget:
+                break
+            width = budget / mid(lo, hi)
+            continue
         new = a[0] - a[1] / a[2] if a[2] else math.inf
         if not lo < new < hi:
             new = mid(lo, hi)
@@ -210,7 +221,9 @@ def _edge(line, a, b, tolerance, max_runs, mu_a=math.nan):
     lo, hi = sorted((a[0], b))
     kind = "orbit_end" if crossing is None else _kind(crossing)
     ends = ((a[0], fa), (b, fb)) if crossing is not None and math.isfinite(fa) else None
-    return mid(lo, hi), 0.5 * (hi - lo), kind, hi - lo <= 2.0 * tolerance * mid(lo, hi), lost, ends
+    error = 0.5 * (hi - lo) + (extra or 0.0)
+    converged = hi - lo <= 2.0 * width * mid(lo, hi) and error <= tolerance * mid(lo, hi)
+    return mid(lo, hi), error, kind, converged, lost, ends
 
 
 def _row(study, a, b, axis, ra, line, value, error, kind, converged, edge=False, lost=""):
@@ -289,11 +302,10 @@ def safe_film_boundaries(study, tolerance=5e-3, max_runs=8, edge_runs=12, pairs=
         # journal leaves it, and the crossing's kind is named.
         stable = ra["classification"] == "periodic"
         line = _Line(study, a, axis, pointer, ends=((a, ra[axis]),), fresh=False, stable=stable)
-        value, error, kind, converged, lost, ends = _edge(line, end(ra, axis), float(rb[axis]), tolerance,
-                                                         edge_runs, float(ra["multiplier_1_modulus"]))
-        if converged and ends:  # a crossing: the multipliers' accuracy too, as a stability crossing's
-            error += _multiplier_error(line, ends, lost_end=True)
-            converged = error <= tolerance * abs(value)
+        # A crossing's error has the multipliers' accuracy in it, as a stability crossing's.
+        value, error, kind, converged, lost, _ = _edge(line, end(ra, axis), float(rb[axis]), tolerance, edge_runs,
+                                                       float(ra["multiplier_1_modulus"]),
+                                                       lambda ends: _multiplier_error(line, ends, lost_end=True))
         rows.append(_row(study, a, b, axis, ra, line, value, error, kind, converged, edge=True, lost=lost))
     return pd.DataFrame(rows)
 
