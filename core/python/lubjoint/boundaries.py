@@ -401,7 +401,8 @@ def stability_boundaries(study, tolerance=5e-3, max_runs=10):
     every two lattice neighbours of ``study`` whose located orbits differ in stability
     (``|μ|max < 1`` at one, ``> 1`` at the other). Each by regula falsi on ``|μ|max − 1`` in the
     logarithm of the axis value, a run of the case's scene a step (from the nearest orbit
-    located on the line), to ``tolerance`` of the value (the error: half the last bracket).
+    located on the line), to ``tolerance`` of the value (the error: half the last bracket plus
+    how far the multipliers' change at rtol/10 moves it, ``_multiplier_error``).
     ``kind``: ``fold`` (the unstable end's dominant multiplier real, through +1),
     ``period_doubling`` (through −1) or ``neimark_sacker`` (a complex pair). Columns as ``safe_film_boundaries``'."""
     import pandas as pd
@@ -443,14 +444,18 @@ KINDS = ("safe_film", "edge", "stability")
 _FORMER = {"orbit_end": "edge"}
 
 
+def _unknown(kinds):
+    """The names in ``kinds`` that are neither a ``KINDS`` name nor a former one."""
+    return [k for k in kinds if _FORMER.get(k, k) not in KINDS]
+
+
 def asked(kinds):
     """``kinds`` (names of ``KINDS``, or their former names) as ``KINDS`` names; ValueError
     naming the first that is neither."""
-    names = [_FORMER.get(k, k) for k in kinds]
-    unknown = [k for k, n in zip(kinds, names) if n not in KINDS]
+    unknown = _unknown(kinds)
     if unknown:
         raise ValueError(f"kinds: {unknown[0]!r}: each must be one of {', '.join(KINDS)}")
-    return tuple(names)
+    return tuple(_FORMER.get(k, k) for k in kinds)
 
 
 def locate(study, tolerance=5e-3, kinds=KINDS):
@@ -555,7 +560,7 @@ def main(argv=None):
         print(f"--tolerance = {args.tolerance}: must lie in (0, 1)", file=sys.stderr)
         return 2
     kinds = [k.strip() for k in args.kinds.split(",") if k.strip()]
-    bad = [k for k in kinds if _FORMER.get(k, k) not in KINDS] or ([] if kinds else ["(none)"])
+    bad = _unknown(kinds) or ([] if kinds else ["(none)"])
     if bad:
         print(f"--kinds = {args.kinds}: {bad[0]} is not one of {', '.join(KINDS)}", file=sys.stderr)
         return 2

@@ -241,7 +241,10 @@ OrbitEvidence solve_orbit(SteadyContext& cx, Chart& chart, const StartState& bas
   ev.unlocatable = t.unlocatable;
   // A single continuation step stalled at the noise: located where the neighbour's
   // monodromy says the residual moves the orbit by little; else tighter periods, below.
-  if (tighten_stalled) accept_at_noise(found, options, t.tighten_below, t.chord_located * cx.sim.steady_tolerance);
+  const auto accept_single = [&](steady::ShootingResult& stalled) {
+    if (tighten_stalled) accept_at_noise(stalled, options, t.tighten_below, t.chord_located * cx.sim.steady_tolerance);
+  };
+  accept_single(found);
   if ((!from.valid() || tighten_stalled) && found.outcome != steady::ShootingOutcome::converged &&
       found.outcome != steady::ShootingOutcome::refused && found.residual >= 0 && found.residual <= t.tighten_below &&
       !(estimate.predicted_shift * t.tighten_factor > t.unlocatable * cx.sim.steady_tolerance)) {
@@ -251,8 +254,7 @@ OrbitEvidence solve_orbit(SteadyContext& cx, Chart& chart, const StartState& bas
     maps_at(t.tighten_factor);
     const Eigen::VectorXd z = found.z;
     found = better_of(std::move(found), steady::solve_periodic_orbit(*period, z, options));
-    // A single step's retry stalled at the tighter map's noise: the same acceptance.
-    if (tighten_stalled) accept_at_noise(found, options, t.tighten_below, t.chord_located * cx.sim.steady_tolerance);
+    accept_single(found);  // a single step's retry stalled at the tighter map's noise
   }
   steady.newton_iterations += static_cast<int>(found.iterations);
   steady.orbit_residual = found.residual;
