@@ -36,6 +36,8 @@ from matplotlib.patches import Rectangle
 from matplotlib.ticker import FuncFormatter, NullLocator
 from matplotlib.transforms import blended_transform_factory
 
+from .study import _text
+
 #: How values in a unit are shown on an axis: (unit shown, factor from the stored value).
 DISPLAY_UNITS = {"m": ("µm", 1e6), "Pa": ("MPa", 1e-6), "min-1": ("rpm", 1.0), "1": ("–", 1.0)}
 
@@ -126,10 +128,6 @@ def cell_map(ax, values, xs, ys, *, cmap, norm=None, text=None, status=None):
 
 
 # --- runs ----------------------------------------------------------------------------------
-
-
-def _text(value):
-    return value.decode() if isinstance(value, bytes) else value
 
 
 def _read_run_file(path):
