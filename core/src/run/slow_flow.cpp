@@ -124,8 +124,9 @@ SlowFlowEvidence& take_way(const SlowFlowWay& way, SlowFlowEvidence& ev) {
 }
 
 /// The metrics, channels, film and drift of the cycles measured where the flow got to.
-void take_slow_flow_metrics(SteadyContext& cx, SegmentResult& measured, Chart& chart, const StartState& from,
-                            const steady::SlowManifoldResult& flow) {
+/// Returns why the drift was not measured (it is then NaN, not the transient's), or "".
+std::string take_slow_flow_metrics(SteadyContext& cx, SegmentResult& measured, Chart& chart, const StartState& from,
+                                   const SlowFlowWay& way) {
   RunResult& res = cx.res;
   SteadyCycle& steady = res.steady;
   const std::vector<double> h = cycle_min_films(measured.res.cycles);
@@ -140,17 +141,36 @@ void take_slow_flow_metrics(SteadyContext& cx, SegmentResult& measured, Chart& c
   steady.last_cycle_asperity_load_ratio = measured.res.cycles.back().asperity_load_ratio;
   // How it drifts: the film against the flow's state some tenth of its cycles before
   // (consecutive cycles differ by the flow's slow change and a wobble the jumps leave in
-  // the modes that decay over tens of cycles, at times larger).
-  size_t back = flow.trail.size();
-  while (back > 0 && flow.trail_cycles[back - 1] > 0.9 * flow.cycles) --back;
-  StartState earlier = from;
-  if (back > 0 && flow.trail_cycles[back - 1] < flow.cycles &&
-      chart.expand(from.t, flow.trail[back - 1].data(), earlier.qv)) {
-    const SegmentResult then = cx.measure(earlier, 1.0, false, 1);
-    if (then.res.status == RunStatus::ok && !then.res.cycles.empty())
-      steady.min_film_drift_m_per_cycle = (h.front() - then.res.cycles.back().min_film_thickness_m) /
-                                          (flow.cycles - flow.trail_cycles[back - 1]);
+  // the modes that decay over tens of cycles, at times larger), on its last leg's trail;
+  // where that leg is too short to have such a point (a leg after a Newton where the flow
+  // stopped), on all its legs'.
+  steady.min_film_drift_m_per_cycle = kNaN;  // the transient's until now
+  const auto before_last_tenth = [](const std::vector<double>& c, double end) {
+    size_t k = c.size();
+    while (k > 0 && c[k - 1] > 0.9 * end) --k;
+    return k;
+  };
+  const std::vector<Eigen::VectorXd>* trail = &way.flow.trail;
+  const std::vector<double>* cycles = &way.flow.trail_cycles;
+  double end = way.flow.cycles;
+  size_t back = before_last_tenth(*cycles, end);
+  if (back == 0) {
+    trail = &way.trail;
+    cycles = &way.trail_cycles;
+    end = way.cycles;
+    back = before_last_tenth(*cycles, end);
   }
+  StartState earlier = from;
+  if (back == 0 || !((*cycles)[back - 1] < end)) return "no point of its trail before the last tenth of its cycles";
+  if (!chart.expand(from.t, (*trail)[back - 1].data(), earlier.qv))
+    return "the mechanism's state at an earlier point of its trail not recovered";
+  const SegmentResult then = cx.measure(earlier, 1.0, false, 1);
+  if (then.res.status != RunStatus::ok || then.res.cycles.empty())
+    return "a cycle from an earlier point of its trail: " +
+           (then.res.message.empty() ? std::string("not measured") : then.res.message);
+  steady.min_film_drift_m_per_cycle =
+      (h.front() - then.res.cycles.back().min_film_thickness_m) / (end - (*cycles)[back - 1]);
+  return "";
 }
 
 /// How much of the flow's drift a cycle may be its own period map's error [m/cycle]: from
@@ -294,11 +314,15 @@ void report_slow_flow(SteadyContext& cx, const RunResult& before, Chart& chart, 
   } else {
     ev.outcome = flow.outcome == steady::SlowManifoldOutcome::still ? Outcome::still : Outcome::moving;
   }
+  if (!have && ev.outcome != Outcome::film_fails) {
+    ev.not_measured = measured.res.message.empty() ? "the mechanism's state there not recovered"
+                                                   : measured.res.message;
+  }
   if (have) {
     ev.film_at_end = res.steady.last_cycle_min_film_m;
-    take_slow_flow_metrics(cx, measured, chart, from, flow);
+    ev.drift_not_measured = take_slow_flow_metrics(cx, measured, chart, from, way);
     ev.measured = true;
-    if (ev.outcome == Outcome::moving) {
+    if (ev.outcome == Outcome::moving && ev.drift_not_measured.empty()) {
       res.steady.min_film_drift_error_m_per_cycle = drift_error(cx, at);
       ev.flow_rtol = cx.scene.solver.rtol * cx.tuning.tighten_factor;
       if (res.steady.min_film_drift_m_per_cycle < 0.0)

@@ -202,6 +202,11 @@ struct SlowFlowEvidence {
   std::string failure;          ///< film_fails: the measurement's or the period's
   double periodicity = 0.0;     ///< off_manifold: two cycles' distance there [clearances]
   bool measured = false;        ///< the cycles where it got to measured (metrics taken)
+  /// still, moving: why the cycles where it got to were not measured (the film and drift
+  /// on record then stay the transient's); empty where they were
+  std::string not_measured;
+  /// measured: why the film's drift there was not (it is NaN); empty where it was
+  std::string drift_not_measured;
   double film_at_end = kNaN;    ///< the transient's last film [m] (before the flow's metrics)
   double flow_rtol = kNaN;      ///< moving: the rtol its periods ran at (the drift's error bar's)
   /// moving: why no drift law was fitted along the flow (empty: fitted, in res.steady)

@@ -359,9 +359,13 @@ void slow_flow(RunResult& res, const SlowFlowEvidence& ev) {
   if (ev.measured) {
     steady.method = SteadyCycleMethod::slow_flow;
     msg << ": minimum film " << ev.film_at_end << " m at the transient's end, " << steady.last_cycle_min_film_m
-        << " m there, changing by " << steady.min_film_drift_m_per_cycle << " m a cycle";
+        << " m there";
+    if (ev.drift_not_measured.empty())
+      msg << ", changing by " << steady.min_film_drift_m_per_cycle << " m a cycle";
+    else
+      msg << ", its drift not measured (" << ev.drift_not_measured << ")";
     const double drift = steady.min_film_drift_m_per_cycle, error = steady.min_film_drift_error_m_per_cycle;
-    if (ev.outcome == Outcome::moving && std::isfinite(error)) {
+    if (ev.outcome == Outcome::moving && std::isfinite(drift) && std::isfinite(error)) {
       msg << " (its period map's own error a cycle: " << error << " m at rtol " << ev.flow_rtol << ")";
       // The drift is no larger than the error of the periods that gave it: which way the
       // journal goes is the integrator's, not the film's (docs/theory/steady-cycles.md).
@@ -371,6 +375,10 @@ void slow_flow(RunResult& res, const SlowFlowEvidence& ev) {
       }
     }
     if (steady.kind == SteadyClass::drifting && ev.outcome == Outcome::moving) drift_law(msg, res, ev);
+  } else if (!ev.not_measured.empty()) {
+    // The film and drift on record are the transient's: the message says so.
+    msg << "; its cycles there not measured (" << ev.not_measured << "): the film and drift are the transient's, at "
+        << "its end";
   }
   msg << " (" << ev.periods << " periods, " << name_of(ev.flow) << "); from the transient: " << ev.shooting;
   res.message = msg.str();
