@@ -199,8 +199,10 @@ void print_boundaries(std::FILE* out, const h5::File& f, const h5::Table& cases)
   // Found by following case_a's safe orbit towards a neighbour without one (files since
   // the column came).
   const auto edge = b.has_column("edge") ? b.read_int64s("edge") : std::vector<std::int64_t>(n, 0);
-  static const std::vector<std::string> fixed = {"axis",   "value",  "error", "unit",    "kind",     "case_a",
-                                                 "case_b", "runs",   "periods", "converged", "edge", "lost"};
+  static const std::vector<std::string> fixed = {"axis", "value",   "error",     "unit", "kind", "case_a", "case_b",
+                                                 "runs", "periods", "converged", "edge", "lost", "reason"};
+  // Why a row has not converged (files since the column came).
+  const auto reason = b.has_column("reason") ? b.read_strings("reason") : std::vector<std::string>(n);
   // Each row's other axes ("name = value"), a column at a time.
   std::vector<std::string> others(n);
   for (const h5::Column& col : b.columns()) {
@@ -225,8 +227,9 @@ void print_boundaries(std::FILE* out, const h5::File& f, const h5::Table& cases)
     const char* lost = !edge[i] || kind[i] == "safe_film" ? ""
                        : kind[i] == "orbit_end"          ? "; the safe orbit's branch ends"
                                                          : "; the safe orbit turns unstable";
+    const std::string why = converged[i] ? "" : ", not converged" + (reason[i].empty() ? "" : ": " + reason[i]);
     fmt::print(out, "  {}: {} = {:.6g} ± {:.2g} {} between cases {} and {} ({}{}){}\n", kind[i], axis[i], value[i],
-               error[i], unit[i], a[i], c[i], others[i], lost, converged[i] ? "" : ", not converged");
+               error[i], unit[i], a[i], c[i], others[i], lost, why);
   }
 }
 

@@ -68,6 +68,8 @@ def test_the_boundaries_are_stored_in_the_study_file_and_the_summary_prints_them
     rows = table[table["kind"] == "safe_film"]
     assert len(rows) == 1 and rows.iloc[0]["unit"] == "Pa s" and rows.iloc[0]["force_law"] == "pinkus_sternlicht"
     assert 0.1 < rows.iloc[0]["value"] < 0.2 and bool(rows.iloc[0]["converged"])
+    # A converged row has no reason; one that is not says why (the unit test below).
+    assert (table.loc[table["converged"], "reason"] == "").all()
     summary = subprocess.run([str(build_dir / "sweep" / "lubsweep"), "--summary", str(copy)], capture_output=True,
                              text=True)
     assert summary.returncode == 0, summary.stderr
@@ -79,6 +81,15 @@ def test_the_boundaries_are_stored_in_the_study_file_and_the_summary_prints_them
     assert edge["kind"] == "fold" and edge["lost"].startswith("periodic_unstable"), edge
     line = next(s for s in summary.stdout.splitlines() if "fold: speed_rpm" in s)
     assert line.endswith("; the safe orbit turns unstable)"), line
+    # A row that has not converged: the summary says why, from the file's reason column.
+    unsure = table.copy()
+    unsure.loc[unsure["kind"] == "safe_film", ["converged", "reason"]] = [False, "no orbit located at 0.15 Pa s"]
+    boundaries.write(copy, unsure)
+    summary = subprocess.run([str(build_dir / "sweep" / "lubsweep"), "--summary", str(copy)], capture_output=True,
+                             text=True)
+    line = next(s for s in summary.stdout.splitlines() if "safe_film: viscosity_Pa_s" in s)
+    assert line.endswith(", not converged: no orbit located at 0.15 Pa s"), line
+    boundaries.write(copy, table)
     # Bad input: exit 2, the file named, nothing created.
     missing = tmp_path / "nope.h5"
     bad = subprocess.run([sys.executable, "-m", "lubjoint.boundaries", str(missing)], env=env, capture_output=True,
@@ -130,6 +141,36 @@ def test_a_stability_crossing_is_located_by_regula_falsi_and_named(angle, kind):
     (la, fa), (lb, fb) = ends
     assert min(la, lb) <= value <= max(la, lb) and fa * fb < 0
     assert fa == line(la)[0] and fb == line(lb)[0]
+
+
+def test_a_crossing_that_does_not_converge_says_why():
+    # Regula falsi where a run between the ends locates no orbit: it stops there, and the
+    # row it makes names the value and the axis's unit; where the runs run out, it says so.
+    import math
+
+    class Line:
+        runs = 0
+
+        def __init__(self, lost_above=math.inf):
+            self.lost_above = lost_above
+
+        def __call__(self, value):
+            self.runs += 1
+            if value > self.lost_above:
+                return None
+            return 2e-3 * math.log(value / 0.137), 0.5
+
+    a, b = (0.1, *Line()(0.1)), (0.2, *Line()(0.2))
+    line = Line(lost_above=0.13)
+    *_, converged, _ = boundaries._falsi(line, a, b, 5e-3, 10)
+    assert not converged and line.why.startswith("no orbit located at 0.1")
+    assert line.why.endswith("{unit}")  # _row puts the axis's unit there
+    line = Line()
+    *_, converged, _ = boundaries._falsi(line, a, b, 5e-3, 1)
+    assert not converged and line.why == "not within 0.5 % of its value in 1 runs"
+    # A bracket that met the tolerance, but not with its multipliers' accuracy added.
+    assert boundaries._refined(0.01, 0.5) == "its multipliers at rtol/10 move it by 2 % of its value"
+    assert boundaries._refined(float("inf"), 0.5) == "a bracket end run again at rtol/10 located no orbit"
 
 
 def test_an_edge_where_the_safe_orbit_turns_unstable_gives_its_multipliers_at_both_ends():

@@ -120,6 +120,15 @@ def test_the_boundaries_and_the_refinement_are_shown(selftest_dom, study_with_bo
     assert t["refinementCases"] == list(study.cases(study_with_boundaries, group="refinement")["name"])
 
 
+def test_a_boundary_that_has_not_converged_says_why_in_its_row():
+    from lubjoint import report
+
+    assert report._converged({"converged": True, "reason": ""}) == "yes"
+    assert report._converged({"converged": False, "reason": "no orbit located at 0.05 Pa s"}) == \
+        "no: no orbit located at 0.05 Pa s"
+    assert report._converged({"converged": False}) == "no"  # a file from before the column
+
+
 def test_the_table_sorts_and_filters(selftest_dom, paper_study):
     from lubjoint import study
 

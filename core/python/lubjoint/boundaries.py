@@ -132,6 +132,7 @@ def _locate(line, lo, hi, tolerance, max_runs):
             new = 0.5 * (a[0] + b[0])
         at = line(new)
         if at is None:  # no located orbit there: bisect towards the end that has one
+            line.why = _no_orbit(new)
             return new, abs(b[0] - a[0]), line.runs, False
         gn, sn, _ = at
         if (gn > 0) == (a[1] > 0):
@@ -143,6 +144,7 @@ def _locate(line, lo, hi, tolerance, max_runs):
         # the next Newton step's size bounds the remaining error (quadratic convergence)
         if sn and abs(gn / sn) <= 0.25 * tolerance * abs(new):
             return new - gn / sn, abs(gn / sn) + abs(at[2] / sn), line.runs, True
+    line.why = _runs_spent(max_runs, tolerance)
     return x, step_error, line.runs, False
 
 
@@ -222,17 +224,38 @@ def _edge(line, a, b, tolerance, max_runs, mu_a=math.nan, term=None):
     kind = "orbit_end" if crossing is None else _kind(crossing)
     ends = ((a[0], fa), (b, fb)) if crossing is not None and math.isfinite(fa) else None
     error = 0.5 * (hi - lo) + (extra or 0.0)
-    converged = hi - lo <= 2.0 * width * mid(lo, hi) and error <= tolerance * mid(lo, hi)
+    narrow = hi - lo <= 2.0 * width * mid(lo, hi)
+    converged = narrow and error <= tolerance * mid(lo, hi)
+    if not converged:
+        line.why = _runs_spent(max_runs, tolerance) if not narrow else _refined(extra, mid(lo, hi))
     return mid(lo, hi), error, kind, converged, lost, ends
 
 
+def _no_orbit(value):
+    return f"no orbit located at {value:.6g} {{unit}}"
+
+
+def _runs_spent(runs, tolerance):
+    return f"not within {100 * tolerance:g} % of its value in {runs} runs"
+
+
+def _refined(term, value):
+    """Why a bracket that met the tolerance did not: its multipliers' accuracy (``_multiplier_error``)."""
+    if not math.isfinite(term):
+        return "a bracket end run again at rtol/10 located no orbit"
+    return f"its multipliers at rtol/10 move it by {100 * term / abs(value):.2g} % of its value"
+
+
 def _row(study, a, b, axis, ra, line, value, error, kind, converged, edge=False, lost=""):
-    """One boundary's row: the fixed columns, then the other axes' values of its line."""
+    """One boundary's row: the fixed columns, then the other axes' values of its line. A row
+    that has not converged says why (``line.why``, set where its search gave up)."""
     cases = study.cases
+    unit = cases[axis].attrs.get("units", "")
     others = {k: ra[k] for k in cases.attrs.get("axes", []) if k != axis and k in ra}
-    return {"axis": axis, "value": value, "error": error, "unit": cases[axis].attrs.get("units", ""), "kind": kind,
+    reason = "" if converged else getattr(line, "why", "").replace("{unit}", unit).strip()
+    return {"axis": axis, "value": value, "error": error, "unit": unit, "kind": kind,
             "case_a": a, "case_b": b, "runs": line.runs, "periods": line.periods, "converged": converged,
-            "edge": edge, "lost": lost, **others}
+            "edge": edge, "lost": lost, "reason": reason, **others}
 
 
 def safe_film_boundaries(study, tolerance=5e-3, max_runs=8, edge_runs=12, pairs=True, edges=True):
@@ -347,6 +370,7 @@ def _falsi(line, a, b, tolerance, max_runs):
             u = 0.5 * (ua + ub)
         at = line(inv(u))
         if at is None:
+            line.why = _no_orbit(inv(u))
             break
         f, angle = at
         if (f > 0) == (fb > 0):
@@ -365,6 +389,8 @@ def _falsi(line, a, b, tolerance, max_runs):
     lo, hi = sorted((inv(ua), inv(ub)))
     unstable_angle = aa if fa > 0 else ab
     converged = hi - lo <= tolerance * abs(0.5 * (lo + hi))
+    if not converged and not getattr(line, "why", ""):
+        line.why = _runs_spent(max_runs, tolerance)
     ends = ((inv(ua), raw[0]), (inv(ub), raw[1]))
     return 0.5 * (lo + hi), 0.5 * (hi - lo), unstable_angle, line.runs, converged, ends
 
@@ -420,8 +446,11 @@ def stability_boundaries(study, tolerance=5e-3, max_runs=10):
         line = _Stability(study, a, axis, pointer, ends=((a, ra[axis]), (b, rb[axis])))
         value, error, angle, _, converged, last = _falsi(line, ends[0], ends[1], tolerance, max_runs)
         if converged:  # the bracket's half-width and the multipliers' accuracy
-            error += _multiplier_error(line, last)
+            term = _multiplier_error(line, last)
+            error += term
             converged = error <= tolerance * abs(value)
+            if not converged:
+                line.why = _refined(term, value)
         rows.append(_row(study, a, b, axis, ra, line, value, error, _kind(angle), converged))
     return pd.DataFrame(rows)
 
@@ -479,7 +508,8 @@ def locate(study, tolerance=5e-3, kinds=KINDS):
 
 
 #: The /boundaries columns every row has; the study's other axes follow.
-_FIXED = ["axis", "value", "error", "unit", "kind", "case_a", "case_b", "runs", "periods", "converged", "edge", "lost"]
+_FIXED = ["axis", "value", "error", "unit", "kind", "case_a", "case_b", "runs", "periods", "converged", "edge", "lost",
+          "reason"]
 
 
 def write(path, frame):
@@ -501,7 +531,7 @@ def write(path, frame):
             col = frame[name] if name in frame else pd.Series([], dtype=float)
             if name in ("case_a", "case_b", "runs", "periods", "converged", "edge"):
                 g.create_dataset(name, data=np.asarray(col, dtype=np.int64), maxshape=(None,))
-            elif name in ("axis", "unit", "kind", "lost") or col.dtype == object:
+            elif name in ("axis", "unit", "kind", "lost", "reason") or col.dtype == object:
                 text = ["" if not isinstance(v, str) else v for v in col]  # NaN: the row's own axis
                 g.create_dataset(name, data=np.array(text, dtype=object), dtype=strings, maxshape=(None,))
             else:
@@ -535,6 +565,14 @@ def read(path):
         if flag in frame:
             frame[flag] = frame[flag].astype(bool)
     return frame
+
+
+def _not_converged(row):
+    """", not converged: why" for a row that has not converged ("" for one that has)."""
+    if row["converged"]:
+        return ""
+    why = row.get("reason", "")
+    return ", not converged" + (f": {why}" if isinstance(why, str) and why else "")
 
 
 def main(argv=None):
@@ -584,7 +622,7 @@ def main(argv=None):
     for _, r in frame.iterrows():
         others = ", ".join(f"{k} = {r[k]}" for k in frame.columns if k not in _FIXED and r[k] == r[k] and r[k] != "")
         print(f"{r['kind']}: {r['axis']} = {r['value']:.6g} ± {r['error']:.2g} {r['unit']} between cases "
-              f"{r['case_a']} and {r['case_b']} ({others}; {r['runs']} runs{'' if r['converged'] else ', not converged'})")
+              f"{r['case_a']} and {r['case_b']} ({others}; {r['runs']} runs{_not_converged(r)})")
     return 0
 
 

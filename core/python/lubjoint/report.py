@@ -337,6 +337,14 @@ def _lost(row):
     return lost.split(":", 1)[0] if isinstance(lost, str) else ""
 
 
+def _converged(row):
+    """A boundary's "converged" cell: yes, or no and why (files since the reason came)."""
+    if row["converged"]:
+        return "yes"
+    why = row.get("reason", "")
+    return f"no: {why}" if isinstance(why, str) and why else "no"
+
+
 def _boundaries(study_path, cases, axes, units):
     """The study's /boundaries (``lubjoint.boundaries``) and /refinement (``lubsweep refine``)
     as table rows, each with a note saying how to make it where the file has none."""
@@ -360,7 +368,7 @@ def _boundaries(study_path, cases, axes, units):
             out["boundaries"].append([r["kind"], _label(r["axis"], unit), float(r["value"]) * factor,
                                       float(r["error"]) * factor, line,
                                       f"{names.get(int(r['case_a']), r['case_a'])} – {names.get(int(r['case_b']), r['case_b'])}",
-                                      int(r["runs"]), int(r.get("periods", -1)), "yes" if r["converged"] else "no",
+                                      int(r["runs"]), int(r.get("periods", -1)), _converged(r),
                                       _lost(r)])
     if added is None or not len(added):
         out["refinement_note"] = "none in the file: lubsweep refine STUDY.h5 --budget K adds cases (docs/guide/lubsweep.md)"
