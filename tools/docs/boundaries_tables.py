@@ -36,8 +36,7 @@ def table(rows, kind_column):
     out = [head, "|" + "---|" * (head.count("|") - 1)]
     for _, r in rows.iterrows():
         factor, _ = SHOWN.get(r["axis"], (1.0, ""))
-        why = r.get("reason", "") if isinstance(r.get("reason", ""), str) else ""
-        error = f"{r['error'] * factor:.2g}" + ("" if r["converged"] else ", not converged" + (f": {why}" if why else ""))
+        error = f"{r['error'] * factor:.2g}" + boundaries.not_converged(r)
         kind = f"{r['kind']} | " if kind_column else ""
         out.append(f"| {r.get('force_law', '')} | {line_text(r)} | {value_text(r['axis'], r['value'])} | {error} | "
                    f"{kind}{int(r['runs'])} | {int(r['periods'])} |")

@@ -567,12 +567,19 @@ def read(path):
     return frame
 
 
-def _not_converged(row):
+def reason(row):
+    """Why a /boundaries row has not converged: its ``reason``, "" for a converged row and
+    for one from a file written before the column."""
+    why = "" if row["converged"] else row.get("reason", "")
+    return why if isinstance(why, str) else ""
+
+
+def not_converged(row):
     """", not converged: why" for a row that has not converged ("" for one that has)."""
     if row["converged"]:
         return ""
-    why = row.get("reason", "")
-    return ", not converged" + (f": {why}" if isinstance(why, str) and why else "")
+    why = reason(row)
+    return ", not converged" + (f": {why}" if why else "")
 
 
 def main(argv=None):
@@ -622,7 +629,7 @@ def main(argv=None):
     for _, r in frame.iterrows():
         others = ", ".join(f"{k} = {r[k]}" for k in frame.columns if k not in _FIXED and r[k] == r[k] and r[k] != "")
         print(f"{r['kind']}: {r['axis']} = {r['value']:.6g} ± {r['error']:.2g} {r['unit']} between cases "
-              f"{r['case_a']} and {r['case_b']} ({others}; {r['runs']} runs{_not_converged(r)})")
+              f"{r['case_a']} and {r['case_b']} ({others}; {r['runs']} runs{not_converged(r)})")
     return 0
 
 

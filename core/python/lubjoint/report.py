@@ -339,10 +339,12 @@ def _lost(row):
 
 def _converged(row):
     """A boundary's "converged" cell: yes, or no and why (files since the reason came)."""
+    from .boundaries import reason
+
     if row["converged"]:
         return "yes"
-    why = row.get("reason", "")
-    return f"no: {why}" if isinstance(why, str) and why else "no"
+    why = reason(row)
+    return f"no: {why}" if why else "no"
 
 
 def _boundaries(study_path, cases, axes, units):
